@@ -1,0 +1,51 @@
+// bounce: the command-line entry point. Dispatches to the subcommands of app/commands.h.
+#include <cstdio>
+#include <exception>
+#include <string>
+
+#include "app/commands.h"
+
+namespace {
+
+const char* kUsage =
+    "bounce - a real-time global-illumination laboratory\n"
+    "\n"
+    "usage: bounce <command> [options]    (bounce <command> --help for its options)\n"
+    "\n"
+    "commands:\n"
+    "  render     render a scene with one technique to EXR/PNG, with per-pass GPU timings\n"
+    "  list       list the built-in scenes, the techniques and their parameters\n"
+    "  demo       open a window: fly camera, technique toggles, side-by-side comparison\n"
+    "  reference  render the ground truth with the CPU path tracer (cached)\n"
+    "  compare    error metrics between two images (RMSE, relative RMSE, SSIM...)\n"
+    "  bench      sweep scenes x techniques x parameters, report speed against error\n";
+
+} // namespace
+
+int main(int argc, char** argv)
+{
+    using namespace bounce::app;
+    if (argc < 2) {
+        std::fputs(kUsage, stderr);
+        return 2;
+    }
+    const std::string cmd = argv[1];
+    const Args args(argv + 2, argv + argc);
+    try {
+        if (cmd == "--help" || cmd == "-h" || cmd == "help") { std::fputs(kUsage, stdout); return 0; }
+        if (cmd == "render") return cmdRender(args);
+        if (cmd == "list") return cmdList(args);
+        if (cmd == "demo") return cmdDemo(args);
+        if (cmd == "reference") return cmdReference(args);
+        if (cmd == "compare") return cmdCompare(args);
+        if (cmd == "bench") return cmdBench(args);
+        std::fprintf(stderr, "bounce: unknown command '%s'\n\n%s", cmd.c_str(), kUsage);
+        return 2;
+    } catch (const UsageError& e) {
+        std::fprintf(stderr, "bounce %s: %s\n", cmd.c_str(), e.what());
+        return 2;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "bounce %s: error: %s\n", cmd.c_str(), e.what());
+        return 1;
+    }
+}

@@ -1,0 +1,1 @@
+// gl/ placeholder translation unit

@@ -1,0 +1,1 @@
+// ref/ placeholder translation unit (replaced by the path tracer)
