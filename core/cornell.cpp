@@ -1,0 +1,201 @@
+#include "core/cornell.h"
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <cmath>
+#include <functional>
+
+#include "core/gltf_io.h"
+
+namespace bounce::core {
+
+namespace {
+
+using Quad = std::array<glm::vec3, 4>;
+
+// Every number below is cornell-box.md's, in metres. Keep them exact: other renderers are compared
+// against the project on this geometry.
+const Quad kFloor{{{0.5528f, 0.0f, 0.0f}, {0.0f, 0.0f, 0.0f}, {0.0f, 0.0f, 0.5592f}, {0.5496f, 0.0f, 0.5592f}}};
+const Quad kCeiling{
+    {{0.556f, 0.5488f, 0.0f}, {0.556f, 0.5488f, 0.5592f}, {0.0f, 0.5488f, 0.5592f}, {0.0f, 0.5488f, 0.0f}}};
+const Quad kBackWall{
+    {{0.5496f, 0.0f, 0.5592f}, {0.0f, 0.0f, 0.5592f}, {0.0f, 0.5488f, 0.5592f}, {0.556f, 0.5488f, 0.5592f}}};
+const Quad kRightWall{{{0.0f, 0.0f, 0.5592f}, {0.0f, 0.0f, 0.0f}, {0.0f, 0.5488f, 0.0f}, {0.0f, 0.5488f, 0.5592f}}};
+const Quad kLeftWall{
+    {{0.5528f, 0.0f, 0.0f}, {0.5496f, 0.0f, 0.5592f}, {0.556f, 0.5488f, 0.5592f}, {0.556f, 0.5488f, 0.0f}}};
+
+const std::array<Quad, 5> kShortBlock{{
+    {{{0.130f, 0.165f, 0.065f}, {0.082f, 0.165f, 0.225f}, {0.240f, 0.165f, 0.272f}, {0.290f, 0.165f, 0.114f}}},
+    {{{0.290f, 0.0f, 0.114f}, {0.290f, 0.165f, 0.114f}, {0.240f, 0.165f, 0.272f}, {0.240f, 0.0f, 0.272f}}},
+    {{{0.130f, 0.0f, 0.065f}, {0.130f, 0.165f, 0.065f}, {0.290f, 0.165f, 0.114f}, {0.290f, 0.0f, 0.114f}}},
+    {{{0.082f, 0.0f, 0.225f}, {0.082f, 0.165f, 0.225f}, {0.130f, 0.165f, 0.065f}, {0.130f, 0.0f, 0.065f}}},
+    {{{0.240f, 0.0f, 0.272f}, {0.240f, 0.165f, 0.272f}, {0.082f, 0.165f, 0.225f}, {0.082f, 0.0f, 0.225f}}},
+}};
+const std::array<Quad, 5> kTallBlock{{
+    {{{0.423f, 0.330f, 0.247f}, {0.265f, 0.330f, 0.296f}, {0.314f, 0.330f, 0.456f}, {0.472f, 0.330f, 0.406f}}},
+    {{{0.423f, 0.0f, 0.247f}, {0.423f, 0.330f, 0.247f}, {0.472f, 0.330f, 0.406f}, {0.472f, 0.0f, 0.406f}}},
+    {{{0.472f, 0.0f, 0.406f}, {0.472f, 0.330f, 0.406f}, {0.314f, 0.330f, 0.456f}, {0.314f, 0.0f, 0.456f}}},
+    {{{0.314f, 0.0f, 0.456f}, {0.314f, 0.330f, 0.456f}, {0.265f, 0.330f, 0.296f}, {0.265f, 0.0f, 0.296f}}},
+    {{{0.265f, 0.0f, 0.296f}, {0.265f, 0.330f, 0.296f}, {0.423f, 0.330f, 0.247f}, {0.423f, 0.0f, 0.247f}}},
+}};
+const Quad kLightQuad{
+    {{0.343f, 0.5487f, 0.227f}, {0.343f, 0.5487f, 0.332f}, {0.213f, 0.5487f, 0.332f}, {0.213f, 0.5487f, 0.227f}}};
+
+const glm::vec3 kWhite{0.725f, 0.71f, 0.68f};
+const glm::vec3 kRed{0.63f, 0.065f, 0.05f};
+const glm::vec3 kGreen{0.14f, 0.45f, 0.091f};
+const glm::vec3 kAreaRadiance{17.0f, 12.0f, 4.0f};          // W/(m^2 sr)
+const glm::vec3 kSpotIntensity{0.23205f, 0.1638f, 0.0546f}; // W/sr: the radiance times the quad's 0.01365 m^2
+const glm::vec3 kSpotPosition{0.278f, 0.5478f, 0.2795f};
+const glm::vec3 kPointPosition{0.278f, 0.40f, 0.2795f};
+
+Material lambertian(const std::string& name, const glm::vec3& albedo)
+{
+    Material m;
+    m.name = name;
+    m.baseColor = albedo;
+    m.metallic = 0.0f;
+    m.roughness = 1.0f;
+    m.specular = 0.0f; // no glossy lobe: pure Lambertian
+    return m;
+}
+
+// Which way a triangle's normal must point, given the triangle's centroid.
+using Facing = std::function<glm::dvec3(const glm::dvec3& centroid)>;
+
+// Splits each quad into (v0,v1,v2), (v0,v2,v3) as the scene description prescribes. Each triangle gets
+// its own three vertices and its own geometric normal: the red wall is not planar, so one normal per
+// quad would be wrong for one of its halves. Where the listed order winds the wrong way, the triangle
+// is flipped (same three corners) so that it is counter-clockwise seen from the side its normal faces.
+Mesh quadMesh(const std::string& name, std::uint32_t material, const std::vector<Quad>& quads, const Facing& facing)
+{
+    Mesh mesh;
+    mesh.name = name;
+    mesh.material = material;
+    for (const Quad& q : quads) {
+        for (const std::array<glm::vec3, 3>& tri : {std::array{q[0], q[1], q[2]}, std::array{q[0], q[2], q[3]}}) {
+            const glm::dvec3 a(tri[0]), b(tri[1]), c(tri[2]);
+            glm::dvec3 n = glm::normalize(glm::cross(b - a, c - a));
+            const bool flip = glm::dot(n, facing((a + b + c) / 3.0)) < 0.0;
+            if (flip) n = -n;
+            const std::uint32_t base = std::uint32_t(mesh.positions.size());
+            mesh.positions.push_back(tri[0]);
+            mesh.positions.push_back(flip ? tri[2] : tri[1]);
+            mesh.positions.push_back(flip ? tri[1] : tri[2]);
+            // + 0: no negative zeros in the stored normals (they would print as -0.0 in glTF files).
+            const glm::vec3 normal = glm::vec3(n) + glm::vec3(0.0f);
+            for (int k = 0; k < 3; ++k) {
+                mesh.normals.push_back(normal);
+                mesh.indices.push_back(base + std::uint32_t(k));
+            }
+        }
+    }
+    return mesh;
+}
+
+Facing towards(const glm::dvec3& point)
+{
+    return [point](const glm::dvec3& centroid) { return point - centroid; };
+}
+
+Facing awayFrom(const glm::dvec3& point)
+{
+    return [point](const glm::dvec3& centroid) { return centroid - point; };
+}
+
+glm::dvec3 centreOf(const std::array<Quad, 5>& block)
+{
+    glm::dvec3 sum(0.0);
+    for (const Quad& q : block)
+        for (const glm::vec3& v : q) sum += glm::dvec3(v);
+    return sum / 20.0;
+}
+
+Light punctual(const std::string& name, LightType type, const glm::vec3& position)
+{
+    Light l;
+    l.name = name;
+    l.type = type;
+    l.position = position;
+    l.intensity = kSpotIntensity;
+    if (type == LightType::Spot) {
+        l.direction = glm::vec3(0.0f, -1.0f, 0.0f);
+        l.innerConeRad = kPi / 4.0f; // inner == outer: the hard 45-degree cone of the scene description
+        l.outerConeRad = kPi / 4.0f;
+    }
+    return l;
+}
+
+} // namespace
+
+std::vector<std::string> builtinSceneNames()
+{
+    return {"cornell-area", "cornell-spot", "cornell-point", "cornell-point-ceiling"};
+}
+
+Scene makeCornell(std::string_view variant)
+{
+    const std::vector<std::string> names = builtinSceneNames();
+    if (std::find(names.begin(), names.end(), variant) == names.end())
+        throw SceneError(
+            std::string(variant) +
+            ": not a Cornell box variant (cornell-area, cornell-spot, cornell-point, cornell-point-ceiling)");
+
+    Scene scene;
+    scene.name = std::string(variant);
+    scene.materials = {lambertian("white", kWhite), lambertian("red", kRed), lambertian("green", kGreen)};
+    const std::uint32_t white = 0, red = 1, green = 2;
+
+    const Facing intoRoom = towards(glm::dvec3(0.278, 0.2744, 0.2796)); // the middle of the room
+    scene.meshes.push_back(quadMesh("floor", white, {kFloor}, intoRoom));
+    scene.meshes.push_back(quadMesh("ceiling", white, {kCeiling}, intoRoom));
+    scene.meshes.push_back(quadMesh("back wall", white, {kBackWall}, intoRoom));
+    scene.meshes.push_back(quadMesh("right wall", green, {kRightWall}, intoRoom));
+    scene.meshes.push_back(quadMesh("left wall", red, {kLeftWall}, intoRoom));
+    scene.meshes.push_back(
+        quadMesh("short block", white, {kShortBlock.begin(), kShortBlock.end()}, awayFrom(centreOf(kShortBlock))));
+    scene.meshes.push_back(
+        quadMesh("tall block", white, {kTallBlock.begin(), kTallBlock.end()}, awayFrom(centreOf(kTallBlock))));
+
+    if (variant == "cornell-area") {
+        // Emits from its front face (down) only and reflects nothing.
+        Material emitter = lambertian("light", glm::vec3(0.0f));
+        emitter.emission = kAreaRadiance;
+        scene.materials.push_back(emitter);
+        scene.meshes.push_back(quadMesh("light", std::uint32_t(scene.materials.size() - 1), {kLightQuad},
+                                        [](const glm::dvec3&) { return glm::dvec3(0.0, -1.0, 0.0); }));
+    } else if (variant == "cornell-spot") {
+        scene.lights.push_back(punctual("spot", LightType::Spot, kSpotPosition));
+    } else if (variant == "cornell-point") {
+        scene.lights.push_back(punctual("point", LightType::Point, kPointPosition));
+    } else { // cornell-point-ceiling
+        scene.lights.push_back(punctual("point", LightType::Point, kSpotPosition));
+    }
+
+    Camera& camera = scene.camera;
+    camera.position = glm::vec3(0.278f, 0.273f, -0.800f);
+    camera.forward = glm::vec3(0.0f, 0.0f, 1.0f);
+    camera.up = glm::vec3(0.0f, 1.0f, 0.0f);
+    camera.yfovRad = float(2.0 * std::atan(12.5 / 35.0)); // 35 mm lens on 25 mm film
+    camera.znear = 0.01f;
+    camera.zfar = 10.0f; // the room is 0.56 m deep, seen from 0.8 m in front of it
+    return scene;
+}
+
+Scene loadScene(const std::string& nameOrPath)
+{
+    const std::vector<std::string> names = builtinSceneNames();
+    if (std::find(names.begin(), names.end(), nameOrPath) != names.end()) return makeCornell(nameOrPath);
+    std::string lower = nameOrPath;
+    std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    const auto endsWith = [&lower](const std::string& ext) {
+        return lower.size() > ext.size() && lower.compare(lower.size() - ext.size(), ext.size(), ext) == 0;
+    };
+    if (endsWith(".gltf") || endsWith(".glb")) return loadGltf(nameOrPath);
+    std::string known;
+    for (const std::string& n : names) known += (known.empty() ? "" : ", ") + n;
+    throw SceneError(nameOrPath + ": neither a built-in scene (" + known + ") nor a .gltf/.glb file");
+}
+
+} // namespace bounce::core

@@ -1,0 +1,23 @@
+// The canonical Cornell box (shared/scenes/cornell-box.md) built from its published numbers, and the
+// one entry point that turns a scene argument (a built-in name or a glTF path) into a Scene.
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/scene.h"
+
+namespace bounce::core {
+
+// "cornell-area", "cornell-spot", "cornell-point", and the hard variant "cornell-point-ceiling" (the
+// point light 1 mm under the ceiling). Throws SceneError (gltf_io.h) for any other name.
+Scene makeCornell(std::string_view variant);
+
+// The names makeCornell accepts, canonical variants first.
+std::vector<std::string> builtinSceneNames();
+
+// A built-in name gives the generated scene; anything else is read as a .gltf/.glb path (loadGltf).
+Scene loadScene(const std::string& nameOrPath);
+
+} // namespace bounce::core

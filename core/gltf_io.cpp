@@ -1,0 +1,1080 @@
+#include "core/gltf_io.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include <glm/gtc/matrix_inverse.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <nlohmann/json.hpp>
+#include <stb_image.h>       // implementation in Debian's libstb
+#include <stb_image_write.h> // implementation in Debian's libstb
+#include <tiny_gltf.h>       // implementation in Debian's libtinygltf: the header only declares
+
+#include "core/image.h"
+
+namespace bounce::core {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// No accessor of a scene this project renders comes near 2^28 elements; anything larger is a corrupt
+// or hostile file, refused before any allocation.
+constexpr std::uint64_t kMaxAccessorCount = std::uint64_t(1) << 28;
+constexpr std::uint64_t kMaxTexturePixels = std::uint64_t(1) << 26; // 8k x 8k
+
+constexpr int kModeTriangles = 4;
+constexpr int kTargetArrayBuffer = 34962;
+constexpr int kTargetElementArrayBuffer = 34963;
+
+[[noreturn]] void fail(const std::string& path, const std::string& problem) { throw SceneError(path + ": " + problem); }
+
+std::string lowerExtension(const std::string& path)
+{
+    std::string ext = fs::path(path).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    return ext;
+}
+
+bool isIdentity(const glm::dmat4& m) { return m == glm::dmat4(1.0); }
+
+// -0 and +0 mean the same direction; directions derived from node matrices are canonicalised so that a
+// written and reloaded scene hashes the same as the original.
+glm::vec3 withoutNegativeZero(glm::vec3 v) { return v + glm::vec3(0.0f); }
+
+// Normalises only when the vector is measurably off unit length, so that unit vectors survive a round
+// trip bit for bit.
+glm::dvec3 unitIfNeeded(glm::dvec3 v)
+{
+    const double len2 = glm::dot(v, v);
+    return std::abs(len2 - 1.0) > 1e-6 ? v / std::sqrt(len2) : v;
+}
+
+// ---------------------------------------------------------------------------------------------------
+// Loading
+
+// The file system as tinygltf sees it: only files inside the scene's folder exist. The refusal happens
+// in FileExists, before anything is read, and is recorded so that the error names the offending URI.
+struct FolderJail {
+    std::string prefix; // canonical scene folder, with a trailing '/'
+    std::vector<std::string> refused;
+    std::vector<std::string> missing;
+    tinygltf::Model* model = nullptr; // being filled; the image callback checks buffer views against it
+};
+
+// Returns the URI relative to the scene folder when absPath is a candidate tinygltf built from it.
+bool relativeToFolder(const FolderJail& jail, const std::string& absPath, std::string* rel)
+{
+    if (absPath.compare(0, jail.prefix.size(), jail.prefix) != 0) return false;
+    *rel = absPath.substr(jail.prefix.size());
+    return true;
+}
+
+bool staysInFolder(const FolderJail& jail, const std::string& absPath, const std::string& rel)
+{
+    if (rel.empty() || rel.front() == '/') return false; // absolute URIs are joined as "folder//abs"
+    for (const fs::path& part : fs::path(rel))
+        if (part == "..") return false;
+    std::error_code ec;
+    const std::string resolved = fs::weakly_canonical(absPath, ec).string(); // follows symbolic links
+    return !ec && resolved.compare(0, jail.prefix.size(), jail.prefix) == 0;
+}
+
+bool jailFileExists(const std::string& absPath, void* user)
+{
+    auto* jail = static_cast<FolderJail*>(user);
+    std::string rel;
+    // tinygltf also tries the current directory; that is outside the scene and silently absent.
+    if (!relativeToFolder(*jail, absPath, &rel)) return false;
+    if (!staysInFolder(*jail, absPath, rel)) {
+        jail->refused.push_back(rel);
+        return false;
+    }
+    std::error_code ec;
+    if (fs::is_regular_file(absPath, ec)) return true;
+    jail->missing.push_back(rel);
+    return false;
+}
+
+// No shell-style expansion (~, $VAR): a URI names a file, nothing else.
+std::string jailExpandFilePath(const std::string& path, void*) { return path; }
+
+bool jailReadWholeFile(std::vector<unsigned char>* out, std::string* err, const std::string& absPath, void* user)
+{
+    auto* jail = static_cast<FolderJail*>(user);
+    std::string rel;
+    if (!relativeToFolder(*jail, absPath, &rel) || !staysInFolder(*jail, absPath, rel)) {
+        if (err) *err += "refused to read outside the scene's folder: " + absPath + "\n";
+        return false;
+    }
+    std::ifstream in(absPath, std::ios::binary);
+    if (!in) {
+        if (err) *err += "cannot open " + absPath + "\n";
+        return false;
+    }
+    out->assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    return !in.bad();
+}
+
+bool jailWriteWholeFile(std::string* err, const std::string&, const std::vector<unsigned char>&, void*)
+{
+    if (err) *err += "writing through tinygltf is not used\n";
+    return false;
+}
+
+// Keeps images encoded: only the ones a material uses as base colour are decoded, later, with limits.
+bool keepEncodedImage(tinygltf::Image* image, const int imageIndex, std::string* err, std::string*, int, int,
+                      const unsigned char* bytes, int size, void* user)
+{
+    const auto* jail = static_cast<const FolderJail*>(user);
+    if (image->bufferView >= 0) {
+        // tinygltf hands over buffer.data + byteOffset unchecked; check before touching a byte.
+        const tinygltf::Model& model = *jail->model;
+        const auto& view = model.bufferViews[std::size_t(image->bufferView)];
+        const std::uint64_t bufferSize = model.buffers[std::size_t(view.buffer)].data.size();
+        if (view.byteOffset > bufferSize || view.byteLength > bufferSize - view.byteOffset) {
+            if (err)
+                *err += "image " + std::to_string(imageIndex) + ": bufferView " + std::to_string(image->bufferView) +
+                        " extends beyond the end of buffer " + std::to_string(view.buffer) + "\n";
+            return false;
+        }
+    }
+    if (size < 0) return false;
+    image->image.assign(bytes, bytes + size);
+    image->as_is = true;
+    return true;
+}
+
+class GltfReader {
+public:
+    explicit GltfReader(std::string path) : path_(std::move(path)) {}
+
+    Scene read()
+    {
+        parse();
+        loadTextures();
+        loadMaterials();
+        walkScene();
+        finishCamera();
+        if (const std::string problems = scene_.validate(); !problems.empty())
+            fail(path_, "invalid scene data: " + trimmed(problems));
+        return std::move(scene_);
+    }
+
+private:
+    struct Node {
+        int index;
+        glm::dmat4 world;
+        bool identity;
+    };
+
+    std::string path_;
+    tinygltf::Model model_;
+    Scene scene_;
+    std::map<int, int> textureOfImage_; // glTF image index -> Scene::textures index
+    int defaultMaterial_ = -1;
+    bool haveCamera_ = false;
+    bool cameraHasZfar_ = false;
+
+    void warn(const std::string& what) const { std::cerr << "warning: " << path_ << ": " << what << "\n"; }
+
+    // ---- file level ---------------------------------------------------------------------------------
+
+    std::vector<unsigned char> readFile() const
+    {
+        std::ifstream in(path_, std::ios::binary);
+        if (!in) fail(path_, std::string("cannot open: ") + std::strerror(errno));
+        std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        if (in.bad()) fail(path_, "read error");
+        if (bytes.size() >= (std::uint64_t(1) << 32)) fail(path_, "file too large (4 GiB or more)");
+        return bytes;
+    }
+
+    static std::uint32_t le32(const unsigned char* p)
+    {
+        return p[0] | (p[1] << 8) | (p[2] << 16) | (std::uint32_t(p[3]) << 24);
+    }
+
+    // tinygltf reports JSON syntax errors and GLB framing errors in its own words; checking them here
+    // first gives messages that say what is wrong with the file.
+    void checkFraming(const std::vector<unsigned char>& bytes, bool binary) const
+    {
+        const char* json = reinterpret_cast<const char*>(bytes.data());
+        std::size_t jsonSize = bytes.size();
+        if (binary) {
+            if (bytes.size() < 20 || std::memcmp(bytes.data(), "glTF", 4) != 0)
+                fail(path_, "not a GLB file (truncated or bad magic)");
+            const std::uint32_t length = le32(&bytes[8]);
+            const std::uint32_t chunkLength = le32(&bytes[12]);
+            if (length > bytes.size())
+                fail(path_, "GLB is truncated: header says " + std::to_string(length) + " bytes, file has " +
+                                std::to_string(bytes.size()));
+            if (std::uint64_t(chunkLength) + 20 > length || le32(&bytes[16]) != 0x4E4F534Au)
+                fail(path_, "GLB is truncated or malformed: bad JSON chunk");
+            json += 20;
+            jsonSize = chunkLength;
+        }
+        if (!nlohmann::json::accept(json, json + jsonSize)) fail(path_, "malformed JSON (truncated or not glTF JSON)");
+    }
+
+    void parse()
+    {
+        const std::vector<unsigned char> bytes = readFile();
+        const bool binary =
+            lowerExtension(path_) == ".glb" || (bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0);
+        checkFraming(bytes, binary);
+
+        std::error_code ec;
+        const fs::path folder = fs::weakly_canonical(fs::absolute(path_, ec).parent_path(), ec);
+        if (ec) fail(path_, "cannot resolve the scene's folder: " + ec.message());
+        FolderJail jail;
+        jail.prefix = folder.string();
+        if (jail.prefix.empty() || jail.prefix.back() != '/') jail.prefix += '/';
+        jail.model = &model_;
+
+        tinygltf::TinyGLTF loader;
+        loader.SetFsCallbacks({jailFileExists, jailExpandFilePath, jailReadWholeFile, jailWriteWholeFile, &jail});
+        loader.SetImageLoader(keepEncodedImage, &jail);
+        std::string err, warnings;
+        const std::string baseDir = jail.prefix.substr(0, jail.prefix.size() - 1);
+        const bool ok =
+            binary
+                ? loader.LoadBinaryFromMemory(&model_, &err, &warnings, bytes.data(), unsigned(bytes.size()), baseDir)
+                : loader.LoadASCIIFromString(&model_, &err, &warnings, reinterpret_cast<const char*>(bytes.data()),
+                                             unsigned(bytes.size()), baseDir);
+        if (!jail.refused.empty())
+            fail(path_,
+                 "URI '" + jail.refused.front() + "' leaves the scene's folder (absolute or '..' path); refused");
+        if (!ok) {
+            if (!jail.missing.empty())
+                fail(path_, "missing file '" + jail.missing.front() + "' (a buffer or image it refers to)");
+            fail(path_, "invalid glTF: " + trimmed(err));
+        }
+        for (std::size_t i = 0; i < model_.images.size(); ++i)
+            if (model_.images[i].image.empty())
+                fail(path_, "image " + std::to_string(i) + " ('" + model_.images[i].uri + "') is missing or empty");
+    }
+
+    static std::string trimmed(std::string s)
+    {
+        while (!s.empty() && (s.back() == '\n' || s.back() == ' ')) s.pop_back();
+        for (std::size_t i = s.find('\n'); i != std::string::npos; i = s.find('\n', i)) s.replace(i, 1, "; ");
+        return s;
+    }
+
+    // ---- accessors ----------------------------------------------------------------------------------
+
+    struct View {
+        const unsigned char* data = nullptr;
+        std::size_t stride = 0;
+        std::size_t count = 0;
+        int componentType = 0;
+        int components = 0;
+        bool normalized = false;
+    };
+
+    static int componentSize(int type)
+    {
+        switch (type) {
+        case TINYGLTF_COMPONENT_TYPE_BYTE:
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return 1;
+        case TINYGLTF_COMPONENT_TYPE_SHORT:
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return 2;
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+        case TINYGLTF_COMPONENT_TYPE_FLOAT: return 4;
+        default: return 0;
+        }
+    }
+
+    View view(int accessorIndex, int expectedType, const std::string& what) const
+    {
+        const std::string where = what + " accessor " + std::to_string(accessorIndex);
+        if (accessorIndex < 0 || std::size_t(accessorIndex) >= model_.accessors.size())
+            fail(path_, where + " is out of range (" + std::to_string(model_.accessors.size()) + " accessors)");
+        const tinygltf::Accessor& a = model_.accessors[std::size_t(accessorIndex)];
+        if (a.sparse.isSparse) fail(path_, where + ": sparse accessors are not supported");
+        if (a.type != expectedType) fail(path_, where + " has the wrong type for " + what);
+        if (a.count > kMaxAccessorCount)
+            fail(path_, where + ": count " + std::to_string(a.count) + " exceeds the limit of 2^28 elements");
+        View v;
+        v.count = a.count;
+        v.componentType = a.componentType;
+        v.components = tinygltf::GetNumComponentsInType(std::uint32_t(a.type));
+        v.normalized = a.normalized;
+        const int size = componentSize(a.componentType);
+        if (size == 0) fail(path_, where + ": unsupported component type " + std::to_string(a.componentType));
+        const std::uint64_t elementSize = std::uint64_t(size) * std::uint64_t(v.components);
+        // Without bufferView (and without sparse data) an accessor is all zeros: no use for geometry, and
+        // its count would not be bounded by any data in the file.
+        if (a.bufferView < 0) fail(path_, where + " has no bufferView (all zeros); not supported");
+
+        if (std::size_t(a.bufferView) >= model_.bufferViews.size())
+            fail(path_, where + ": bufferView " + std::to_string(a.bufferView) + " is out of range");
+        const tinygltf::BufferView& bv = model_.bufferViews[std::size_t(a.bufferView)];
+        if (bv.buffer < 0 || std::size_t(bv.buffer) >= model_.buffers.size())
+            fail(path_, where + ": buffer " + std::to_string(bv.buffer) + " is out of range");
+        const std::vector<unsigned char>& buffer = model_.buffers[std::size_t(bv.buffer)].data;
+        if (bv.byteOffset > buffer.size() || bv.byteLength > buffer.size() - bv.byteOffset)
+            fail(path_, where + ": bufferView " + std::to_string(a.bufferView) + " (offset " +
+                            std::to_string(bv.byteOffset) + ", length " + std::to_string(bv.byteLength) +
+                            ") extends beyond the end of buffer " + std::to_string(bv.buffer) + " (" +
+                            std::to_string(buffer.size()) + " bytes)");
+        v.stride = bv.byteStride != 0 ? bv.byteStride : std::size_t(elementSize);
+        if (v.stride < elementSize)
+            fail(path_, where + ": byteStride " + std::to_string(v.stride) + " is smaller than an element");
+        // Overflow-free: count <= 2^28 and stride <= 252 (tinygltf checks the latter).
+        const std::uint64_t needed =
+            a.count == 0 ? 0 : std::uint64_t(a.byteOffset) + (a.count - 1) * std::uint64_t(v.stride) + elementSize;
+        if (a.byteOffset > bv.byteLength || needed > bv.byteLength)
+            fail(path_, where + ": offset " + std::to_string(a.byteOffset) + " + count " + std::to_string(a.count) +
+                            " x stride " + std::to_string(v.stride) + " extends beyond the end of bufferView " +
+                            std::to_string(a.bufferView) + " (" + std::to_string(bv.byteLength) + " bytes)");
+        v.data = buffer.data() + bv.byteOffset + a.byteOffset;
+        return v;
+    }
+
+    static double component(const View& v, std::size_t i, int c)
+    {
+        const unsigned char* p = v.data + i * v.stride + std::size_t(c) * std::size_t(componentSize(v.componentType));
+        auto load = [p](auto value) {
+            std::memcpy(&value, p, sizeof value);
+            return value;
+        };
+        switch (v.componentType) {
+        case TINYGLTF_COMPONENT_TYPE_FLOAT: return load(float());
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+            return v.normalized ? load(std::uint8_t()) / 255.0 : load(std::uint8_t());
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
+            return v.normalized ? load(std::uint16_t()) / 65535.0 : load(std::uint16_t());
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: return load(std::uint32_t());
+        case TINYGLTF_COMPONENT_TYPE_BYTE:
+            return v.normalized ? std::max(load(std::int8_t()) / 127.0, -1.0) : load(std::int8_t());
+        case TINYGLTF_COMPONENT_TYPE_SHORT:
+            return v.normalized ? std::max(load(std::int16_t()) / 32767.0, -1.0) : load(std::int16_t());
+        default: return 0.0;
+        }
+    }
+
+    template <int N> std::vector<glm::vec<N, float>> readVectors(int accessorIndex, const std::string& what) const
+    {
+        const View v = view(accessorIndex, N == 2 ? TINYGLTF_TYPE_VEC2 : TINYGLTF_TYPE_VEC3, what);
+        std::vector<glm::vec<N, float>> out(v.count);
+        for (std::size_t i = 0; i < v.count; ++i)
+            for (int c = 0; c < N; ++c) out[i][c] = float(component(v, i, c));
+        return out;
+    }
+
+    std::vector<std::uint32_t> readIndices(int accessorIndex) const
+    {
+        const View v = view(accessorIndex, TINYGLTF_TYPE_SCALAR, "indices");
+        if (v.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
+            v.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+            v.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
+            fail(path_, "indices accessor " + std::to_string(accessorIndex) + ": component type must be unsigned");
+        std::vector<std::uint32_t> out(v.count);
+        for (std::size_t i = 0; i < v.count; ++i) out[i] = std::uint32_t(component(v, i, 0));
+        return out;
+    }
+
+    // ---- textures and materials ---------------------------------------------------------------------
+
+    void loadTextures()
+    {
+        // Scene textures follow the order of the glTF images that serve as base colour, so that a
+        // written scene (one image per texture) loads back with the same indices.
+        std::set<int> used;
+        for (const tinygltf::Material& m : model_.materials)
+            if (const int t = m.pbrMetallicRoughness.baseColorTexture.index; t >= 0) used.insert(imageOfTexture(t));
+        used.erase(-1);
+        for (int image : used) {
+            textureOfImage_[image] = int(scene_.textures.size());
+            scene_.textures.push_back(decode(image));
+        }
+    }
+
+    int imageOfTexture(int textureIndex) const
+    {
+        if (std::size_t(textureIndex) >= model_.textures.size())
+            fail(path_, "texture " + std::to_string(textureIndex) + " is out of range");
+        const int source = model_.textures[std::size_t(textureIndex)].source;
+        if (source < 0) {
+            warn("texture " + std::to_string(textureIndex) + " has no image source it can read; ignored");
+            return -1;
+        }
+        if (std::size_t(source) >= model_.images.size())
+            fail(path_, "image " + std::to_string(source) + " is out of range");
+        return source;
+    }
+
+    Texture decode(int imageIndex) const
+    {
+        const tinygltf::Image& image = model_.images[std::size_t(imageIndex)];
+        const std::string where =
+            "image " + std::to_string(imageIndex) + " ('" + (image.uri.empty() ? image.name : image.uri) + "')";
+        const auto* bytes = image.image.data();
+        const int size = int(image.image.size());
+        int w = 0, h = 0, channels = 0;
+        if (!stbi_info_from_memory(bytes, size, &w, &h, &channels))
+            fail(path_, where + " cannot be decoded: " + stbi_failure_reason());
+        if (w <= 0 || h <= 0 || std::uint64_t(w) * std::uint64_t(h) > kMaxTexturePixels)
+            fail(path_, where + " has unusable size " + std::to_string(w) + "x" + std::to_string(h));
+        unsigned char* pixels = stbi_load_from_memory(bytes, size, &w, &h, &channels, 4);
+        if (!pixels) fail(path_, where + " cannot be decoded: " + stbi_failure_reason());
+        Texture t;
+        t.name = image.name.empty() ? image.uri : image.name;
+        t.width = w;
+        t.height = h;
+        t.rgba8.assign(pixels, pixels + std::size_t(w) * std::size_t(h) * 4);
+        stbi_image_free(pixels);
+        return t;
+    }
+
+    static double number(const tinygltf::Value& object, const char* key, double fallback)
+    {
+        if (!object.Has(key) || !object.Get(key).IsNumber()) return fallback;
+        return object.Get(key).GetNumberAsDouble();
+    }
+
+    static glm::dvec3 colour(const tinygltf::Value& object, const char* key, glm::dvec3 fallback)
+    {
+        if (!object.Has(key)) return fallback;
+        const tinygltf::Value& a = object.Get(key);
+        if (!a.IsArray() || a.ArrayLen() != 3) return fallback;
+        glm::dvec3 c;
+        for (int i = 0; i < 3; ++i) c[i] = a.Get(i).IsNumber() ? a.Get(i).GetNumberAsDouble() : fallback[i];
+        return c;
+    }
+
+    static const tinygltf::Value* extension(const tinygltf::ExtensionMap& map, const char* name)
+    {
+        const auto it = map.find(name);
+        return it != map.end() && it->second.IsObject() ? &it->second : nullptr;
+    }
+
+    void loadMaterials()
+    {
+        for (const tinygltf::Material& gm : model_.materials) {
+            Material m;
+            m.name = gm.name;
+            const tinygltf::PbrMetallicRoughness& pbr = gm.pbrMetallicRoughness;
+            if (pbr.baseColorFactor.size() == 4)
+                m.baseColor = glm::vec3(float(pbr.baseColorFactor[0]), float(pbr.baseColorFactor[1]),
+                                        float(pbr.baseColorFactor[2]));
+            if (pbr.baseColorTexture.index >= 0) {
+                if (pbr.baseColorTexture.texCoord != 0) warn("material '" + gm.name + "': only TEXCOORD_0 is read");
+                const auto it = textureOfImage_.find(imageOfTexture(pbr.baseColorTexture.index));
+                if (it != textureOfImage_.end()) m.baseColorTexture = it->second;
+            }
+            m.metallic = float(pbr.metallicFactor);
+            m.roughness = float(pbr.roughnessFactor);
+            double strength = 1.0;
+            if (const tinygltf::Value* e = extension(gm.extensions, "KHR_materials_emissive_strength"))
+                strength = number(*e, "emissiveStrength", 1.0);
+            if (gm.emissiveFactor.size() == 3)
+                // The product is formed in double and rounded once, so that writeGltf's split of an
+                // emission into factor x strength comes back bit for bit.
+                m.emission =
+                    glm::vec3(glm::dvec3(gm.emissiveFactor[0], gm.emissiveFactor[1], gm.emissiveFactor[2]) * strength);
+            if (const tinygltf::Value* s = extension(gm.extensions, "KHR_materials_specular")) {
+                m.specular = float(number(*s, "specularFactor", 1.0));
+                m.specularColor = glm::vec3(colour(*s, "specularColorFactor", glm::dvec3(1.0)));
+            }
+            m.doubleSided = gm.doubleSided;
+            scene_.materials.push_back(m);
+        }
+    }
+
+    std::uint32_t materialFor(int index)
+    {
+        if (index >= 0) {
+            if (std::size_t(index) >= model_.materials.size())
+                fail(path_, "material " + std::to_string(index) + " is out of range (" +
+                                std::to_string(model_.materials.size()) + " materials)");
+            return std::uint32_t(index);
+        }
+        if (defaultMaterial_ < 0) {
+            // glTF's default material: base colour 1, metallic 1, roughness 1, no emission.
+            Material m;
+            m.name = "glTF default";
+            m.metallic = 1.0f;
+            defaultMaterial_ = int(scene_.materials.size());
+            scene_.materials.push_back(m);
+        }
+        return std::uint32_t(defaultMaterial_);
+    }
+
+    // ---- node hierarchy -----------------------------------------------------------------------------
+
+    glm::dmat4 localMatrix(const tinygltf::Node& n, int index) const
+    {
+        const std::string where = "node " + std::to_string(index);
+        if (!n.matrix.empty()) {
+            if (n.matrix.size() != 16) fail(path_, where + ": matrix must have 16 numbers");
+            glm::dmat4 m;
+            for (int i = 0; i < 16; ++i) m[i / 4][i % 4] = n.matrix[std::size_t(i)]; // column-major
+            return m;
+        }
+        if ((!n.translation.empty() && n.translation.size() != 3) || (!n.rotation.empty() && n.rotation.size() != 4) ||
+            (!n.scale.empty() && n.scale.size() != 3))
+            fail(path_, where + ": translation/rotation/scale have the wrong number of components");
+        glm::dmat3 r(1.0);
+        if (!n.rotation.empty()) {
+            glm::dquat q(n.rotation[3], n.rotation[0], n.rotation[1], n.rotation[2]); // glTF stores x, y, z, w
+            if (std::abs(glm::dot(q, q) - 1.0) > 1e-6) q = glm::normalize(q);
+            r = glm::mat3_cast(q);
+        }
+        glm::dmat4 m(1.0);
+        for (int c = 0; c < 3; ++c) m[c] = glm::dvec4(n.scale.empty() ? r[c] : r[c] * n.scale[std::size_t(c)], 0.0);
+        if (!n.translation.empty()) m[3] = glm::dvec4(n.translation[0], n.translation[1], n.translation[2], 1.0);
+        return m;
+    }
+
+    std::vector<int> rootNodes()
+    {
+        std::vector<int> roots;
+        if (!model_.scenes.empty()) {
+            const int s = model_.defaultScene >= 0 ? model_.defaultScene : 0;
+            if (std::size_t(s) >= model_.scenes.size())
+                fail(path_, "default scene " + std::to_string(s) + " is out of range");
+            scene_.name = model_.scenes[std::size_t(s)].name;
+            return model_.scenes[std::size_t(s)].nodes;
+        }
+        // No scene: every node that is nobody's child is a root.
+        std::vector<bool> isChild(model_.nodes.size(), false);
+        for (const tinygltf::Node& n : model_.nodes)
+            for (int c : n.children)
+                if (c >= 0 && std::size_t(c) < isChild.size()) isChild[std::size_t(c)] = true;
+        for (std::size_t i = 0; i < isChild.size(); ++i)
+            if (!isChild[i]) roots.push_back(int(i));
+        return roots;
+    }
+
+    void walkScene()
+    {
+        const std::vector<int> roots = rootNodes();
+        if (scene_.name.empty()) scene_.name = fs::path(path_).stem().string();
+        // An explicit stack (the hierarchy may be deep) and a visited mark (it may be cyclic).
+        std::vector<bool> visited(model_.nodes.size(), false);
+        std::vector<Node> stack;
+        for (auto it = roots.rbegin(); it != roots.rend(); ++it) stack.push_back({*it, glm::dmat4(1.0), true});
+        while (!stack.empty()) {
+            const Node parent = stack.back();
+            stack.pop_back();
+            if (parent.index < 0 || std::size_t(parent.index) >= model_.nodes.size())
+                fail(path_, "node " + std::to_string(parent.index) + " is out of range (" +
+                                std::to_string(model_.nodes.size()) + " nodes)");
+            if (visited[std::size_t(parent.index)])
+                fail(path_, "node " + std::to_string(parent.index) +
+                                " is reached twice: the node hierarchy has a cycle or a shared child");
+            visited[std::size_t(parent.index)] = true;
+            const tinygltf::Node& n = model_.nodes[std::size_t(parent.index)];
+            const glm::dmat4 local = localMatrix(n, parent.index);
+            Node node{parent.index, parent.world, parent.identity};
+            if (!isIdentity(local)) {
+                node.world = parent.identity ? local : parent.world * local;
+                node.identity = false;
+            }
+            visitNode(n, node);
+            for (auto c = n.children.rbegin(); c != n.children.rend(); ++c)
+                stack.push_back({*c, node.world, node.identity});
+        }
+    }
+
+    void visitNode(const tinygltf::Node& n, const Node& node)
+    {
+        if (n.mesh >= 0) {
+            if (std::size_t(n.mesh) >= model_.meshes.size())
+                fail(path_, "mesh " + std::to_string(n.mesh) + " is out of range");
+            const tinygltf::Mesh& mesh = model_.meshes[std::size_t(n.mesh)];
+            for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
+                const std::string name = mesh.primitives.size() == 1 ? mesh.name : mesh.name + "/" + std::to_string(p);
+                const std::string where = "mesh " + std::to_string(n.mesh) +
+                                          (mesh.name.empty() ? "" : " ('" + mesh.name + "')") + " primitive " +
+                                          std::to_string(p);
+                addPrimitive(mesh.primitives[p], name, where, node);
+            }
+        }
+        if (n.camera >= 0) {
+            if (std::size_t(n.camera) >= model_.cameras.size())
+                fail(path_, "camera " + std::to_string(n.camera) + " is out of range");
+            addCamera(model_.cameras[std::size_t(n.camera)], node);
+        }
+        if (const tinygltf::Value* e = extension(n.extensions, "KHR_lights_punctual")) {
+            const double index = number(*e, "light", -1.0);
+            if (!(index >= 0.0 && index < double(model_.lights.size())))
+                fail(path_, "light " + std::to_string(std::llround(std::clamp(index, -1.0, 1e15))) +
+                                " is out of range (" + std::to_string(model_.lights.size()) + " lights)");
+            addLight(model_.lights[std::size_t(index)], node);
+        }
+    }
+
+    // ---- primitives, lights, camera -----------------------------------------------------------------
+
+    void addPrimitive(const tinygltf::Primitive& p, const std::string& name, const std::string& where, const Node& node)
+    {
+        if (p.mode != -1 && p.mode != kModeTriangles) {
+            warn(where + ": primitive mode " + std::to_string(p.mode) + " is not TRIANGLES; skipped");
+            return;
+        }
+        const auto attribute = [&p](const char* key) {
+            const auto it = p.attributes.find(key);
+            return it == p.attributes.end() ? -1 : it->second;
+        };
+        if (attribute("POSITION") < 0) {
+            warn(where + ": primitive without POSITION; skipped");
+            return;
+        }
+        Mesh m;
+        m.name = name;
+        m.material = materialFor(p.material);
+        m.positions = readVectors<3>(attribute("POSITION"), "POSITION");
+        if (attribute("NORMAL") >= 0) m.normals = readVectors<3>(attribute("NORMAL"), "NORMAL");
+        if (attribute("TEXCOORD_0") >= 0) m.uvs = readVectors<2>(attribute("TEXCOORD_0"), "TEXCOORD_0");
+        if (!m.normals.empty() && m.normals.size() != m.positions.size())
+            fail(path_, where + ": NORMAL and POSITION counts differ");
+        if (!m.uvs.empty() && m.uvs.size() != m.positions.size())
+            fail(path_, where + ": TEXCOORD_0 and POSITION counts differ");
+        if (p.indices >= 0) {
+            m.indices = readIndices(p.indices);
+            for (std::uint32_t i : m.indices)
+                if (i >= m.positions.size())
+                    fail(path_, where + ": index " + std::to_string(i) + " is out of range (" +
+                                    std::to_string(m.positions.size()) + " vertices)");
+        } else {
+            m.indices.resize(m.positions.size());
+            for (std::size_t i = 0; i < m.indices.size(); ++i) m.indices[i] = std::uint32_t(i);
+        }
+        if (m.indices.size() % 3 != 0)
+            fail(path_,
+                 where + ": " + std::to_string(m.indices.size()) + " indices is not a whole number of triangles");
+
+        if (!node.identity) toWorld(m, node.world);
+        for (glm::vec3& n : m.normals) n = glm::vec3(unitIfNeeded(glm::dvec3(n))); // files may store them unnormalised
+        const bool normalsUsable = std::all_of(m.normals.begin(), m.normals.end(), [](const glm::vec3& n) {
+            const float len2 = glm::dot(n, n);
+            return std::isfinite(len2) && len2 > 1e-12f;
+        });
+        if (!normalsUsable) warn(where + ": zero or non-finite normals; flat normals generated instead");
+        if (m.normals.empty() || !normalsUsable) makeFlat(m);
+        if (m.indices.empty()) return;
+        scene_.meshes.push_back(std::move(m));
+    }
+
+    static void toWorld(Mesh& m, const glm::dmat4& world)
+    {
+        for (glm::vec3& p : m.positions) p = glm::vec3(world * glm::dvec4(p, 1.0));
+        const glm::dmat3 normalMatrix = glm::inverseTranspose(glm::dmat3(world));
+        for (glm::vec3& n : m.normals) n = glm::vec3(normalMatrix * glm::dvec3(n));
+        // A mirroring transform turns counter-clockwise triangles clockwise; swap two corners back.
+        if (glm::determinant(glm::dmat3(world)) < 0.0)
+            for (std::size_t t = 0; t + 2 < m.indices.size(); t += 3) std::swap(m.indices[t + 1], m.indices[t + 2]);
+    }
+
+    // glTF: without normals, flat normals. Each triangle gets its own three vertices.
+    static void makeFlat(Mesh& m)
+    {
+        Mesh flat;
+        flat.name = m.name;
+        flat.material = m.material;
+        for (std::size_t t = 0; t + 2 < m.indices.size(); t += 3) {
+            const glm::dvec3 a(m.positions[m.indices[t]]), b(m.positions[m.indices[t + 1]]),
+                c(m.positions[m.indices[t + 2]]);
+            const glm::dvec3 cross = glm::cross(b - a, c - a);
+            const double len = glm::length(cross);
+            // A degenerate triangle covers no area; any unit normal will do.
+            const glm::vec3 n =
+                len > 0.0 && std::isfinite(len) ? withoutNegativeZero(glm::vec3(cross / len)) : glm::vec3(0, 1, 0);
+            for (int k = 0; k < 3; ++k) {
+                const std::uint32_t i = m.indices[t + std::size_t(k)];
+                flat.indices.push_back(std::uint32_t(flat.positions.size()));
+                flat.positions.push_back(m.positions[i]);
+                flat.normals.push_back(n);
+                if (!m.uvs.empty()) flat.uvs.push_back(m.uvs[i]);
+            }
+        }
+        m = std::move(flat);
+    }
+
+    void addLight(const tinygltf::Light& gl, const Node& node)
+    {
+        Light l;
+        l.name = gl.name;
+        if (gl.type == "point")
+            l.type = LightType::Point;
+        else if (gl.type == "spot")
+            l.type = LightType::Spot;
+        else if (gl.type == "directional")
+            l.type = LightType::Directional;
+        else {
+            warn("light '" + gl.name + "' has unknown type '" + gl.type + "'; skipped");
+            return;
+        }
+        const glm::dvec3 colour =
+            gl.color.size() == 3 ? glm::dvec3(gl.color[0], gl.color[1], gl.color[2]) : glm::dvec3(1.0);
+        l.intensity = glm::vec3(colour * gl.intensity); // W/sr (W/m^2 directional), rounded once
+        l.position = glm::vec3(node.world[3]);
+        if (l.type != LightType::Point)
+            l.direction = withoutNegativeZero(glm::vec3(unitIfNeeded(-glm::dvec3(node.world[2]))));
+        if (l.type == LightType::Spot) {
+            l.innerConeRad = float(gl.spot.innerConeAngle);
+            l.outerConeRad = float(gl.spot.outerConeAngle);
+        }
+        scene_.lights.push_back(l);
+    }
+
+    void addCamera(const tinygltf::Camera& c, const Node& node)
+    {
+        if (haveCamera_) return;
+        if (c.type != "perspective") {
+            warn("camera '" + c.name + "' is not perspective; ignored");
+            return;
+        }
+        haveCamera_ = true;
+        Camera& cam = scene_.camera;
+        cam.position = glm::vec3(node.world[3]);
+        const glm::dvec3 forward = unitIfNeeded(-glm::dvec3(node.world[2]));
+        glm::dvec3 up(node.world[1]);
+        // A sheared node leaves +y not quite orthogonal to -z; Camera wants them orthogonal.
+        if (std::abs(glm::dot(up, forward)) > 1e-6) up -= glm::dot(up, forward) * forward;
+        cam.forward = withoutNegativeZero(glm::vec3(forward));
+        cam.up = withoutNegativeZero(glm::vec3(unitIfNeeded(up)));
+        if (c.perspective.yfov > 0.0) cam.yfovRad = float(c.perspective.yfov);
+        if (c.perspective.znear > 0.0) cam.znear = float(c.perspective.znear);
+        cameraHasZfar_ = c.perspective.zfar > 0.0;
+        if (cameraHasZfar_) cam.zfar = float(c.perspective.zfar);
+    }
+
+    static float farthestCorner(const glm::vec3& from, const Bounds& b)
+    {
+        float far = 0.0f;
+        for (int i = 0; i < 8; ++i) {
+            const glm::vec3 corner((i & 1) ? b.hi.x : b.lo.x, (i & 2) ? b.hi.y : b.lo.y, (i & 4) ? b.hi.z : b.lo.z);
+            far = std::max(far, glm::length(corner - from));
+        }
+        return far;
+    }
+
+    void finishCamera()
+    {
+        const Bounds b = scene_.bounds();
+        Camera& cam = scene_.camera;
+        if (!haveCamera_) {
+            cam = Camera{};
+            if (!b.empty()) {
+                // Back off along -z until the front face of the bounds fills the field of view.
+                const glm::vec3 e = b.extent();
+                const float half = std::max({0.5f * e.x, 0.5f * e.y, 1e-3f});
+                const float distance = half / std::tan(0.5f * cam.yfovRad);
+                cam.position = glm::vec3(b.centre().x, b.centre().y, b.lo.z - distance);
+                cam.znear = std::max(1e-4f, 0.01f * distance);
+            }
+        }
+        if ((!haveCamera_ || !cameraHasZfar_) && !b.empty())
+            cam.zfar = std::max(2.0f * farthestCorner(cam.position, b), 10.0f * cam.znear);
+    }
+};
+
+// ---------------------------------------------------------------------------------------------------
+// Writing
+
+using nlohmann::json;
+
+// The double nearest to the shortest decimal that reads back as f: files show 0.278, not
+// 0.27799999713897705, and still load to the very same float. Checked, since a decimal near the middle
+// between two floats could round the other way through double.
+double decimal(float f)
+{
+    char text[32];
+    const auto [end, ec] = std::to_chars(text, text + sizeof text - 1, f);
+    if (ec != std::errc()) return double(f);
+    *end = '\0';
+    const double d = std::strtod(text, nullptr);
+    return float(d) == f ? d : double(f);
+}
+
+json vec3Json(const glm::vec3& v) { return {decimal(v.x), decimal(v.y), decimal(v.z)}; }
+
+// The .bin being assembled and the glTF objects that describe it.
+struct BinaryWriter {
+    std::string bytes;
+    json views = json::array();
+    json accessors = json::array();
+
+    int addView(const void* data, std::size_t size, int target)
+    {
+        bytes.resize((bytes.size() + 3) & ~std::size_t(3), '\0'); // every view starts 4-byte aligned
+        json view = {{"buffer", 0}, {"byteOffset", bytes.size()}, {"byteLength", size}};
+        if (target != 0) view["target"] = target;
+        bytes.append(static_cast<const char*>(data), size);
+        views.push_back(view);
+        return int(views.size()) - 1;
+    }
+
+    template <class T>
+    int addAccessor(const std::vector<T>& values, const char* type, int componentType, int target, bool minMax = false)
+    {
+        json a = {{"bufferView", addView(values.data(), values.size() * sizeof(T), target)},
+                  {"componentType", componentType},
+                  {"count", values.size()},
+                  {"type", type}};
+        if constexpr (std::is_same_v<T, glm::vec3>) {
+            if (minMax) { // required for POSITION
+                glm::vec3 lo = values.front(), hi = values.front();
+                for (const glm::vec3& v : values) {
+                    lo = glm::min(lo, v);
+                    hi = glm::max(hi, v);
+                }
+                a["min"] = vec3Json(lo);
+                a["max"] = vec3Json(hi);
+            }
+        }
+        accessors.push_back(a);
+        return int(accessors.size()) - 1;
+    }
+};
+
+// A node placed at `position` whose -z axis is `back` negated (forward) and +y axis is `up`. The
+// rotation is written as a quaternion when that reproduces the basis exactly, else as a matrix, so
+// that loading gives back the very same vectors.
+json frameNode(const glm::vec3& position, const glm::vec3* forward, const glm::vec3* up)
+{
+    json node;
+    if (forward) {
+        const glm::dvec3 z = -glm::dvec3(*forward);
+        glm::dvec3 y;
+        if (up)
+            y = glm::dvec3(*up);
+        else
+            y = std::abs(z.y) < 0.9 ? glm::dvec3(0, 1, 0) : glm::dvec3(1, 0, 0);
+        const glm::dvec3 x = glm::normalize(glm::cross(y, z));
+        if (!up) y = glm::cross(z, x);
+        const glm::dmat3 basis(x, y, z);
+        const glm::dquat q = glm::quat_cast(basis);
+        if (glm::mat3_cast(q) == basis) {
+            if (q != glm::dquat(1, 0, 0, 0))
+                node["rotation"] = {q.x + 0.0, q.y + 0.0, q.z + 0.0, q.w + 0.0}; // + 0.0: no -0
+        } else {
+            node["matrix"] = {x.x,
+                              x.y,
+                              x.z,
+                              0.0,
+                              y.x,
+                              y.y,
+                              y.z,
+                              0.0,
+                              z.x,
+                              z.y,
+                              z.z,
+                              0.0,
+                              decimal(position.x),
+                              decimal(position.y),
+                              decimal(position.z),
+                              1.0};
+            return node;
+        }
+    }
+    if (position != glm::vec3(0.0f)) node["translation"] = vec3Json(position);
+    return node;
+}
+
+// Splits a non-negative colour into a factor in [0,1] (largest component exactly 1) and a scale. The
+// loader forms factor x scale in double and rounds once to float, which gives back the very same
+// float colour: the scale reads back as the peak float, and the other factors are that component
+// divided by the scale in double.
+std::pair<json, double> splitColour(const glm::vec3& c)
+{
+    const float peak = std::max({c.x, c.y, c.z});
+    if (!(peak > 0.0f)) return {json{0.0, 0.0, 0.0}, 0.0};
+    const double scale = decimal(peak);
+    json factor = json::array();
+    for (int i = 0; i < 3; ++i) factor.push_back(c[i] == peak ? 1.0 : double(c[i]) / scale);
+    return {factor, scale};
+}
+
+std::string uriEscape(const std::string& name)
+{
+    std::string out;
+    for (unsigned char c : name) {
+        if (std::isalnum(c) || c == '-' || c == '_' || c == '.' || c == '~')
+            out += char(c);
+        else {
+            char hex[4];
+            std::snprintf(hex, sizeof hex, "%%%02X", c);
+            out += hex;
+        }
+    }
+    return out;
+}
+
+void appendToString(void* context, void* data, int size)
+{
+    static_cast<std::string*>(context)->append(static_cast<const char*>(data), std::size_t(size));
+}
+
+json materialJson(const Material& m, std::set<std::string>& extensions)
+{
+    json pbr = {{"baseColorFactor", {decimal(m.baseColor.x), decimal(m.baseColor.y), decimal(m.baseColor.z), 1.0}},
+                {"metallicFactor", decimal(m.metallic)},
+                {"roughnessFactor", decimal(m.roughness)}};
+    if (m.baseColorTexture >= 0) pbr["baseColorTexture"] = {{"index", m.baseColorTexture}};
+    json j = {{"name", m.name}, {"pbrMetallicRoughness", pbr}};
+    if (m.doubleSided) j["doubleSided"] = true;
+    if (m.isEmissive()) {
+        const float peak = std::max({m.emission.x, m.emission.y, m.emission.z});
+        if (peak <= 1.0f)
+            j["emissiveFactor"] = vec3Json(m.emission);
+        else {
+            // emissiveFactor is clamped to [0,1]; the rest goes through KHR_materials_emissive_strength.
+            auto [factor, strength] = splitColour(m.emission);
+            j["emissiveFactor"] = factor;
+            j["extensions"]["KHR_materials_emissive_strength"] = {{"emissiveStrength", strength}};
+            extensions.insert("KHR_materials_emissive_strength");
+        }
+    }
+    if (m.specular != 1.0f || m.specularColor != glm::vec3(1.0f)) {
+        j["extensions"]["KHR_materials_specular"] = {{"specularFactor", decimal(m.specular)},
+                                                     {"specularColorFactor", vec3Json(m.specularColor)}};
+        extensions.insert("KHR_materials_specular");
+    }
+    return j;
+}
+
+json lightJson(const Light& l)
+{
+    auto [colour, intensity] = splitColour(l.intensity);
+    if (intensity == 0.0) colour = json{1.0, 1.0, 1.0};
+    json j = {{"name", l.name}, {"color", colour}, {"intensity", intensity}};
+    switch (l.type) {
+    case LightType::Point: j["type"] = "point"; break;
+    case LightType::Directional: j["type"] = "directional"; break;
+    case LightType::Spot: {
+        j["type"] = "spot";
+        const double outer = decimal(l.outerConeRad);
+        double inner = decimal(l.innerConeRad);
+        // glTF requires inner < outer. A hard cone (inner == outer) is written with the largest double
+        // below the outer angle: it passes validation and still rounds back to the outer float.
+        if (l.innerConeRad >= l.outerConeRad) {
+            inner = std::nextafter(outer, 0.0);
+            if (float(inner) != l.outerConeRad) inner = std::nextafter(double(l.outerConeRad), 0.0);
+        }
+        j["spot"] = {{"innerConeAngle", inner}, {"outerConeAngle", outer}};
+        break;
+    }
+    }
+    return j;
+}
+
+} // namespace
+
+Scene loadGltf(const std::string& path) { return GltfReader(path).read(); }
+
+void writeGltf(const Scene& scene, const std::string& path)
+{
+    if (lowerExtension(path) != ".gltf") fail(path, "writeGltf writes .gltf files (with a sibling .bin) only");
+    if (std::string problems = scene.validate(); !problems.empty()) {
+        while (!problems.empty() && problems.back() == '\n') problems.pop_back();
+        fail(path, "cannot write an invalid scene: " + problems);
+    }
+    const fs::path binPath = fs::path(path).replace_extension(".bin");
+    const std::string binName = binPath.filename().string();
+
+    std::set<std::string> extensions;
+    BinaryWriter bin;
+    json doc;
+    doc["asset"] = {{"version", "2.0"}, {"generator", "Bounce core::writeGltf"}};
+    json nodes = json::array(), meshes = json::array();
+
+    for (const Mesh& m : scene.meshes) {
+        if (m.indices.empty() || m.positions.empty()) continue; // nothing to draw, and glTF forbids empty accessors
+        json attributes = {
+            {"POSITION", bin.addAccessor(m.positions, "VEC3", TINYGLTF_COMPONENT_TYPE_FLOAT, kTargetArrayBuffer, true)},
+            {"NORMAL", bin.addAccessor(m.normals, "VEC3", TINYGLTF_COMPONENT_TYPE_FLOAT, kTargetArrayBuffer)}};
+        if (!m.uvs.empty())
+            attributes["TEXCOORD_0"] =
+                bin.addAccessor(m.uvs, "VEC2", TINYGLTF_COMPONENT_TYPE_FLOAT, kTargetArrayBuffer);
+        const int indices =
+            bin.addAccessor(m.indices, "SCALAR", TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, kTargetElementArrayBuffer);
+        json primitive = {{"attributes", attributes}, {"indices", indices}, {"material", m.material}};
+        meshes.push_back({{"name", m.name}, {"primitives", json::array({primitive})}});
+        nodes.push_back({{"name", m.name}, {"mesh", int(meshes.size()) - 1}});
+    }
+    doc["meshes"] = meshes;
+
+    json materials = json::array();
+    for (const Material& m : scene.materials) materials.push_back(materialJson(m, extensions));
+    doc["materials"] = materials;
+
+    if (!scene.textures.empty()) {
+        json images = json::array(), textures = json::array();
+        for (const Texture& t : scene.textures) {
+            if (t.width <= 0 || t.height <= 0 || t.rgba8.size() != std::size_t(t.width) * std::size_t(t.height) * 4)
+                fail(path, "texture '" + t.name + "' has inconsistent size");
+            std::string png;
+            if (!stbi_write_png_to_func(appendToString, &png, t.width, t.height, 4, t.rgba8.data(), t.width * 4))
+                fail(path, "cannot encode texture '" + t.name + "' as PNG");
+            images.push_back(
+                {{"name", t.name}, {"bufferView", bin.addView(png.data(), png.size(), 0)}, {"mimeType", "image/png"}});
+            textures.push_back({{"source", int(images.size()) - 1}});
+        }
+        doc["images"] = images;
+        doc["textures"] = textures;
+    }
+
+    if (!scene.lights.empty()) {
+        json lights = json::array();
+        for (const Light& l : scene.lights) {
+            lights.push_back(lightJson(l));
+            json node = frameNode(l.position, l.type == LightType::Point ? nullptr : &l.direction, nullptr);
+            node["name"] = l.name;
+            node["extensions"]["KHR_lights_punctual"] = {{"light", int(lights.size()) - 1}};
+            nodes.push_back(node);
+        }
+        doc["extensions"]["KHR_lights_punctual"] = {{"lights", lights}};
+        extensions.insert("KHR_lights_punctual");
+    }
+
+    const Camera& c = scene.camera;
+    doc["cameras"] = json::array(
+        {{{"name", "camera"},
+          {"type", "perspective"},
+          {"perspective", {{"yfov", decimal(c.yfovRad)}, {"znear", decimal(c.znear)}, {"zfar", decimal(c.zfar)}}}}});
+    json cameraNode = frameNode(c.position, &c.forward, &c.up);
+    cameraNode["name"] = "camera";
+    cameraNode["camera"] = 0;
+    nodes.push_back(cameraNode);
+
+    doc["nodes"] = nodes;
+    json roots = json::array();
+    for (std::size_t i = 0; i < nodes.size(); ++i) roots.push_back(i);
+    doc["scenes"] = json::array({{{"name", scene.name}, {"nodes", roots}}});
+    doc["scene"] = 0;
+    if (!extensions.empty()) doc["extensionsUsed"] = std::vector<std::string>(extensions.begin(), extensions.end());
+    if (!bin.bytes.empty()) {
+        bin.bytes.resize((bin.bytes.size() + 3) & ~std::size_t(3), '\0');
+        doc["buffers"] = json::array({{{"uri", uriEscape(binName)}, {"byteLength", bin.bytes.size()}}});
+        doc["bufferViews"] = bin.views;
+        doc["accessors"] = bin.accessors;
+    }
+
+    try {
+        // The .bin first: a .gltf on disk never names a .bin that is not there yet.
+        if (!bin.bytes.empty()) writeFileAtomic(binPath.string(), bin.bytes);
+        writeFileAtomic(path, doc.dump(2) + "\n");
+    } catch (const ImageError& e) {
+        throw SceneError(e.what());
+    }
+}
+
+} // namespace bounce::core

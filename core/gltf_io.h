@@ -1,0 +1,53 @@
+// glTF 2.0 in and out of core::Scene. Loading flattens the node hierarchy into world-space meshes,
+// lights and one camera; writing produces a .gltf with a sibling .bin that loads back to the same
+// Scene (same contentHash). Conventions as in DESIGN.md: light `intensity` is read as W/sr (W/m^2 for
+// directional lights) and multiplies the light's colour; emission is emissiveFactor x
+// KHR_materials_emissive_strength.
+//
+// What loading does with the parts of glTF the Scene has no room for:
+// - only TRIANGLES primitives are read; other modes are skipped with a warning on stderr;
+// - without NORMAL, flat normals are generated (each triangle gets its own three vertices);
+// - without material, a primitive gets glTF's default material (white, metallic 1, roughness 1);
+// - only the baseColor texture is decoded (8-bit RGBA, sRGB as stored), and only TEXCOORD_0 is read;
+//   samplers, alpha, normal/occlusion/emissive/metallic-roughness textures are ignored;
+// - the first perspective camera met in a depth-first walk of the scene is used. Without zfar (an
+//   infinite projection) zfar becomes twice the distance from the camera to the farthest corner of the
+//   scene's bounds, which keeps every surface inside the frustum with usable depth precision.
+//   Without any camera, a default one looks along +z at the bounds, far enough back that their front
+//   face fills the canonical field of view;
+// - light `range` is ignored (lights follow the inverse square law everywhere); a point light keeps the
+//   default Light::direction, since it has none;
+// - a node hierarchy that is not a tree, indices or offsets outside their buffers, counts over 2^28,
+//   URIs that leave the file's folder (absolute, '..', or through a symbolic link), missing buffers or
+//   images, and non-finite positions are errors (SceneError); ranges are checked before data is read.
+//
+// What writing keeps: everything contentHash covers, bit for bit (numbers are written as the shortest
+// decimal that reads back as the same float), plus names and the camera. Not kept: meshes without
+// triangles (glTF has no empty accessors), textures no material uses (loading only decodes base
+// colour textures), a point light's direction, and the sign of zero components of light and camera
+// directions (read back as +0). A hard spot cone (inner == outer) is written with innerConeAngle one double below
+// outerConeAngle, as glTF requires inner < outer; it reads back as inner == outer.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+
+#include "core/scene.h"
+
+namespace bounce::core {
+
+// Thrown for a scene that cannot be read or written; the message names the file and the problem.
+struct SceneError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+// Loads a .gltf (with its external buffers and images, which must lie in the file's folder or below)
+// or a .glb. Throws SceneError for malformed, truncated or unsafe input and for non-finite data.
+Scene loadGltf(const std::string& path);
+
+// Writes path (.gltf) and a sibling .bin with the same stem, each atomically. Uses
+// KHR_lights_punctual, KHR_materials_specular and KHR_materials_emissive_strength where the scene
+// needs them. Meshes without triangles are not written.
+void writeGltf(const Scene& scene, const std::string& path);
+
+} // namespace bounce::core
