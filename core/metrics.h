@@ -1,0 +1,73 @@
+// Error metrics between an image and its reference (the ground truth of ref/), the figures of every
+// speed/error record of the project. All of them run over the three RGB channels of every pixel (no
+// crop, no mask); "mean" is the mean over width x height x 3 values.
+//
+//   rmse          sqrt(mean (a - r)^2)
+//   relativeRmse  rmse / mean(r)                       (0 when both are 0, +inf when only mean(r) is 0)
+//   relativeMse   mean (a - r)^2 / (r^2 + eps)         eps = 0.01 by default (Rousselle et al. 2011)
+//   mae           mean |a - r|
+//   maxError      max |a - r|
+//   ssim          mean SSIM of the luminance (Wang et al. 2004, Eq. 13) with an 11x11 Gaussian window of
+//                 sigma 1.5, K1 = 0.01, K2 = 0.03, C1 = (K1 L)^2, C2 = (K2 L)^2. Radiance has no fixed
+//                 white, so the dynamic range L comes from the reference: the 99th percentile of its
+//                 luminance (its maximum if that is 0, 1 if it is all black). Not the maximum: a visible
+//                 emitter (the Cornell light is ~25x brighter than the walls) would make C1 and C2 so large
+//                 that SSIM reads ~1 whatever the noise elsewhere. Windows are clipped at the
+//                 image border and their weights renormalised, so every pixel has a value and images
+//                 smaller than the window are still measured.
+//
+// Different sizes throw MetricsError. Non-finite values (NaN, +-Inf) are never averaged in: a value pair
+// with a non-finite member is left out of every sum (and a pixel with a non-finite channel enters SSIM
+// as luminance 0 in both images), and the counts are reported in ImageMetrics so a broken renderer is
+// seen, not hidden. The single-figure functions apply the same rule; use compareImages to see counts.
+#pragma once
+
+#include <cstddef>
+#include <stdexcept>
+#include <string>
+
+#include "core/image.h"
+
+namespace bounce::core {
+
+struct MetricsError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+inline constexpr double kRelativeMseEpsilon = 1e-2;
+
+struct ImageMetrics {
+    int width = 0, height = 0;
+    double rmse = 0.0;
+    double relativeRmse = 0.0;
+    double relativeMse = 0.0;
+    double mae = 0.0;
+    double maxError = 0.0;
+    double ssim = 1.0;
+    double meanImage = 0.0;         // mean of a over the finite values
+    double meanReference = 0.0;     // mean of the reference over the finite values
+    std::size_t nonFiniteImage = 0; // NaN/Inf values (channels) in a
+    std::size_t nonFiniteReference = 0;
+    std::size_t valuesCompared = 0; // channel pairs where both are finite
+
+    bool allFinite() const { return nonFiniteImage == 0 && nonFiniteReference == 0; }
+};
+
+// Every figure at once. Throws MetricsError when the sizes differ or either image is empty.
+ImageMetrics compareImages(const Image& a, const Image& reference, double relativeMseEpsilon = kRelativeMseEpsilon);
+
+double rmse(const Image& a, const Image& reference);
+double relativeRmse(const Image& a, const Image& reference);
+double relativeMse(const Image& a, const Image& reference, double epsilon = kRelativeMseEpsilon);
+double meanAbsoluteError(const Image& a, const Image& reference);
+double maxError(const Image& a, const Image& reference);
+double ssim(const Image& a, const Image& reference);
+
+// Per-pixel relative error e = sum_c |a_c - r_c| / (sum_c r_c + eps), eps = 1% of the reference's mean
+// of sum_c r_c (1e-6 if that is 0, so black regions only light up where a is not black), on a colour
+// ramp linear in log10(e): black at or below 1e-4, blue at 1e-3 (0.1%), cyan at 10^-2.25, green at
+// 10^-1.5 (3%), yellow at 10^-0.75, red at 1 (100%), white at or above 10. Non-finite pixels (in either
+// image) are magenta. Values are linear RGB in [0, 1], ready for writePng with exposure 0.
+Image errorHeatmap(const Image& a, const Image& reference);
+
+} // namespace bounce::core

@@ -1,0 +1,189 @@
+// core/metrics.h against values worked out by hand: constant images (where SSIM has a closed form),
+// a single differing value, non-finite values, size mismatches and the heat map's colours.
+#include <cmath>
+#include <limits>
+
+#include <gtest/gtest.h>
+
+#include "core/metrics.h"
+
+namespace {
+
+using namespace bounce::core;
+
+Image constant(int w, int h, float v)
+{
+    Image im(w, h);
+    for (float& c : im.rgb) c = v;
+    return im;
+}
+
+// A smooth, non-constant test image.
+Image pattern(int w, int h)
+{
+    Image im(w, h);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            im.set(x, y,
+                   {0.5f + 0.4f * std::sin(0.3f * float(x)), 0.5f + 0.4f * std::cos(0.2f * float(y)),
+                    0.1f * float(x + y) / float(w + h)});
+    return im;
+}
+
+TEST(Metrics, IdenticalImagesHaveNoError)
+{
+    const Image a = pattern(40, 30);
+    const ImageMetrics m = compareImages(a, a);
+    EXPECT_EQ(m.rmse, 0.0);
+    EXPECT_EQ(m.relativeRmse, 0.0);
+    EXPECT_EQ(m.relativeMse, 0.0);
+    EXPECT_EQ(m.mae, 0.0);
+    EXPECT_EQ(m.maxError, 0.0);
+    EXPECT_NEAR(m.ssim, 1.0, 1e-12);
+    EXPECT_TRUE(m.allFinite());
+    EXPECT_EQ(m.valuesCompared, 40u * 30u * 3u);
+}
+
+TEST(Metrics, ConstantOffsetClosedForm)
+{
+    // a = 3, r = 2 everywhere: every difference is 1.
+    const Image a = constant(16, 12, 3.0f), r = constant(16, 12, 2.0f);
+    const ImageMetrics m = compareImages(a, r);
+    EXPECT_DOUBLE_EQ(m.rmse, 1.0);
+    EXPECT_DOUBLE_EQ(m.relativeRmse, 0.5);
+    EXPECT_NEAR(m.relativeMse, 1.0 / (4.0 + kRelativeMseEpsilon), 1e-12);
+    EXPECT_NEAR(relativeMse(a, r, 0.0), 0.25, 1e-12);
+    EXPECT_DOUBLE_EQ(m.mae, 1.0);
+    EXPECT_DOUBLE_EQ(m.maxError, 1.0);
+    EXPECT_DOUBLE_EQ(m.meanReference, 2.0);
+    // Constant windows have no variance, so SSIM is its luminance term (Wang et al. 2004, Eq. 13):
+    // (2 mu_a mu_r + C1) / (mu_a^2 + mu_r^2 + C1) with L = the 99th percentile of r's luminance = 2,
+    // C1 = (0.01 L)^2.
+    const double c1 = 0.02 * 0.02;
+    EXPECT_NEAR(m.ssim, (12.0 + c1) / (13.0 + c1), 1e-9);
+}
+
+TEST(Metrics, OneDifferingValue)
+{
+    const int w = 40, h = 40;
+    Image r = constant(w, h, 1.0f), a = r;
+    a.rgb[3 * 437 + 1] = 4.0f; // pixel (17, 10), green: difference 3
+    const double n = 3.0 * w * h;
+    EXPECT_NEAR(rmse(a, r), std::sqrt(9.0 / n), 1e-12);
+    EXPECT_NEAR(relativeRmse(a, r), std::sqrt(9.0 / n), 1e-12);
+    EXPECT_NEAR(meanAbsoluteError(a, r), 3.0 / n, 1e-12);
+    EXPECT_DOUBLE_EQ(maxError(a, r), 3.0);
+    EXPECT_NEAR(relativeMse(a, r, 1.0), 9.0 / 2.0 / n, 1e-12);
+    // Only the windows that see the pixel (11 x 11 of 40 x 40) lose similarity.
+    EXPECT_LT(ssim(a, r), 1.0);
+    EXPECT_GT(ssim(a, r), 1.0 - 121.0 / 1600.0);
+}
+
+TEST(Metrics, SsimFallsWithNoiseAndIsSymmetricInStructure)
+{
+    const Image r = pattern(48, 48);
+    Image small = r, large = r;
+    for (std::size_t i = 0; i < r.rgb.size(); ++i) {
+        const float noise = ((i * 2654435761u) % 1000u) / 1000.0f - 0.5f;
+        small.rgb[i] += 0.02f * noise;
+        large.rgb[i] += 0.2f * noise;
+    }
+    const double s1 = ssim(small, r), s2 = ssim(large, r);
+    EXPECT_LT(s1, 1.0);
+    EXPECT_LT(s2, s1);
+    EXPECT_GT(s1, 0.9);
+}
+
+TEST(Metrics, SsimRangeIgnoresAFewVeryBrightPixels)
+{
+    // A visible emitter 1000x brighter than the rest must not make SSIM blind to noise elsewhere: the
+    // same noise costs the same similarity with or without three such pixels (far from them).
+    Image r = pattern(64, 64);
+    Image a = r;
+    for (std::size_t i = 0; i < a.rgb.size(); ++i) a.rgb[i] += 0.1f * (((i * 2654435761u) % 1000u) / 1000.0f - 0.5f);
+    const double plain = ssim(a, r);
+    Image rBright = r, aBright = a;
+    for (int x = 0; x < 3; ++x) {
+        rBright.set(x, 0, glm::vec3(1000.0f));
+        aBright.set(x, 0, glm::vec3(1000.0f));
+    }
+    EXPECT_LT(plain, 0.99);
+    EXPECT_NEAR(ssim(aBright, rBright), plain, 0.02);
+}
+
+TEST(Metrics, SsimOfTinyImagesUsesClippedWindows)
+{
+    // Smaller than the 11x11 window: still a value, and 1 for identical images.
+    const Image a = pattern(3, 2);
+    EXPECT_NEAR(ssim(a, a), 1.0, 1e-12);
+    EXPECT_NEAR(ssim(constant(3, 2, 3.0f), constant(3, 2, 2.0f)), (12.0 + 4e-4) / (13.0 + 4e-4), 1e-9);
+}
+
+TEST(Metrics, RelativeRmseOfBlackReference)
+{
+    const Image black = constant(4, 4, 0.0f);
+    EXPECT_EQ(relativeRmse(black, black), 0.0);
+    EXPECT_TRUE(std::isinf(relativeRmse(constant(4, 4, 1.0f), black)));
+}
+
+TEST(Metrics, DifferentSizesThrow)
+{
+    EXPECT_THROW(compareImages(Image(4, 4), Image(4, 5)), MetricsError);
+    EXPECT_THROW(rmse(Image(4, 4), Image(5, 4)), MetricsError);
+    EXPECT_THROW(errorHeatmap(Image(4, 4), Image(5, 4)), MetricsError);
+    EXPECT_THROW(compareImages(Image(), Image()), MetricsError);
+    try {
+        ssim(Image(4, 4), Image(8, 2));
+        FAIL();
+    } catch (const MetricsError& e) {
+        EXPECT_NE(std::string(e.what()).find("4x4"), std::string::npos);
+        EXPECT_NE(std::string(e.what()).find("8x2"), std::string::npos);
+    }
+}
+
+TEST(Metrics, NonFiniteValuesAreCountedNotAveraged)
+{
+    const Image r = pattern(8, 8);
+    Image a = r;
+    a.rgb[5] = std::numeric_limits<float>::quiet_NaN();
+    a.rgb[17] = std::numeric_limits<float>::infinity();
+    Image r2 = r;
+    r2.rgb[40] = -std::numeric_limits<float>::infinity();
+    const ImageMetrics m = compareImages(a, r2);
+    EXPECT_EQ(m.nonFiniteImage, 2u);
+    EXPECT_EQ(m.nonFiniteReference, 1u);
+    EXPECT_FALSE(m.allFinite());
+    EXPECT_EQ(m.valuesCompared, 8u * 8u * 3u - 3u);
+    // Every other value is identical: no error, and nothing NaN.
+    EXPECT_EQ(m.rmse, 0.0);
+    EXPECT_EQ(m.maxError, 0.0);
+    EXPECT_TRUE(std::isfinite(m.ssim));
+    EXPECT_TRUE(std::isfinite(m.relativeRmse));
+    EXPECT_EQ(rmse(a, r2), 0.0);
+}
+
+TEST(Metrics, HeatmapColours)
+{
+    const Image r = constant(4, 1, 1.0f);
+    Image a = r;
+    // Pixel 0: identical (black). Pixel 1: relative error 1 -> red. Pixel 2: NaN -> magenta.
+    // Pixel 3: e = 0.0101 * 3 / (3 + 0.03) = 0.01 -> log10 = -2, a third of the way from cyan to green.
+    a.set(1, 0, {2.0f, 2.0f, 2.0f});
+    a.set(2, 0, {std::nanf(""), 1.0f, 1.0f});
+    a.set(3, 0, glm::vec3(1.0101f));
+    // eps is 1% of the reference's mean per-pixel sum (3), so pixel 1's e = 3 / 3.03: just under red.
+    const Image hm = errorHeatmap(a, r);
+    EXPECT_EQ(hm.at(0, 0), glm::vec3(0.0f));
+    EXPECT_NEAR(hm.at(1, 0).x, 1.0f, 1e-6f);
+    EXPECT_NEAR(hm.at(1, 0).y, 0.0f, 0.02f);
+    EXPECT_NEAR(hm.at(1, 0).z, 0.0f, 1e-6f);
+    EXPECT_EQ(hm.at(2, 0), glm::vec3(1.0f, 0.0f, 1.0f));
+    EXPECT_NEAR(hm.at(3, 0).x, 0.0f, 1e-3f);
+    EXPECT_NEAR(hm.at(3, 0).y, 1.0f, 1e-3f);
+    EXPECT_NEAR(hm.at(3, 0).z, 2.0f / 3.0f, 1e-3f);
+    // Far beyond 100%: white.
+    a.set(0, 0, glm::vec3(100.0f));
+    EXPECT_EQ(errorHeatmap(a, r).at(0, 0), glm::vec3(1.0f));
+}
+
+} // namespace
