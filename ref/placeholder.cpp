@@ -1,1 +1,0 @@
-// ref/ placeholder translation unit (replaced by the path tracer)

@@ -1,0 +1,86 @@
+// The ground truth of Bounce: a CPU path tracer on Embree 3 over core::Scene, with selectable light
+// paths so that every technique is measured against exactly the light transport it claims to compute.
+// ref/README.md describes the estimators, the conventions and how to trust the numbers.
+//
+// Reproducibility: sample s of pixel (x, y) draws all its random numbers from one PCG32 stream keyed by
+// (seed, x, y, s), and each pixel sums its samples in order, so an image depends on the seed and the
+// sample count only: not on the thread count, the tile order or how samples were split into passes.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/image.h"
+#include "core/scene.h"
+
+namespace bounce::ref {
+
+// Light paths, in Heckbert's notation with D|G any reflection (the BRDF of core/brdf.h); see
+// shared/scenes/cornell-box.md and ref/README.md.
+enum class LightPaths {
+    Direct,                 // LE + L(D|G)E: emission seen by the camera and one reflection of the light
+    OneBounce,              // Direct + L(D|G){2}E, with full visibility
+    OneBounceNoVis,         // Direct + L(D|G){2}E without the visibility between x1 and x2
+    OneBounceIndirect,      // L(D|G){2}E only: OneBounce - Direct
+    OneBounceNoVisIndirect, // the L(D|G){2}E term of OneBounceNoVis only
+    Full,                   // every path length (unbiased Russian roulette)
+};
+
+// "direct", "onebounce", "onebounce-novis", "onebounce-indirect", "onebounce-novis-indirect", "full".
+// Throws std::invalid_argument naming the allowed values for anything else.
+LightPaths parseLightPaths(const std::string& name);
+std::string lightPathsName(LightPaths paths);
+std::vector<std::string> lightPathsNames();
+
+struct RenderSettings {
+    LightPaths paths = LightPaths::Full;
+    int width = 256;
+    int height = 256;
+    // Stop at spp samples per pixel, or earlier when targetNoise > 0 is reached (see relativeNoise in
+    // RenderResult). With targetNoise > 0 and spp == 0 there is no sample cap.
+    int spp = 0;
+    double targetNoise = 0.0;
+    int minSpp = 16; // the noise estimate is not trusted before this many samples
+    std::uint64_t seed = 1;
+    int threads = 0;             // 0: every hardware thread
+    int maxDepth = 0;            // Full only: the most reflections per path; 0 = Russian roulette alone
+    double timeLimitSeconds = 0; // > 0: stop after the first pass that ends past this (result says so)
+    bool progress = true;        // a progress bar on stderr (core/progress.h)
+};
+
+struct RenderResult {
+    core::Image image;    // mean radiance per pixel, linear RGB
+    core::Image variance; // per-pixel variance of that mean (sample variance / spp), RGB
+    int spp = 0;
+    double relativeNoise = 0.0;         // mean over pixels of the standard error of the pixel mean (luminance),
+                                        // divided by the mean luminance of the image
+    double seconds = 0.0;               // wall clock of the render (scene build excluded)
+    double buildSeconds = 0.0;          // Embree BVH build and light tables
+    std::uint64_t rays = 0;             // rtcIntersect1 + rtcOccluded1 calls, camera rays included
+    std::uint64_t nonFiniteSamples = 0; // samples that came out NaN/Inf and were counted as 0 (a bug if > 0)
+    bool reachedTarget = false;         // the noise target was met (false for plain spp runs)
+    bool fromCache = false;             // set by cachedReference
+    double raysPerSecond() const { return seconds > 0.0 ? double(rays) / seconds : 0.0; }
+};
+
+// Throws std::invalid_argument for a bad setting (no stopping rule, sizes < 1...) or an invalid scene.
+RenderResult render(const core::Scene& scene, const core::Camera& camera, const RenderSettings& settings);
+
+// The default cache folder: $BOUNCE_CACHE if set, else $XDG_CACHE_HOME/bounce/references, else
+// $HOME/.cache/bounce/references, else ./.bounce-cache/references.
+std::string defaultCacheDir();
+
+// The key under which a render is cached: scene.contentHash(), the camera, the size, the light paths,
+// spp, the noise target (and minSpp), the seed, maxDepth and the estimator version (bumped whenever
+// the path tracer changes what it computes). Threads are not part of it: they change nothing.
+std::string cacheKey(const core::Scene& scene, const core::Camera& camera, const RenderSettings& settings);
+
+// Looks for <cacheDir>/<key>.exr with its <key>.json sidecar; renders and stores both (atomically,
+// EXR first, then the JSON that marks the entry complete) when absent. A cached result has no variance
+// image; image, spp, relativeNoise, seconds and rays come from the files. Runs with a time limit are
+// never cached. An empty cacheDir means defaultCacheDir().
+RenderResult cachedReference(const core::Scene& scene, const core::Camera& camera, const RenderSettings& settings,
+                             const std::string& cacheDir = {});
+
+} // namespace bounce::ref
