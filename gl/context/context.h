@@ -1,0 +1,70 @@
+// One Context interface over the three ways Bounce gets an OpenGL 4.5 core context: headless EGL
+// (default: the EGL device platform first, so a real GPU is used when there is one, else Mesa's
+// surfaceless platform), OSMesa (what the tests use; deprecated upstream and gone from Mesa 25.1, so
+// nothing may depend on it alone), and a GLFW window (the demo).
+#pragma once
+
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+struct GLFWwindow;
+
+namespace bounce::gl {
+
+enum class Backend { Egl, OsMesa, Glfw };
+
+// "egl", "osmesa", "glfw"; throws std::invalid_argument naming the allowed values otherwise.
+Backend parseBackend(const std::string& name);
+const char* backendName(Backend backend);
+
+struct ContextOptions {
+    int width = 1280;          // window size (GLFW only; headless contexts render into framebuffers)
+    int height = 720;
+    bool debug = true;         // a KHR_debug context with the callback installed
+    bool visible = true;       // GLFW only
+    std::string title = "Bounce";
+    // EGL only: "device" or "surfaceless" to use only that platform; empty: $BOUNCE_EGL_PLATFORM if set,
+    // else automatic (a hardware device, then surfaceless, then a software device).
+    std::string eglPlatform;
+};
+
+struct ContextInfo {
+    std::string backend;       // "egl", "osmesa", "glfw"
+    std::string platform;      // "egl-device", "egl-surfaceless", "egl-device-software", "egl-default",
+                               // "osmesa", "glfw-x11", "glfw-wayland"
+    std::string renderer;      // GL_RENDERER
+    std::string vendor;        // GL_VENDOR
+    std::string version;       // GL_VERSION
+};
+
+// Thrown when no 4.5 core context can be had; the message says what was found (version, renderer).
+// The CLI maps it to exit status 2.
+struct ContextError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+class Context {
+public:
+    // Creates the context, makes it current and loads the GL 4.5 entry points (glad).
+    static std::unique_ptr<Context> create(Backend backend, const ContextOptions& options = {});
+    virtual ~Context() = default;
+    Context(const Context&) = delete;
+    Context& operator=(const Context&) = delete;
+
+    // Makes this context current on the calling thread, first unbinding a context of another backend there,
+    // and points the GL entry points at it. The entry points are process-wide: contexts of different
+    // backends cannot be used from two threads at once. Throws ContextError on failure.
+    virtual void makeCurrent() = 0;
+    const ContextInfo& info() const { return info_; }
+
+    // Window-only operations; headless contexts do nothing / return null.
+    virtual GLFWwindow* window() { return nullptr; }
+    virtual void swapBuffers() {}
+
+protected:
+    Context() = default;
+    ContextInfo info_;
+};
+
+} // namespace bounce::gl

@@ -1,0 +1,48 @@
+// A GL buffer object (DSA), labelled and counted in Allocations.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "gl/resource/allocations.h"
+#include "gl/resource/handle.h"
+
+namespace bounce::gl {
+
+struct BufferDeleter { void operator()(unsigned id) const; };
+
+class Buffer {
+public:
+    Buffer() = default;
+    // Immutable storage (glNamedBufferStorage) with GL_DYNAMIC_STORAGE_BIT so update() works.
+    Buffer(const std::string& label, std::size_t bytes, const void* data = nullptr);
+    template <class T>
+    static Buffer fromVector(const std::string& label, const std::vector<T>& v)
+    {
+        return Buffer(label, v.size() * sizeof(T), v.empty() ? nullptr : v.data());
+    }
+
+    unsigned id() const { return handle_.id(); }
+    std::size_t bytes() const { return bytes_; }
+    explicit operator bool() const { return bool(handle_); }
+
+    void update(std::size_t offset, std::size_t bytes, const void* data);
+    void download(std::size_t offset, std::size_t bytes, void* out) const;
+    template <class T>
+    std::vector<T> download() const
+    {
+        std::vector<T> v(bytes_ / sizeof(T));
+        download(0, v.size() * sizeof(T), v.data());
+        return v;
+    }
+    void clearToZero();
+    void bindBase(unsigned target, unsigned index) const; // GL_SHADER_STORAGE_BUFFER, GL_UNIFORM_BUFFER...
+
+private:
+    Handle<BufferDeleter> handle_;
+    std::size_t bytes_ = 0;
+    AllocationTicket ticket_;
+};
+
+} // namespace bounce::gl

@@ -1,1 +1,0 @@
-// gl/ placeholder translation unit

@@ -1,0 +1,178 @@
+#include "gl/resource/program.h"
+
+#include <cstdlib>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include <glm/gtc/type_ptr.hpp>
+
+#include "gl/debug.h"
+#include "gl/gl.h"
+
+namespace bounce::gl {
+
+void ProgramDeleter::operator()(unsigned id) const { glDeleteProgram(id); }
+
+std::string glslRoot()
+{
+    if (const char* root = std::getenv("BOUNCE_ROOT"); root && *root) return std::string(root) + "/glsl";
+    return std::string(BOUNCE_SOURCE_ROOT) + "/glsl";
+}
+
+namespace {
+
+std::string readFile(const std::string& path)
+{
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw ShaderError("cannot read shader '" + path + "'");
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+// Expands #include "x" recursively. Source-string numbers in #line directives index `files`, so a
+// compile error can be mapped back to its file.
+void expand(const std::string& rel, std::vector<std::string>& files, std::set<std::string>& seen, std::ostringstream& out,
+            bool top)
+{
+    if (!seen.insert(rel).second) return; // each file once: includes act as include guards
+    const int index = int(files.size());
+    files.push_back(rel);
+    std::istringstream in(readFile(glslRoot() + "/" + rel));
+    std::string line;
+    int n = 0;
+    if (!top) out << "#line 1 " << index << "\n";
+    while (std::getline(in, line)) {
+        ++n;
+        const auto p = line.find_first_not_of(" \t");
+        if (p != std::string::npos && line.compare(p, 8, "#include") == 0) {
+            const auto a = line.find('"'), b = line.rfind('"');
+            if (a == std::string::npos || b <= a) throw ShaderError(rel + ":" + std::to_string(n) + ": malformed #include");
+            expand(line.substr(a + 1, b - a - 1), files, seen, out, false);
+            out << "#line " << n + 1 << " " << index << "\n";
+            continue;
+        }
+        out << line << "\n";
+        if (top && p != std::string::npos && line.compare(p, 8, "#version") == 0) out << "@DEFINES@\n#line " << n + 1 << " 0\n";
+    }
+}
+
+std::string preprocess(const std::string& rel, const std::vector<Define>& defines, std::vector<std::string>& files)
+{
+    std::set<std::string> seen;
+    std::ostringstream out;
+    expand(rel, files, seen, out, true);
+    std::string src = out.str();
+    std::string defs;
+    for (const Define& d : defines) defs += "#define " + d.name + " " + d.value + "\n";
+    const auto at = src.find("@DEFINES@\n");
+    if (at == std::string::npos) throw ShaderError(rel + ": no #version line");
+    src.replace(at, 10, defs);
+    return src;
+}
+
+// Rewrites "0(12)" / "0:12" style source numbers in a driver's log into file names where possible.
+std::string annotateLog(const std::string& log, const std::vector<std::string>& files)
+{
+    std::ostringstream out;
+    out << log;
+    out << "(source-string numbers:";
+    for (std::size_t i = 0; i < files.size(); ++i) out << " " << i << "=" << files[i];
+    out << ")";
+    return out.str();
+}
+
+unsigned compileStage(unsigned stage, const std::string& rel, const std::vector<Define>& defines)
+{
+    std::vector<std::string> files;
+    const std::string src = preprocess(rel, defines, files);
+    const unsigned s = glCreateShader(stage);
+    const char* p = src.c_str();
+    glShaderSource(s, 1, &p, nullptr);
+    glCompileShader(s);
+    int ok = 0;
+    glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+        int len = 0;
+        glGetShaderiv(s, GL_INFO_LOG_LENGTH, &len);
+        std::string log(std::size_t(len > 0 ? len : 1), '\0');
+        glGetShaderInfoLog(s, len, nullptr, log.data());
+        glDeleteShader(s);
+        throw ShaderError("compiling " + rel + ":\n" + annotateLog(log, files));
+    }
+    return s;
+}
+
+unsigned link(const std::string& label, const std::vector<unsigned>& stages)
+{
+    const unsigned prog = glCreateProgram();
+    for (unsigned s : stages) glAttachShader(prog, s);
+    glLinkProgram(prog);
+    for (unsigned s : stages) { glDetachShader(prog, s); glDeleteShader(s); }
+    int ok = 0;
+    glGetProgramiv(prog, GL_LINK_STATUS, &ok);
+    if (!ok) {
+        int len = 0;
+        glGetProgramiv(prog, GL_INFO_LOG_LENGTH, &len);
+        std::string log(std::size_t(len > 0 ? len : 1), '\0');
+        glGetProgramInfoLog(prog, len, nullptr, log.data());
+        glDeleteProgram(prog);
+        throw ShaderError("linking program '" + label + "':\n" + log);
+    }
+    labelObject(GL_PROGRAM, prog, label);
+    return prog;
+}
+
+} // namespace
+
+std::string preprocessShader(const std::string& rel, const std::vector<Define>& defines)
+{
+    std::vector<std::string> files;
+    return preprocess(rel, defines, files);
+}
+
+Program Program::graphics(const std::string& label, const std::string& vs, const std::string& fs,
+                          const std::vector<Define>& defines, const std::string& gs)
+{
+    std::vector<unsigned> stages{compileStage(GL_VERTEX_SHADER, vs, defines)};
+    if (!gs.empty()) stages.push_back(compileStage(GL_GEOMETRY_SHADER, gs, defines));
+    stages.push_back(compileStage(GL_FRAGMENT_SHADER, fs, defines));
+    Program p;
+    p.handle_ = Handle<ProgramDeleter>(link(label, stages));
+    return p;
+}
+
+Program Program::compute(const std::string& label, const std::string& path, const std::vector<Define>& defines)
+{
+    Program p;
+    p.handle_ = Handle<ProgramDeleter>(link(label, {compileStage(GL_COMPUTE_SHADER, path, defines)}));
+    return p;
+}
+
+void Program::use() const { glUseProgram(id()); }
+
+int Program::location(const std::string& name)
+{
+    auto it = locations_.find(name);
+    if (it == locations_.end()) it = locations_.emplace(name, glGetUniformLocation(id(), name.c_str())).first;
+    return it->second;
+}
+
+void Program::set(const std::string& n, int v) { glProgramUniform1i(id(), location(n), v); }
+void Program::set(const std::string& n, unsigned v) { glProgramUniform1ui(id(), location(n), v); }
+void Program::set(const std::string& n, float v) { glProgramUniform1f(id(), location(n), v); }
+void Program::set(const std::string& n, const glm::vec2& v) { glProgramUniform2fv(id(), location(n), 1, glm::value_ptr(v)); }
+void Program::set(const std::string& n, const glm::vec3& v) { glProgramUniform3fv(id(), location(n), 1, glm::value_ptr(v)); }
+void Program::set(const std::string& n, const glm::vec4& v) { glProgramUniform4fv(id(), location(n), 1, glm::value_ptr(v)); }
+void Program::set(const std::string& n, const glm::ivec2& v) { glProgramUniform2iv(id(), location(n), 1, glm::value_ptr(v)); }
+void Program::set(const std::string& n, const glm::mat3& v)
+{
+    glProgramUniformMatrix3fv(id(), location(n), 1, GL_FALSE, glm::value_ptr(v));
+}
+void Program::set(const std::string& n, const glm::mat4& v)
+{
+    glProgramUniformMatrix4fv(id(), location(n), 1, GL_FALSE, glm::value_ptr(v));
+}
+
+} // namespace bounce::gl

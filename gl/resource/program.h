@@ -1,0 +1,61 @@
+// GLSL programs loaded from glsl/ with #include "path" (resolved against the glsl/ root, each file at
+// most once) and #defines injected after #version. Uniforms are set by name with glProgramUniform*.
+#pragma once
+
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "gl/resource/handle.h"
+
+namespace bounce::gl {
+
+struct ProgramDeleter { void operator()(unsigned id) const; };
+
+// Thrown when a shader cannot be read, compiled or linked; the message names the file and line.
+struct ShaderError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+struct Define {
+    std::string name;
+    std::string value;
+};
+
+// The folder holding the shaders: $BOUNCE_ROOT/glsl, else the source tree's glsl/.
+std::string glslRoot();
+// Reads a shader with its #includes expanded and defines injected (exposed for tests).
+std::string preprocessShader(const std::string& relativePath, const std::vector<Define>& defines);
+
+class Program {
+public:
+    Program() = default;
+    static Program graphics(const std::string& label, const std::string& vertexPath, const std::string& fragmentPath,
+                            const std::vector<Define>& defines = {}, const std::string& geometryPath = {});
+    static Program compute(const std::string& label, const std::string& path, const std::vector<Define>& defines = {});
+
+    unsigned id() const { return handle_.id(); }
+    explicit operator bool() const { return bool(handle_); }
+    void use() const;
+
+    // Setting a uniform the program does not have (optimised away) is silently ignored.
+    void set(const std::string& name, int v);
+    void set(const std::string& name, unsigned v);
+    void set(const std::string& name, float v);
+    void set(const std::string& name, const glm::vec2& v);
+    void set(const std::string& name, const glm::vec3& v);
+    void set(const std::string& name, const glm::vec4& v);
+    void set(const std::string& name, const glm::ivec2& v);
+    void set(const std::string& name, const glm::mat3& v);
+    void set(const std::string& name, const glm::mat4& v);
+
+private:
+    int location(const std::string& name);
+    Handle<ProgramDeleter> handle_;
+    std::map<std::string, int> locations_;
+};
+
+} // namespace bounce::gl

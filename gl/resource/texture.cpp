@@ -1,0 +1,149 @@
+#include "gl/resource/texture.h"
+
+#include <algorithm>
+#include <bit>
+#include <stdexcept>
+
+#include "gl/debug.h"
+#include "gl/gl.h"
+
+namespace bounce::gl {
+
+void TextureDeleter::operator()(unsigned id) const { glDeleteTextures(1, &id); }
+
+std::size_t bytesPerTexel(unsigned f)
+{
+    switch (f) {
+    case GL_R8: case GL_R8UI: return 1;
+    case GL_RG8: case GL_R16F: case GL_DEPTH_COMPONENT16: return 2;
+    case GL_RGBA8: case GL_SRGB8_ALPHA8: case GL_R32F: case GL_R32UI: case GL_R32I: case GL_RG16F:
+    case GL_DEPTH_COMPONENT24: case GL_DEPTH_COMPONENT32F: case GL_DEPTH24_STENCIL8: case GL_RGB10_A2:
+    case GL_R11F_G11F_B10F: case GL_RGBA8_SNORM:
+        return 4;
+    case GL_DEPTH32F_STENCIL8: case GL_RG32F: case GL_RGBA16F: case GL_RG32UI: return 8;
+    case GL_RGB32F: return 12;
+    case GL_RGBA32F: case GL_RGBA32UI: return 16;
+    default: throw std::invalid_argument("bytesPerTexel: format not in the table");
+    }
+}
+
+int mipLevelCount(int width, int height)
+{
+    const unsigned m = unsigned(std::max(1, std::max(width, height)));
+    return int(std::bit_width(m));
+}
+
+Texture Texture::make(const std::string& label, unsigned target, unsigned format, int w, int h, int levels, int layers,
+                      std::size_t texelBytes)
+{
+    Texture t;
+    unsigned id = 0;
+    glCreateTextures(target, 1, &id);
+    t.handle_ = Handle<TextureDeleter>(id);
+    t.target_ = target;
+    t.format_ = format;
+    t.width_ = w;
+    t.height_ = h;
+    t.levels_ = levels;
+    t.layers_ = layers;
+    std::size_t bytes = 0;
+    for (int l = 0; l < levels; ++l)
+        bytes += std::size_t(std::max(1, w >> l)) * std::size_t(std::max(1, h >> l)) * std::size_t(layers) * texelBytes;
+    t.ticket_ = AllocationTicket(label, bytes);
+    labelObject(GL_TEXTURE, id, label);
+    return t;
+}
+
+Texture Texture::create2D(const std::string& label, unsigned f, int w, int h, int levels)
+{
+    Texture t = make(label, GL_TEXTURE_2D, f, w, h, levels, 1, bytesPerTexel(f));
+    glTextureStorage2D(t.id(), levels, f, w, h);
+    t.setFilter(levels > 1 ? GL_NEAREST_MIPMAP_NEAREST : GL_NEAREST, GL_NEAREST);
+    t.setWrap(GL_CLAMP_TO_EDGE);
+    return t;
+}
+
+Texture Texture::create2DArray(const std::string& label, unsigned f, int w, int h, int layers)
+{
+    Texture t = make(label, GL_TEXTURE_2D_ARRAY, f, w, h, 1, layers, bytesPerTexel(f));
+    glTextureStorage3D(t.id(), 1, f, w, h, layers);
+    t.setFilter(GL_NEAREST, GL_NEAREST);
+    t.setWrap(GL_CLAMP_TO_EDGE);
+    return t;
+}
+
+Texture Texture::createCube(const std::string& label, unsigned f, int size)
+{
+    Texture t = make(label, GL_TEXTURE_CUBE_MAP, f, size, size, 1, 6, bytesPerTexel(f));
+    glTextureStorage2D(t.id(), 1, f, size, size);
+    t.setFilter(GL_NEAREST, GL_NEAREST);
+    t.setWrap(GL_CLAMP_TO_EDGE);
+    return t;
+}
+
+Texture Texture::createCubeArray(const std::string& label, unsigned f, int size, int cubes)
+{
+    Texture t = make(label, GL_TEXTURE_CUBE_MAP_ARRAY, f, size, size, 1, 6 * cubes, bytesPerTexel(f));
+    glTextureStorage3D(t.id(), 1, f, size, size, 6 * cubes);
+    t.setFilter(GL_NEAREST, GL_NEAREST);
+    t.setWrap(GL_CLAMP_TO_EDGE);
+    return t;
+}
+
+Texture Texture::create2DMultisample(const std::string& label, unsigned f, int w, int h, int samples)
+{
+    Texture t = make(label, GL_TEXTURE_2D_MULTISAMPLE, f, w, h, 1, samples, bytesPerTexel(f));
+    glTextureStorage2DMultisample(t.id(), samples, f, w, h, GL_TRUE);
+    return t;
+}
+
+void Texture::setFilter(unsigned minFilter, unsigned magFilter)
+{
+    glTextureParameteri(id(), GL_TEXTURE_MIN_FILTER, GLint(minFilter));
+    glTextureParameteri(id(), GL_TEXTURE_MAG_FILTER, GLint(magFilter));
+}
+
+void Texture::setWrap(unsigned wrap)
+{
+    glTextureParameteri(id(), GL_TEXTURE_WRAP_S, GLint(wrap));
+    glTextureParameteri(id(), GL_TEXTURE_WRAP_T, GLint(wrap));
+    glTextureParameteri(id(), GL_TEXTURE_WRAP_R, GLint(wrap));
+}
+
+void Texture::setCompare(bool enabled)
+{
+    glTextureParameteri(id(), GL_TEXTURE_COMPARE_MODE, enabled ? GL_COMPARE_REF_TO_TEXTURE : GL_NONE);
+    glTextureParameteri(id(), GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+}
+
+void Texture::generateMipmap() { glGenerateTextureMipmap(id()); }
+
+void Texture::bind(unsigned unit) const { glBindTextureUnit(unit, id()); }
+
+void Texture::bindImage(unsigned unit, unsigned access, int level, unsigned format) const
+{
+    const bool layered = target_ != GL_TEXTURE_2D;
+    glBindImageTexture(unit, id(), level, layered ? GL_TRUE : GL_FALSE, 0, access, format ? format : format_);
+}
+
+void Texture::clear(int level, const float rgba[4])
+{
+    const bool depth = format_ == GL_DEPTH_COMPONENT32F || format_ == GL_DEPTH_COMPONENT24 || format_ == GL_DEPTH_COMPONENT16;
+    glClearTexImage(id(), level, depth ? GL_DEPTH_COMPONENT : GL_RGBA, GL_FLOAT, rgba);
+}
+
+std::vector<float> Texture::readFloats(int level, int components) const
+{
+    static const unsigned kFormats[] = {GL_RED, GL_RED, GL_RG, GL_RGB, GL_RGBA};
+    const int w = std::max(1, width_ >> level), h = std::max(1, height_ >> level);
+    const unsigned baseFormat = (format_ == GL_DEPTH_COMPONENT32F || format_ == GL_DEPTH_COMPONENT24 ||
+                                 format_ == GL_DEPTH_COMPONENT16)
+                                    ? GL_DEPTH_COMPONENT
+                                    : kFormats[components];
+    std::vector<float> out(std::size_t(w) * std::size_t(h) * std::size_t(layers_) * std::size_t(components));
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glGetTextureImage(id(), level, baseFormat, GL_FLOAT, GLsizei(out.size() * sizeof(float)), out.data());
+    return out;
+}
+
+} // namespace bounce::gl

@@ -1,0 +1,88 @@
+#include "gl/resource/timer.h"
+
+#include <algorithm>
+#include <stdexcept>
+
+#include "gl/gl.h"
+
+namespace bounce::gl {
+
+void QueryDeleter::operator()(unsigned id) const { glDeleteQueries(1, &id); }
+
+PassTimers::Scope::~Scope()
+{
+    if (active_) glEndQuery(GL_TIME_ELAPSED);
+}
+
+int PassTimers::pass(const std::string& name)
+{
+    const auto it = std::find(order_.begin(), order_.end(), name);
+    if (it != order_.end()) return int(it - order_.begin());
+    order_.push_back(name);
+    samples_.emplace_back();
+    return int(order_.size() - 1);
+}
+
+PassTimers::Scope PassTimers::scope(const std::string& name)
+{
+    const std::size_t q = pending_.size();
+    if (q == pool_.size()) {
+        unsigned id = 0;
+        glCreateQueries(GL_TIME_ELAPSED, 1, &id);
+        pool_.emplace_back(id);
+    }
+    pending_.push_back({name, q});
+    glBeginQuery(GL_TIME_ELAPSED, pool_[q].id());
+    return Scope(true);
+}
+
+void PassTimers::endFrame(bool keep)
+{
+    std::vector<double> frame(order_.size(), 0.0);
+    std::vector<bool> seen(order_.size(), false);
+    for (const Pending& p : pending_) {
+        GLuint64 ns = 0;
+        glGetQueryObjectui64v(pool_[p.query].id(), GL_QUERY_RESULT, &ns);
+        const int i = pass(p.pass);
+        if (std::size_t(i) >= frame.size()) { frame.resize(i + 1, 0.0); seen.resize(i + 1, false); }
+        frame[i] += double(ns) * 1e-6;
+        seen[i] = true;
+    }
+    pending_.clear();
+    last_ = frame;
+    if (!keep) return;
+    for (std::size_t i = 0; i < frame.size(); ++i)
+        if (seen[i]) samples_[i].push_back(frame[i]);
+}
+
+std::vector<PassStat> PassTimers::stats() const
+{
+    std::vector<PassStat> out;
+    for (std::size_t i = 0; i < order_.size(); ++i) {
+        std::vector<double> s = samples_[i];
+        if (s.empty()) continue;
+        std::sort(s.begin(), s.end());
+        const std::size_t n = s.size();
+        const double median = n % 2 ? s[n / 2] : 0.5 * (s[n / 2 - 1] + s[n / 2]);
+        out.push_back({order_[i], median, s.front(), s.back(), int(n)});
+    }
+    return out;
+}
+
+std::vector<PassStat> PassTimers::lastFrame() const
+{
+    std::vector<PassStat> out;
+    for (std::size_t i = 0; i < last_.size() && i < order_.size(); ++i)
+        out.push_back({order_[i], last_[i], last_[i], last_[i], 1});
+    return out;
+}
+
+void PassTimers::clear()
+{
+    pending_.clear();
+    order_.clear();
+    samples_.clear();
+    last_.clear();
+}
+
+} // namespace bounce::gl
