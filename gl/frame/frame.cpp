@@ -1,0 +1,157 @@
+#include "gl/frame/frame.h"
+
+#include "gl/gl.h"
+
+namespace bounce::gl {
+
+Frame::Frame(const core::Scene& scene, const FrameSettings& settings)
+    : scene_(scene), settings_(settings), camera_(scene.camera), gpu_(scene, settings.textureSize),
+      shadows_(gpu_, settings.shadowMapSize), gbufferFbo_("gbuffer.fbo"), directFbo_("direct.fbo"),
+      compositeFbo_("composite.fbo"), emptyVao_("fullscreen"),
+      gbufferProgram_(Program::graphics("gbuffer", "frame/gbuffer.vert", "frame/gbuffer.frag")),
+      directProgram_(Program::graphics("direct", "frame/fullscreen.vert", "frame/direct.frag")),
+      compositeProgram_(Program::graphics("composite", "frame/fullscreen.vert", "frame/composite.frag"))
+{
+    shadows_.setPcf(settings.pcfLinear);
+    allocateTargets();
+}
+
+void Frame::allocateTargets()
+{
+    const int w = settings_.width, h = settings_.height;
+    position_ = Texture::create2D("gbuffer.position", GL_RGBA32F, w, h);
+    normal_ = Texture::create2D("gbuffer.normal", GL_RGBA32F, w, h);
+    diffuse_ = Texture::create2D("gbuffer.diffuse", GL_RGBA16F, w, h);
+    specular_ = Texture::create2D("gbuffer.specular", GL_RGBA16F, w, h);
+    emission_ = Texture::create2D("gbuffer.emission", GL_RGBA16F, w, h);
+    depth_ = Texture::create2D("gbuffer.depth", GL_DEPTH_COMPONENT32F, w, h);
+    direct_ = Texture::create2D("direct", GL_RGBA32F, w, h);
+    indirect_ = Texture::create2D("indirect", GL_RGBA32F, w, h);
+    composite_ = Texture::create2D("composite", GL_RGBA32F, w, h);
+    gbufferFbo_.attach(GL_COLOR_ATTACHMENT0, position_);
+    gbufferFbo_.attach(GL_COLOR_ATTACHMENT1, normal_);
+    gbufferFbo_.attach(GL_COLOR_ATTACHMENT2, diffuse_);
+    gbufferFbo_.attach(GL_COLOR_ATTACHMENT3, specular_);
+    gbufferFbo_.attach(GL_COLOR_ATTACHMENT4, emission_);
+    gbufferFbo_.attach(GL_DEPTH_ATTACHMENT, depth_);
+    gbufferFbo_.setDrawBuffers({GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2,
+                                GL_COLOR_ATTACHMENT3, GL_COLOR_ATTACHMENT4});
+    gbufferFbo_.checkComplete();
+    directFbo_.attach(GL_COLOR_ATTACHMENT0, direct_);
+    directFbo_.checkComplete();
+    compositeFbo_.attach(GL_COLOR_ATTACHMENT0, composite_);
+    compositeFbo_.checkComplete();
+    clearIndirect();
+}
+
+void Frame::setCamera(const core::Camera& camera) { camera_ = camera; }
+
+void Frame::setLights(const std::vector<core::Light>& lights)
+{
+    gpu_.setLights(lights);
+    shadows_.update(gpu_);
+}
+
+void Frame::resize(int width, int height)
+{
+    if (width == settings_.width && height == settings_.height) return;
+    settings_.width = width;
+    settings_.height = height;
+    allocateTargets();
+}
+
+void Frame::beginFrame() { ++frameIndex_; }
+
+void Frame::renderShadowMaps(PassTimers& timers)
+{
+    auto t = timers.scope("shadow");
+    shadows_.render(gpu_);
+}
+
+void Frame::renderGBuffer(PassTimers& timers)
+{
+    auto t = timers.scope("gbuffer");
+    gbufferFbo_.bind();
+    glViewport(0, 0, settings_.width, settings_.height);
+    const float zero[4] = {0, 0, 0, 0};
+    for (int i = 0; i < 5; ++i) glClearNamedFramebufferfv(gbufferFbo_.id(), GL_COLOR, i, zero);
+    glClearNamedFramebufferfi(gbufferFbo_.id(), GL_DEPTH_STENCIL, 0, 1.0f, 0);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    glDisable(GL_CULL_FACE); // back faces of one-sided surfaces are drawn black (gbuffer.frag)
+    gbufferProgram_.set("viewProj", projection() * view());
+    gbufferProgram_.set("view", view());
+    gpu_.materials().bindBase(GL_SHADER_STORAGE_BUFFER, 0);
+    gpu_.baseColorTextures().bind(6);
+    gbufferProgram_.use();
+    gpu_.draw();
+}
+
+void Frame::bindGBuffer() const
+{
+    position_.bind(0);
+    normal_.bind(1);
+    diffuse_.bind(2);
+    specular_.bind(3);
+    emission_.bind(4);
+}
+
+void Frame::bindSceneData() const
+{
+    gpu_.materials().bindBase(GL_SHADER_STORAGE_BUFFER, 0);
+    shadows_.bind();
+}
+
+void Frame::drawFullscreen() const
+{
+    emptyVao_.bind();
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+}
+
+void Frame::renderDirect(PassTimers& timers)
+{
+    auto t = timers.scope("direct");
+    directFbo_.bind();
+    glViewport(0, 0, settings_.width, settings_.height);
+    glDisable(GL_DEPTH_TEST);
+    bindGBuffer();
+    bindSceneData();
+    directProgram_.set("cameraPosition", camera_.position);
+    directProgram_.set("lightCount", shadows_.lightCount());
+    directProgram_.set("pcfRadius", settings_.pcfRadius);
+    directProgram_.use();
+    drawFullscreen();
+}
+
+void Frame::clearIndirect()
+{
+    const float zero[4] = {0, 0, 0, 0};
+    indirect_.clear(0, zero);
+}
+
+void Frame::composite(PassTimers& timers)
+{
+    auto t = timers.scope("composite");
+    compositeFbo_.bind();
+    glViewport(0, 0, settings_.width, settings_.height);
+    glDisable(GL_DEPTH_TEST);
+    direct_.bind(0);
+    indirect_.bind(1);
+    compositeProgram_.use();
+    drawFullscreen();
+}
+
+core::Image Frame::read(const Texture& texture) const
+{
+    const std::vector<float> rgba = texture.readFloats(0, 4);
+    core::Image img(texture.width(), texture.height());
+    for (int y = 0; y < img.height; ++y)
+        for (int x = 0; x < img.width; ++x) {
+            const float* p = &rgba[(std::size_t(img.height - 1 - y) * img.width + x) * 4]; // GL rows go up
+            img.set(x, y, {p[0], p[1], p[2]});
+        }
+    return img;
+}
+
+} // namespace bounce::gl

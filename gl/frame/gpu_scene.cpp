@@ -1,0 +1,148 @@
+#include "gl/frame/gpu_scene.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "gl/gl.h"
+
+namespace bounce::gl {
+
+namespace {
+
+// sRGB-encoded 8-bit texels resampled (box filter, or nearest when enlarging) to size x size.
+void resampleInto(const core::Texture& t, int size, std::uint8_t* out)
+{
+    for (int y = 0; y < size; ++y)
+        for (int x = 0; x < size; ++x) {
+            const int x0 = x * t.width / size, x1 = std::max(x0 + 1, (x + 1) * t.width / size);
+            const int y0 = y * t.height / size, y1 = std::max(y0 + 1, (y + 1) * t.height / size);
+            unsigned sum[4] = {0, 0, 0, 0};
+            for (int sy = y0; sy < y1; ++sy)
+                for (int sx = x0; sx < x1; ++sx)
+                    for (int c = 0; c < 4; ++c) sum[c] += t.rgba8[(std::size_t(sy) * t.width + sx) * 4 + c];
+            const unsigned n = unsigned((x1 - x0) * (y1 - y0));
+            for (int c = 0; c < 4; ++c) out[(std::size_t(y) * size + x) * 4 + c] = std::uint8_t(sum[c] / n);
+        }
+}
+
+} // namespace
+
+GpuScene::GpuScene(const core::Scene& scene, int textureSize) : vao_("scene"), bounds_(scene.bounds())
+{
+    std::vector<Vertex> vertices;
+    std::vector<std::uint32_t> indices;
+    vertices.reserve(scene.triangleCount() * 3);
+    for (std::size_t mi = 0; mi < scene.meshes.size(); ++mi) {
+        const core::Mesh& m = scene.meshes[mi];
+        const auto base = std::uint32_t(vertices.size());
+        for (std::size_t i = 0; i < m.positions.size(); ++i)
+            vertices.push_back({m.positions[i], m.normals[i], m.uvs.empty() ? glm::vec2(0.0f) : m.uvs[i], m.material});
+        for (std::uint32_t idx : m.indices) indices.push_back(base + idx);
+
+        const core::Material& mat = scene.materials[m.material];
+        if (!mat.isEmissive()) continue;
+        // Each emitting triangle is an area light; the triangles of one mesh share one shadow cube.
+        for (std::size_t t = 0; t + 2 < m.indices.size(); t += 3) {
+            if (int(area_.size()) >= kMaxAreaTriangles) {
+                std::fprintf(stderr, "bounce: more than %d emissive triangles; the rest light nothing directly\n",
+                             kMaxAreaTriangles);
+                break;
+            }
+            LightSource s;
+            s.type = kLightArea;
+            for (int k = 0; k < 3; ++k) s.triangle[k] = m.positions[m.indices[t + k]];
+            const glm::vec3 c = glm::cross(s.triangle[1] - s.triangle[0], s.triangle[2] - s.triangle[0]);
+            if (glm::length(c) <= 0.0f) continue; // degenerate: emits nothing
+            s.direction = glm::normalize(c);
+            s.intensity = mat.emission;
+            s.group = int(mi);
+            area_.push_back(s);
+        }
+    }
+    // Area lights of one mesh: their shadow cube sits at the mesh's emitting centroid, nudged off the
+    // surface along the normal so the emitter does not shadow itself.
+    for (LightSource& s : area_) {
+        glm::vec3 sum(0.0f);
+        int n = 0;
+        for (const LightSource& o : area_)
+            if (o.group == s.group) { sum += (o.triangle[0] + o.triangle[1] + o.triangle[2]) / 3.0f; ++n; }
+        s.position = sum / float(n) + s.direction * 1e-3f;
+    }
+
+    vertices_ = Buffer::fromVector("scene.vertices", vertices);
+    indices_ = Buffer::fromVector("scene.indices", indices);
+    indexCount_ = indices.size();
+    glVertexArrayVertexBuffer(vao_.id(), 0, vertices_.id(), 0, sizeof(Vertex));
+    glVertexArrayElementBuffer(vao_.id(), indices_.id());
+    const struct { unsigned loc; int size; unsigned type; std::size_t offset; } attribs[] = {
+        {0, 3, GL_FLOAT, offsetof(Vertex, position)},
+        {1, 3, GL_FLOAT, offsetof(Vertex, normal)},
+        {2, 2, GL_FLOAT, offsetof(Vertex, uv)},
+    };
+    for (const auto& a : attribs) {
+        glEnableVertexArrayAttrib(vao_.id(), a.loc);
+        glVertexArrayAttribFormat(vao_.id(), a.loc, a.size, a.type, GL_FALSE, GLuint(a.offset));
+        glVertexArrayAttribBinding(vao_.id(), a.loc, 0);
+    }
+    glEnableVertexArrayAttrib(vao_.id(), 3);
+    glVertexArrayAttribIFormat(vao_.id(), 3, 1, GL_UNSIGNED_INT, GLuint(offsetof(Vertex, material)));
+    glVertexArrayAttribBinding(vao_.id(), 3, 0);
+
+    // Textures: only what the scene uses; a scene without textures gets a 1x1 white layer to bind.
+    std::vector<int> layerOf(scene.textures.size(), -1);
+    int layers = 0;
+    for (const core::Material& m : scene.materials)
+        if (m.baseColorTexture >= 0 && layerOf[m.baseColorTexture] < 0) layerOf[m.baseColorTexture] = layers++;
+    hasTextures_ = layers > 0;
+    const int size = hasTextures_ ? textureSize : 1;
+    textures_ = Texture::create2DArray("scene.baseColorTextures", GL_SRGB8_ALPHA8, size, size, std::max(layers, 1));
+    std::vector<std::uint8_t> texels(std::size_t(size) * size * 4, 255);
+    for (std::size_t t = 0; t < scene.textures.size(); ++t) {
+        if (layerOf[t] < 0) continue;
+        resampleInto(scene.textures[t], size, texels.data());
+        glTextureSubImage3D(textures_.id(), 0, 0, 0, layerOf[t], size, size, 1, GL_RGBA, GL_UNSIGNED_BYTE, texels.data());
+    }
+    if (!hasTextures_)
+        glTextureSubImage3D(textures_.id(), 0, 0, 0, 0, 1, 1, 1, GL_RGBA, GL_UNSIGNED_BYTE, texels.data());
+    textures_.setFilter(GL_LINEAR, GL_LINEAR);
+    textures_.setWrap(GL_REPEAT);
+
+    std::vector<GpuMaterial> mats;
+    for (const core::Material& m : scene.materials)
+        mats.push_back({glm::vec4(m.baseColor, m.metallic), glm::vec4(m.emission, m.roughness),
+                        glm::vec4(m.specularColor, m.specular),
+                        glm::ivec4(m.baseColorTexture >= 0 ? layerOf[m.baseColorTexture] : -1, m.doubleSided, 0, 0)});
+    if (mats.empty()) mats.push_back({});
+    materials_ = Buffer::fromVector("scene.materials", mats);
+
+    setLights(scene.lights);
+}
+
+void GpuScene::setLights(const std::vector<core::Light>& punctual)
+{
+    punctual_ = punctual;
+    lights_.clear();
+    for (const core::Light& l : punctual) {
+        LightSource s;
+        s.type = l.type == core::LightType::Point ? kLightPoint
+                 : l.type == core::LightType::Spot ? kLightSpot
+                                                   : kLightDirectional;
+        s.position = l.position;
+        s.direction = glm::normalize(l.direction);
+        s.intensity = l.intensity;
+        s.outerConeRad = l.outerConeRad;
+        s.cosOuter = std::cos(l.outerConeRad);
+        s.cosInner = std::cos(std::min(l.innerConeRad, l.outerConeRad));
+        lights_.push_back(s);
+    }
+    lights_.insert(lights_.end(), area_.begin(), area_.end());
+}
+
+void GpuScene::draw() const
+{
+    vao_.bind();
+    glDrawElements(GL_TRIANGLES, GLsizei(indexCount_), GL_UNSIGNED_INT, nullptr);
+}
+
+} // namespace bounce::gl

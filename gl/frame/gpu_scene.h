@@ -1,0 +1,83 @@
+// core::Scene on the GPU: one vertex/index buffer for all meshes (world space), materials, lights and
+// area-light polygons in SSBOs (layouts in glsl/common/scene.glsl), base-colour textures in one array.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "core/scene.h"
+#include "gl/resource/buffer.h"
+#include "gl/resource/framebuffer.h"
+#include "gl/resource/texture.h"
+
+namespace bounce::gl {
+
+// std430 mirrors of glsl/common/scene.glsl.
+struct GpuMaterial {
+    glm::vec4 baseColorMetallic;
+    glm::vec4 emissionRoughness;
+    glm::vec4 specularColorSpecular;
+    glm::ivec4 flags;
+};
+struct GpuLight {
+    glm::vec4 positionType;
+    glm::vec4 directionCosOuter;
+    glm::vec4 intensityCosInner;
+    glm::ivec4 shadow; // first shadow layer, layer count, first polygon vertex, source light index
+};
+inline constexpr int kLightPoint = 0, kLightSpot = 1, kLightDirectional = 2, kLightArea = 3;
+
+// One light as the GPU sees it, before shadow layers are assigned.
+struct LightSource {
+    int type = kLightPoint;
+    glm::vec3 position{0.0f};   // point/spot position; area: centroid of its emitting mesh
+    glm::vec3 direction{0.0f};  // spot/directional travel direction; area: emitter normal
+    glm::vec3 intensity{0.0f};  // W/sr, W/m^2, or radiance for area triangles
+    float cosOuter = -1.0f, cosInner = -1.0f;
+    float outerConeRad = 0.0f;
+    glm::vec3 triangle[3];      // area only
+    int group = -1;             // area triangles of one mesh share a shadow cube: the mesh index
+};
+
+class GpuScene {
+public:
+    // Area triangles beyond this many are ignored with a warning (their emission is still seen).
+    static constexpr int kMaxAreaTriangles = 256;
+
+    GpuScene(const core::Scene& scene, int textureSize = 512);
+
+    void draw() const; // binds the vertex array and draws every triangle
+    void drawPositionsOnly() const { draw(); }
+    const Buffer& materials() const { return materials_; }
+    const Texture& baseColorTextures() const { return textures_; }
+    bool hasTextures() const { return hasTextures_; }
+    std::size_t triangleCount() const { return indexCount_ / 3; }
+    const core::Bounds& bounds() const { return bounds_; }
+
+    // Lights of the scene (punctual from core::Light, area from emissive triangles); the demo may move
+    // punctual lights, which rebuilds this list through setLights().
+    const std::vector<LightSource>& lights() const { return lights_; }
+    void setLights(const std::vector<core::Light>& punctual);
+    const std::vector<core::Light>& punctualLights() const { return punctual_; }
+
+private:
+    struct Vertex {
+        glm::vec3 position;
+        glm::vec3 normal;
+        glm::vec2 uv;
+        std::uint32_t material;
+    };
+    VertexArray vao_;
+    Buffer vertices_, indices_, materials_;
+    Texture textures_;
+    bool hasTextures_ = false;
+    std::size_t indexCount_ = 0;
+    core::Bounds bounds_;
+    std::vector<core::Light> punctual_;
+    std::vector<LightSource> area_;
+    std::vector<LightSource> lights_;
+};
+
+} // namespace bounce::gl

@@ -1,0 +1,40 @@
+// One whole frame, the same for the CLI, the demo, the benchmark and the tests: the frame's passes, the
+// technique's indirect light, the composite. Owns the frame and the technique.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "core/scene.h"
+#include "gl/frame/frame.h"
+#include "gl/technique/technique.h"
+
+namespace bounce::gl {
+
+class Renderer {
+public:
+    // frameValues: frameParams() values; techniqueValues: the technique's declared parameters.
+    Renderer(const core::Scene& scene, const std::string& technique, const ParamValues& frameValues,
+             const ParamValues& techniqueValues, int width, int height);
+
+    void renderFrame(bool keepTimings = true);
+    void setTechnique(const std::string& technique, const ParamValues& techniqueValues);
+
+    Frame& frame() { return *frame_; }
+    const TechniqueInfo& technique() const { return *info_; }
+    const ParamValues& techniqueValues() const { return techniqueValues_; }
+    const ParamValues& frameValues() const { return frameValues_; }
+    PassTimers& timers() { return timers_; }
+    std::vector<Counter> counters() const { return technique_->counters(); }
+    core::Image image() const { return frame_->read(frame_->result()); }
+
+private:
+    std::unique_ptr<Frame> frame_;
+    const TechniqueInfo* info_ = nullptr;
+    std::unique_ptr<Technique> technique_;
+    ParamValues frameValues_, techniqueValues_;
+    PassTimers timers_;
+    int techniqueWidth_ = 0, techniqueHeight_ = 0;
+};
+
+} // namespace bounce::gl

@@ -1,0 +1,27 @@
+// The registry: every technique of Bounce, in the order `bounce list` shows them. A family adds a line
+// here (an explicit table rather than static registration, which static libraries silently drop).
+#include "gl/technique/direct.h"
+#include "gl/technique/isr/hisr_technique.h"
+#include "gl/technique/isr/isr_technique.h"
+#include "gl/technique/isr/multires_technique.h"
+#include "gl/technique/isr/rsm_technique.h"
+#include "gl/technique/technique.h"
+
+namespace bounce::gl {
+
+const std::vector<TechniqueInfo>& techniques()
+{
+    static const std::vector<TechniqueInfo> all = [] {
+        std::vector<TechniqueInfo> t;
+        t.push_back(directTechniqueInfo());
+        t.push_back(rsmTechniqueInfo());
+        t.push_back(rsmFullTechniqueInfo());
+        t.push_back(multiresGatherTechniqueInfo());
+        t.push_back(isrTechniqueInfo());
+        t.push_back(hisrTechniqueInfo());
+        return t;
+    }();
+    return all;
+}
+
+} // namespace bounce::gl

@@ -1,0 +1,59 @@
+// The one BRDF of Bounce, the GLSL twin of core/brdf.h (tested against it to 1e-5 relative):
+// Lambertian diffuse baseColor (1 - metallic) plus one GGX lobe (height-correlated Smith, Schlick).
+//   F0 = mix(min(0.04 specularColor, 1), baseColor, metallic), w = mix(specular, 1, metallic)
+//   f  = (1 - w F) c_diff / pi + w F D Vis
+#ifndef BOUNCE_BRDF_GLSL
+#define BOUNCE_BRDF_GLSL
+
+const float kPi = 3.14159265358979323846;
+
+struct BrdfParams {
+    vec3 diffuse;    // c_diff = baseColor (1 - metallic)
+    vec3 f0;
+    float weight;    // w, the specular weight
+    float alpha;     // roughness^2, at least 1e-3
+};
+
+BrdfParams brdfParams(vec3 baseColor, float metallic, float roughness, float specular, vec3 specularColor)
+{
+    BrdfParams p;
+    p.diffuse = baseColor * (1.0 - metallic);
+    p.f0 = mix(min(0.04 * specularColor, vec3(1.0)), baseColor, metallic);
+    p.weight = mix(specular, 1.0, metallic);
+    p.alpha = max(roughness * roughness, 1e-3);
+    return p;
+}
+
+float ggxD(float NdotH, float a2)
+{
+    float d = NdotH * NdotH * (a2 - 1.0) + 1.0;
+    return a2 / (kPi * d * d);
+}
+
+// Height-correlated Smith visibility, G2 / (4 NdotL NdotV).
+float smithVis(float NdotL, float NdotV, float a2)
+{
+    float gv = NdotL * sqrt(NdotV * NdotV * (1.0 - a2) + a2);
+    float gl = NdotV * sqrt(NdotL * NdotL * (1.0 - a2) + a2);
+    return 0.5 / (gv + gl);
+}
+
+// f(wo, wi) without the cosine; zero below either horizon.
+vec3 brdfEval(BrdfParams p, vec3 n, vec3 wo, vec3 wi)
+{
+    float NdotL = dot(n, wi), NdotV = dot(n, wo);
+    if (NdotL <= 0.0 || NdotV <= 0.0) return vec3(0.0);
+    vec3 h = normalize(wo + wi);
+    float VdotH = max(dot(wo, h), 0.0);
+    vec3 F = p.f0 + (1.0 - p.f0) * pow(1.0 - VdotH, 5.0);
+    vec3 wF = p.weight * F;
+    // The diffuse part keeps what the glossy interface transmits on the way in and on the way out.
+    vec3 transmitted = (1.0 - p.weight * (p.f0 + (1.0 - p.f0) * pow(1.0 - NdotV, 5.0))) *
+                       (1.0 - p.weight * (p.f0 + (1.0 - p.f0) * pow(1.0 - NdotL, 5.0)));
+    vec3 diffuse = transmitted * p.diffuse / kPi;
+    if (p.weight <= 0.0) return diffuse;
+    float a2 = p.alpha * p.alpha;
+    return diffuse + wF * ggxD(max(dot(n, h), 0.0), a2) * smithVis(NdotL, NdotV, a2);
+}
+
+#endif

@@ -1,0 +1,10 @@
+#version 450 core
+// What the viewer sees: direct light plus the technique's indirect light.
+layout(binding = 0) uniform sampler2D directLight;
+layout(binding = 1) uniform sampler2D indirectLight;
+layout(location = 0) out vec4 outRadiance;
+void main()
+{
+    ivec2 px = ivec2(gl_FragCoord.xy);
+    outRadiance = vec4(texelFetch(directLight, px, 0).rgb + texelFetch(indirectLight, px, 0).rgb, 1.0);
+}

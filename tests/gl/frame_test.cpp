@@ -1,0 +1,153 @@
+// The frame against physics: direct light from the canonical Cornell variants checked pixel by pixel
+// against closed forms evaluated on the CPU, with what each pixel sees decided by an independent CPU
+// ray caster (tests/gl/cpu_raycast.h), not by the renderer's own G-buffer.
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "core/cornell.h"
+#include "gl/context/context.h"
+#include "gl/renderer.h"
+#include "tests/gl/cpu_raycast.h"
+#include "tests/gl/gl_test_fixture.h"
+
+namespace bounce {
+namespace {
+
+using test::raycast;
+using test::visible;
+
+constexpr int kSize = 64;
+
+core::Image renderDirect(const core::Scene& scene, int width, int height, bool hardShadows)
+{
+    gl::ParamValues frameValues(gl::frameParams());
+    if (hardShadows) {
+        frameValues.setValue("shadow.pcf", 0);
+        frameValues.setValue("shadow.linear", 0);
+    }
+    frameValues.setValue("shadow.size", 1024);
+    gl::Renderer r(scene, "direct", frameValues, gl::ParamValues(), width, height);
+    r.renderFrame();
+    return r.image();
+}
+
+// A point is "robustly" lit or shadowed when points 5 mm around it on the surface agree with it: pixels
+// on a shadow edge are where shadow-map resolution, not physics, decides.
+int robustVisibility(const core::Scene& scene, const glm::vec3& p, const glm::vec3& n, const glm::vec3& light)
+{
+    const glm::vec3 t = std::abs(n.y) < 0.9f ? glm::normalize(glm::cross(n, glm::vec3(0, 1, 0)))
+                                             : glm::normalize(glm::cross(n, glm::vec3(1, 0, 0)));
+    const glm::vec3 b = glm::cross(n, t);
+    const bool centre = visible(scene, p, n, light);
+    for (const glm::vec3& o : {t, -t, b, -b})
+        if (visible(scene, p + 0.005f * o, n, light) != centre) return -1;
+    return centre ? 1 : 0;
+}
+
+class FrameTest : public GlTest {};
+
+// Direct light on the floor of cornell-spot equals albedo/pi * I cos(theta) / r^2 (PCF off). Tolerance
+// 0.5% relative: the G-buffer stores albedo in half floats (relative error below 5e-4) and positions
+// are rasterised at pixel centres exactly as the CPU rays are cast; the rest is float arithmetic.
+TEST_F(FrameTest, SpotFloorMatchesInverseSquareCosineLaw)
+{
+    const core::Scene scene = core::makeCornell("cornell-spot");
+    const core::Image img = renderDirect(scene, kSize, kSize, true);
+    const core::Light& light = scene.lights.at(0);
+    int checked = 0;
+    for (int y = 0; y < kSize; ++y)
+        for (int x = 0; x < kSize; ++x) {
+            const glm::vec3 d = scene.camera.rayDirection(x + 0.5f, y + 0.5f, kSize, kSize);
+            const auto hit = raycast(scene, scene.camera.position, d);
+            if (!hit || std::abs(hit->position.y) > 1e-5f) continue; // floor only
+            const glm::vec3 n(0, 1, 0);
+            const glm::vec3 toLight = light.position - hit->position;
+            const float r2 = glm::dot(toLight, toLight);
+            const glm::vec3 wi = toLight / std::sqrt(r2);
+            const float cosLight = glm::dot(-wi, light.direction);
+            if (cosLight < std::cos(light.outerConeRad) + 0.02f) continue; // away from the cone's edge
+            if (robustVisibility(scene, hit->position, n, light.position) != 1) continue;
+            const glm::vec3 albedo = scene.materials[hit->material].baseColor;
+            const glm::vec3 expected = albedo / core::kPi * light.intensity * (glm::dot(n, wi) / r2);
+            const glm::vec3 got = img.at(x, y);
+            for (int c = 0; c < 3; ++c)
+                ASSERT_NEAR(got[c], expected[c], 5e-3f * expected[c]) << "pixel " << x << "," << y << " channel " << c;
+            ++checked;
+        }
+    EXPECT_GT(checked, 200) << "too few floor pixels were checked";
+}
+
+// The short block's shadow lies where the geometry puts it, and outside the spot cone it is dark.
+TEST_F(FrameTest, ShadowAndConeWhereGeometrySays)
+{
+    const core::Scene scene = core::makeCornell("cornell-spot");
+    const core::Image img = renderDirect(scene, kSize, kSize, true);
+    const core::Light& light = scene.lights.at(0);
+    int shadowed = 0, outside = 0, lit = 0;
+    for (int y = 0; y < kSize; ++y)
+        for (int x = 0; x < kSize; ++x) {
+            const glm::vec3 d = scene.camera.rayDirection(x + 0.5f, y + 0.5f, kSize, kSize);
+            const auto hit = raycast(scene, scene.camera.position, d);
+            if (!hit) continue;
+            glm::vec3 n = hit->geometricNormal;
+            if (glm::dot(n, d) > 0.0f) n = -n;
+            const glm::vec3 wi = glm::normalize(light.position - hit->position);
+            const float cosLight = glm::dot(-wi, light.direction);
+            const float lum = glm::dot(img.at(x, y), glm::vec3(1.0f / 3.0f));
+            if (cosLight < std::cos(light.outerConeRad) - 0.02f) {
+                EXPECT_EQ(lum, 0.0f) << "outside the cone, pixel " << x << "," << y;
+                ++outside;
+                continue;
+            }
+            if (cosLight < std::cos(light.outerConeRad) + 0.02f || glm::dot(n, wi) < 0.05f) continue;
+            const int v = robustVisibility(scene, hit->position, n, light.position);
+            if (v == 0) {
+                EXPECT_EQ(lum, 0.0f) << "in the block's shadow, pixel " << x << "," << y;
+                ++shadowed;
+            } else if (v == 1) {
+                EXPECT_GT(lum, 0.0f) << "lit, pixel " << x << "," << y;
+                ++lit;
+            }
+        }
+    EXPECT_GT(shadowed, 10);
+    EXPECT_GT(outside, 100);
+    EXPECT_GT(lit, 200);
+}
+
+// The emitter of cornell-area is seen with exactly its radiance (17, 12, 4): half floats hold these
+// integers exactly, and the emitter reflects nothing.
+TEST_F(FrameTest, AreaEmitterSeenWithItsRadiance)
+{
+    const core::Scene scene = core::makeCornell("cornell-area");
+    const core::Image img = renderDirect(scene, kSize, kSize, false);
+    int seen = 0;
+    for (int y = 0; y < kSize; ++y)
+        for (int x = 0; x < kSize; ++x) {
+            const glm::vec3 d = scene.camera.rayDirection(x + 0.5f, y + 0.5f, kSize, kSize);
+            const auto hit = raycast(scene, scene.camera.position, d);
+            if (!hit || !scene.materials[hit->material].isEmissive()) continue;
+            EXPECT_EQ(img.at(x, y), glm::vec3(17.0f, 12.0f, 4.0f)) << "pixel " << x << "," << y;
+            ++seen;
+        }
+    EXPECT_GT(seen, 4);
+}
+
+// Invariants on every canonical variant and a viewport that is not a power of two: finite, non-negative.
+TEST_F(FrameTest, FiniteNonNegativeOnEveryVariant)
+{
+    for (const char* name : {"cornell-area", "cornell-spot", "cornell-point", "cornell-point-ceiling"}) {
+        const core::Scene scene = core::makeCornell(name);
+        const core::Image img = renderDirect(scene, 33, 20, false);
+        double sum = 0.0;
+        for (float v : img.rgb) {
+            ASSERT_TRUE(std::isfinite(v)) << name;
+            ASSERT_GE(v, 0.0f) << name;
+            sum += v;
+        }
+        EXPECT_GT(sum, 0.0) << name;
+    }
+}
+
+} // namespace
+} // namespace bounce
