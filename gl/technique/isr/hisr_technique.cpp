@@ -1,0 +1,142 @@
+#include "gl/technique/isr/hisr_technique.h"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <stdexcept>
+#include <string>
+
+#include "gl/gl.h"
+#include "gl/technique/isr/multires_gather.h"
+#include "gl/technique/isr/multires_technique.h"
+#include "gl/technique/isr/rsm_pass.h"
+#include "gl/technique/isr/vpl_tree.h"
+
+namespace bounce::gl {
+
+double hisrPeakIntensity(const std::vector<LightSource>& lights)
+{
+    double peak = 0.0;
+    std::map<int, glm::dvec3> areaLobes; // per emitting mesh: sum of L_k A_k
+    for (const LightSource& l : lights) {
+        if (l.type == kLightArea) {
+            const double a = 0.5 * glm::length(glm::cross(l.triangle[1] - l.triangle[0], l.triangle[2] - l.triangle[0]));
+            areaLobes[l.group] += glm::dvec3(l.intensity) * a;
+        } else {
+            peak = std::max(peak, double(std::max({l.intensity.x, l.intensity.y, l.intensity.z})));
+        }
+    }
+    for (const auto& [group, lobe] : areaLobes) peak = std::max(peak, std::max({lobe.x, lobe.y, lobe.z}));
+    return peak;
+}
+
+double hisrRefineConstant(double peakIntensity, double tau, int rsmSize)
+{
+    if (tau <= 0.0) return std::numeric_limits<double>::infinity();
+    return 2.0 * (peakIntensity - tau) / (3.0 * tau * double(rsmSize) * double(rsmSize)); // Eq. 8
+}
+
+namespace {
+
+class Hisr final : public Technique {
+public:
+    Hisr(Frame& frame, const RsmSettings& rsm, double tau, int topGrid, float lightDepthThreshold,
+         float lightNormalThreshold, int discontinuityLevel, const MultiresSettings& multires)
+        : rsm_(rsm), tree_(topGrid, lightDepthThreshold, lightNormalThreshold), tau_(tau),
+          discontinuityLevel_(discontinuityLevel), gather_(frame, multires),
+          program_(MultiresGather::gatherProgram("hisr.gather", "technique/isr/hisr_gather.frag")),
+          stats_("hisr.stats", 4 * sizeof(unsigned))
+    {
+    }
+
+    void render(Frame& frame, PassTimers& timers) override
+    {
+        rsm_.render(frame, timers);
+        tree_.build(rsm_, timers);
+        gather_.buildPyramid(frame, timers);
+        gather_.markValidFragments(frame, timers);
+        const double T = hisrRefineConstant(hisrPeakIntensity(frame.gpuScene().lights()), tau_, rsm_.size());
+        stats_.clearToZero();
+        stats_.bindBase(GL_SHADER_STORAGE_BUFFER, 13);
+        tree_.bind();
+        tree_.setUniforms(program_);
+        program_.set("alwaysRefine", std::isinf(T) ? 1 : 0);
+        program_.set("discontinuityLevel", discontinuityLevel_);
+        program_.set("refineT", std::isinf(T) ? 0.0f : float(T));
+        // Per root a fragment runs at most one loop step, one per node of the subtree and up to four per
+        // refined node to push its children: fewer than 2 (nodes + 1).
+        const int roots = tree_.rootCount();
+        const long long perRoot = 2LL * (tree_.subtreeNodes() + 1);
+        const int perDraw = int(std::clamp<long long>(MultiresGather::loopBudget() / perRoot, 1, std::max(roots, 1)));
+        const int draws = std::max(1, (roots + perDraw - 1) / perDraw);
+        gather_.gather(frame, program_, timers, draws, [&](Program& p, int i) {
+            p.set("rootBegin", i * perDraw);
+            p.set("rootEnd", std::min(roots, (i + 1) * perDraw));
+        });
+        gather_.upsample(frame, timers);
+    }
+
+    std::vector<Counter> counters() const override
+    {
+        std::vector<Counter> c = gather_.counters();
+        unsigned s[4] = {0, 0, 0, 0};
+        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+        stats_.download(0, sizeof(s), s);
+        const double gathered = double(s[0]) + 4294967296.0 * double(s[1]);
+        c.push_back({"vpl-tree.nodes", double(tree_.nodeCount())});
+        c.push_back({"vpl-tree.roots", double(tree_.rootCount())});
+        c.push_back({"clusters.gathered", gathered});
+        c.push_back({"clusters.perFragment", s[2] > 0 ? gathered / double(s[2]) : 0.0});
+        return c;
+    }
+
+private:
+    RsmPass rsm_;
+    VplTree tree_;
+    double tau_;
+    int discontinuityLevel_;
+    MultiresGather gather_;
+    Program program_;
+    Buffer stats_;
+};
+
+} // namespace
+
+TechniqueInfo hisrTechniqueInfo()
+{
+    TechniqueInfo info;
+    info.name = "hisr";
+    info.paper = "Nichols, Shopf & Wyman 2009";
+    info.lightPaths = "onebounce-novis";
+    info.summary = "hierarchical image-space radiosity: per-fragment VPL clusters from a VPL tree of the full RSM";
+    info.params = {
+        {"rsmSize", ParamType::Int, 256, 1, 1024,
+         "RSM texels per side of each light view, a power of two: the finest VPLs (the paper: 256)"},
+        {"tau", ParamType::Float, 1e-4, 0, 1e30,
+         "Eq. 8 error threshold tau (W/sr, as the light's intensity I): larger, coarser clusters; 0: every texel (rsm-full)"},
+        {"topGrid", ParamType::Int, 16, 1, 1024,
+         "top patches per side of each view where the traversal starts, a power of two (the paper: 16)"},
+        {"lightDepthThreshold", ParamType::Float, 0.1, 0, 1e30,
+         "departure: clusters whose relative light-distance range exceeds this are always refined; 1e30: the paper"},
+        {"lightNormalThreshold", ParamType::Float, 0.01, 0, 1e30,
+         "departure: clusters with 1 - |mean unit normal| above this are always refined; 1e30: the paper"},
+        {"lightRefineLevel", ParamType::Int, -1, -1, VplTree::kMaxDepth,
+         "departure: clusters spanning a light-space discontinuity are always refined down to this level; -1: log2(rsmSize / 128)"},
+    };
+    for (const ParamDecl& p : multiresParams()) info.params.push_back(p);
+    info.create = [](Frame& frame, const ParamValues& v) -> std::unique_ptr<Technique> {
+        RsmSettings rsm;
+        rsm.size = v.getInt("rsmSize");
+        if (!std::has_single_bit(unsigned(rsm.size)))
+            throw std::invalid_argument("hisr: rsmSize must be a power of two, not " + std::to_string(rsm.size));
+        int level = v.getInt("lightRefineLevel");
+        if (level < 0) level = std::max(0, int(std::bit_width(unsigned(rsm.size))) - 8); // log2(size / 128)
+        return std::make_unique<Hisr>(frame, rsm, v.get("tau"), v.getInt("topGrid"), float(v.get("lightDepthThreshold")),
+                                      float(v.get("lightNormalThreshold")), level, multiresSettingsFrom(v));
+    };
+    return info;
+}
+
+} // namespace bounce::gl

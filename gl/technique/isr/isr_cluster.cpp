@@ -1,0 +1,55 @@
+#include "gl/technique/isr/isr_cluster.h"
+
+#include <algorithm>
+#include <cstdint>
+#include <stdexcept>
+
+#include "gl/gl.h"
+#include "gl/technique/isr/vpl_sample.h"
+
+namespace bounce::gl {
+
+IsrCluster::IsrCluster()
+    : program_(Program::compute("isr.cluster", "technique/isr/isr_cluster.comp")),
+      counter_("isr.vplCount", (1 + kMaxLevels) * sizeof(std::uint32_t))
+{
+}
+
+int IsrCluster::capacity(const RsmPass& rsm, int minLevel)
+{
+    const int finest = std::max(1, rsm.size() >> minLevel);
+    return finest * finest * std::max(1, rsm.viewCount());
+}
+
+int IsrCluster::cluster(const RsmPass& rsm, Buffer& cache, const IsrClusterSettings& s, PassTimers& timers)
+{
+    if (s.maxLevel > rsm.levels() || s.minLevel > s.maxLevel || s.minLevel < 0 || s.maxLevel >= kMaxLevels)
+        throw std::logic_error("IsrCluster: levels out of the RSM pyramid's range");
+    const int cap = capacity(rsm, s.minLevel);
+    if (cache.bytes() < std::size_t(cap) * VplSampler::kVplBytes) throw std::logic_error("VPL cache too small");
+    {
+        auto t = timers.scope("vpl-cluster");
+        counter_.clearToZero();
+        if (rsm.viewCount() > 0) {
+            rsm.bind();
+            cache.bindBase(GL_SHADER_STORAGE_BUFFER, 8);
+            counter_.bindBase(GL_SHADER_STORAGE_BUFFER, 9);
+            program_.set("rsmSize", rsm.size());
+            program_.set("minLevel", s.minLevel);
+            program_.set("maxLevel", s.maxLevel);
+            program_.set("depthThreshold", s.depthThreshold);
+            program_.set("normalThreshold", s.normalThreshold);
+            program_.set("capacity", unsigned(cap));
+            program_.use();
+            const int finest = rsm.size() >> s.minLevel;
+            glDispatchCompute(GLuint((finest + 7) / 8), GLuint((finest + 7) / 8), GLuint(rsm.viewCount()));
+        }
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+    }
+    std::uint32_t counts[1 + kMaxLevels] = {};
+    counter_.download(0, sizeof(counts), counts);
+    perLevel_.assign(counts + 1, counts + 1 + s.maxLevel + 1);
+    return int(std::min<std::uint32_t>(counts[0], std::uint32_t(cap)));
+}
+
+} // namespace bounce::gl

@@ -1,0 +1,102 @@
+#include "gl/technique/isr/isr_technique.h"
+
+#include <algorithm>
+#include <memory>
+#include <string>
+
+#include "gl/technique/isr/isr_cluster.h"
+#include "gl/technique/isr/multires_gather.h"
+#include "gl/technique/isr/multires_technique.h"
+#include "gl/technique/isr/rsm_pass.h"
+#include "gl/technique/isr/vpl_gather.h"
+#include "gl/technique/isr/vpl_sample.h"
+
+namespace bounce::gl {
+
+namespace {
+
+class Isr final : public Technique {
+public:
+    // multires: gather with the stenciled multiresolution gather of §3.2 (the paper's ISR); otherwise at
+    // every pixel (for measuring what the multiresolution gather costs in error).
+    Isr(Frame& frame, const RsmSettings& rsm, const IsrClusterSettings& cluster, const MultiresSettings* multires)
+        : rsm_(rsm), settings_(cluster)
+    {
+        if (multires) multires_ = std::make_unique<MultiresGather>(frame, *multires);
+        else gather_ = std::make_unique<VplGather>();
+    }
+
+    void render(Frame& frame, PassTimers& timers) override
+    {
+        rsm_.render(frame, timers);
+        const std::size_t needed = std::size_t(IsrCluster::capacity(rsm_, settings_.minLevel)) * VplSampler::kVplBytes;
+        if (!cache_ || cache_.bytes() < needed) cache_ = Buffer("vpl.cache", needed);
+        count_ = cluster_.cluster(rsm_, cache_, settings_, timers);
+        if (multires_) multires_->run(frame, cache_, count_, timers);
+        else gather_->gather(frame, cache_, count_, timers);
+    }
+
+    std::vector<Counter> counters() const override
+    {
+        std::vector<Counter> c{{"vpls", double(count_)}};
+        const std::vector<int>& levels = cluster_.perLevel();
+        for (int l = settings_.minLevel; l < int(levels.size()); ++l)
+            c.push_back({"vpls.level" + std::to_string(l), double(levels[l])});
+        if (multires_)
+            for (const Counter& f : multires_->counters()) c.push_back(f);
+        return c;
+    }
+
+private:
+    RsmPass rsm_;
+    IsrClusterSettings settings_;
+    IsrCluster cluster_;
+    std::unique_ptr<VplGather> gather_;
+    std::unique_ptr<MultiresGather> multires_;
+    Buffer cache_;
+    int count_ = 0;
+};
+
+} // namespace
+
+TechniqueInfo isrTechniqueInfo()
+{
+    TechniqueInfo info;
+    info.name = "isr";
+    info.paper = "Nichols, Shopf & Wyman 2009";
+    info.lightPaths = "onebounce-novis";
+    info.summary = "image-space radiosity: per-frame multiresolution VPL clusters from light-space min-max mipmaps, "
+                   "gathered at multiresolution eye-space patches";
+    info.params = {
+        {"rsmSize", ParamType::Int, 256, 4, 2048, "RSM texels per side of each light view, a power of two (the paper: 256)"},
+        {"lightDepthThreshold", ParamType::Float, 0.05, 0, 100,
+         "light-space discontinuity: largest relative depth range (max d - min d) / min d of one VPL's patch"},
+        {"lightNormalThreshold", ParamType::Float, 0.2, 0, 4,
+         "light-space discontinuity: largest range of any normal component over one VPL's patch"},
+        {"maxLevel", ParamType::Int, 4, 0, 11, "coarsest VPL patch: 2^maxLevel RSM texels per side"},
+        {"minLevel", ParamType::Int, 2, 0, 11,
+         "finest VPL patch: 2^minLevel RSM texels per side (the initial dense sampling of Fig. 7)"},
+        {"exactSolidAngle", ParamType::Bool, 0, 0, 1, "exact solid angle of each RSM texel instead of Eq. 4's equal share"},
+        {"multires", ParamType::Bool, 1, 0, 1,
+         "gather at multiresolution eye-space patches (§3.2, the paper's ISR); 0: at every pixel"},
+    };
+    for (const ParamDecl& p : multiresParams()) info.params.push_back(p); // eye space: as multires-gather
+    info.create = [](Frame& frame, const ParamValues& v) -> std::unique_ptr<Technique> {
+        RsmSettings rsm;
+        rsm.size = v.getInt("rsmSize");
+        rsm.exactSolidAngle = v.getBool("exactSolidAngle");
+        IsrClusterSettings c;
+        int top = 0;
+        while ((2 << top) <= rsm.size) ++top; // log2 of the size
+        c.maxLevel = std::min(v.getInt("maxLevel"), top);
+        c.minLevel = std::min(v.getInt("minLevel"), c.maxLevel);
+        c.depthThreshold = float(v.get("lightDepthThreshold"));
+        c.normalThreshold = float(v.get("lightNormalThreshold"));
+        rsm.levels = c.maxLevel;
+        const MultiresSettings multires = multiresSettingsFrom(v);
+        return std::make_unique<Isr>(frame, rsm, c, v.getBool("multires") ? &multires : nullptr);
+    };
+    return info;
+}
+
+} // namespace bounce::gl

@@ -1,0 +1,103 @@
+// Stencil-based multiresolution gathering (Nichols, Shopf & Wyman 2009, §3.2): indirect light gathered
+// once per multiresolution eye-space patch instead of once per pixel, then upsampled. Passes, in order:
+//   "minmax-mipmap"  eye-space depth / normal min-max pyramid of the G-buffer, with the patch averages
+//                    (position, normal, diffuse colour) the gather shades (§3.2.1, Fig. 2b-c)
+//   "stencil-setup"  ONE full-screen pass over the flattened multiresolution buffer that sets the stencil
+//                    of exactly the valid fragments (the pseudo code of §3.2.1), counts them per level and
+//                    marks which neighbours each may be interpolated with
+//   "gather"         ONE full-screen quad, stencil EQUAL, that gathers light at every valid fragment
+//                    (the VPL cache of §3.2.2 by default; hisr plugs in its VPL-tree traversal)
+//   "upsample"       every pixel takes the valid fragment covering it, interpolated among same-level
+//                    neighbours [NW09], times the full-resolution diffuse colour, into frame.indirect()
+// Layout, thresholds and the exact upsampling rule: glsl/technique/isr/multires.glsl and the README.
+#pragma once
+
+#include <array>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "gl/frame/frame.h"
+#include "gl/resource/buffer.h"
+#include "gl/resource/framebuffer.h"
+#include "gl/resource/program.h"
+#include "gl/resource/texture.h"
+#include "gl/resource/timer.h"
+#include "gl/technique/technique.h"
+
+namespace bounce::gl {
+
+struct MultiresSettings {
+    // A patch is a discontinuity (needs subdividing) when (max d - min d) >= depthThreshold * min d over
+    // its pixels' eye depths d (relative: the same threshold holds near and far), or when any component
+    // of its unit normals spans >= normalThreshold. 0 forces full resolution (every pixel at level 0).
+    float depthThreshold = 0.02f;
+    float normalThreshold = 0.15f;
+    int coarsestLevel = 4; // coarsest patches: 2^coarsestLevel pixels per side (4: 16 x 16, as the paper)
+};
+
+class MultiresGather {
+public:
+    static constexpr int kMaxLevels = 16;            // glsl/technique/isr/multires.glsl: MULTIRES_MAX_LEVELS
+    static constexpr unsigned kPyramidUnitBase = 14; // pyramid textures at units 14..19
+    static constexpr unsigned kIlluminationUnit = 20;
+    static constexpr unsigned kCountsBinding = 11;   // SSBO of valid fragments per level
+
+    MultiresGather(Frame& frame, const MultiresSettings& settings);
+
+    // The whole of §3.2 with the VPL cache [0, vplCount) of `vpls` (glsl/technique/isr/vpl.glsl, binding 8).
+    void run(Frame& frame, const Buffer& vpls, int vplCount, PassTimers& timers);
+
+    // The same passes one by one, for gathers other than the VPL cache (hisr's VPL tree): the program
+    // given to gather() is made by gatherProgram() from a fragment shader that includes multires.glsl.
+    void buildPyramid(Frame& frame, PassTimers& timers);
+    void markValidFragments(Frame& frame, PassTimers& timers);
+    // Draws the stenciled quad `draws` times with additive blending (rgb), calling setupDraw(program, i)
+    // before draw i: long gathers are split into ranges of VPLs or clusters (see loopBudget()).
+    void gather(Frame& frame, Program& program, PassTimers& timers, int draws = 1,
+                const std::function<void(Program&, int)>& setupDraw = {});
+    void upsample(Frame& frame, PassTimers& timers);
+    // Loop iterations one shader invocation may run: llvmpipe silently ends every invocation after 65535
+    // loop iterations in total (gallivm's loop limiter, shared by all loops of a shader), so there long
+    // gathers are split over several draws; unlimited elsewhere.
+    static int loopBudget();
+    static Program gatherProgram(const std::string& label, const std::string& fragmentPath,
+                                 const std::vector<Define>& defines = {});
+
+    const MultiresSettings& settings() const { return settings_; }
+    // Levels actually used: coarsestLevel, or fewer when one patch already covers the whole image.
+    int coarsestLevel() const { return levels_; }
+    // Where level l lies in the flattened buffer: origin (x, y) and size (w, h) in texels.
+    glm::ivec4 levelRect(int level) const { return rects_.at(std::size_t(level)); }
+    // The flattened multiresolution illumination buffer: rgb the gathered light without the receiver's
+    // diffuse colour; a 0 where no valid fragment, else 1 + the mask of the neighbours the upsampling
+    // interpolates with (glsl/technique/isr/multires.glsl: sameSurfaceNeighbours).
+    const Texture& illumination() const { return illumination_; }
+    // Valid fragments per level of the last frame (reads a small buffer back: call after the frame).
+    std::vector<int> fragmentsPerLevel() const;
+    // "fragments.level0" ... "fragments.levelN" and "fragments.total".
+    std::vector<Counter> counters() const;
+
+private:
+    MultiresSettings settings_;
+    int width_ = 0, height_ = 0, levels_ = 0;
+    std::vector<glm::ivec4> rects_;
+    Texture pyrPosition_, pyrNormal_, pyrDiffuse_, pyrDepth_, pyrNormalMin_, pyrNormalMax_;
+    Texture illumination_, stencil_;
+    Framebuffer fbo_;
+    Buffer counts_;
+    Program reduce_, stencilSetup_, cacheGather_, upsample_;
+
+    void allocate(int width, int height);
+    void setCommonUniforms(Program& program) const;
+    void bindPyramid() const;
+};
+
+// Layout of the flattened buffer for a width x height image with at most `coarsestLevel` levels above
+// the pixels: level 0 (the image) at the left, level l >= 1 (ceil(w / 2^l) x ceil(h / 2^l) patches)
+// stacked bottom-up in one column to its right. Exposed for tests.
+std::vector<glm::ivec4> multiresLevelRects(int width, int height, int coarsestLevel);
+
+} // namespace bounce::gl

@@ -1,0 +1,91 @@
+#include "gl/technique/isr/multires_technique.h"
+
+#include <algorithm>
+
+#include "gl/technique/isr/multires_gather.h"
+#include "gl/technique/isr/rsm_pass.h"
+#include "gl/technique/isr/vpl_sample.h"
+
+namespace bounce::gl {
+
+namespace {
+
+class MultiresGatherTechnique final : public Technique {
+public:
+    MultiresGatherTechnique(Frame& frame, const RsmSettings& rsm, int vpls, const MultiresSettings& multires)
+        : rsm_(rsm), vpls_(vpls), gather_(frame, multires)
+    {
+    }
+
+    void render(Frame& frame, PassTimers& timers) override
+    {
+        rsm_.render(frame, timers);
+        const int side = VplSampler::sideFor(vpls_, rsm_.viewCount(), rsm_.size());
+        const std::size_t needed = std::size_t(side) * side * std::max(rsm_.viewCount(), 1) * VplSampler::kVplBytes;
+        if (!cache_ || cache_.bytes() < needed) cache_ = Buffer("vpl.cache", needed);
+        count_ = sampler_.sample(rsm_, cache_, side, timers);
+        gather_.run(frame, cache_, count_, timers);
+    }
+
+    std::vector<Counter> counters() const override
+    {
+        std::vector<Counter> c{{"vpls", double(count_)}};
+        for (const Counter& f : gather_.counters()) c.push_back(f);
+        return c;
+    }
+
+private:
+    RsmPass rsm_;
+    VplSampler sampler_;
+    Buffer cache_;
+    int vpls_;
+    MultiresGather gather_;
+    int count_ = 0;
+};
+
+} // namespace
+
+std::vector<ParamDecl> multiresParams()
+{
+    const MultiresSettings d;
+    return {
+        {"depthThreshold", ParamType::Float, d.depthThreshold, 0, 100,
+         "eye-space discontinuity: a patch is subdivided when (max - min) eye depth >= this x min depth; 0: full resolution"},
+        {"normalThreshold", ParamType::Float, d.normalThreshold, 0, 4,
+         "eye-space discontinuity: a patch is subdivided when any normal component spans >= this; 0: full resolution"},
+        {"coarsestLevel", ParamType::Int, double(d.coarsestLevel), 0, MultiresGather::kMaxLevels - 1,
+         "coarsest multiresolution patch: 2^level pixels per side (4: 16x16); fewer levels, more fragments"},
+    };
+}
+
+MultiresSettings multiresSettingsFrom(const ParamValues& v)
+{
+    MultiresSettings s;
+    s.depthThreshold = float(v.get("depthThreshold"));
+    s.normalThreshold = float(v.get("normalThreshold"));
+    s.coarsestLevel = v.getInt("coarsestLevel");
+    return s;
+}
+
+TechniqueInfo multiresGatherTechniqueInfo()
+{
+    TechniqueInfo info;
+    info.name = "multires-gather";
+    info.paper = "Nichols, Shopf & Wyman 2009";
+    info.lightPaths = "onebounce-novis";
+    info.summary = "rsm's regular-grid VPLs gathered at multiresolution eye-space patches chosen by a one-pass stencil";
+    info.params = {
+        {"vpls", ParamType::Int, 256, 1, 1024 * 1024,
+         "VPLs on a regular grid of the RSM (as rsm); gather cost is linear in it"},
+        {"rsmSize", ParamType::Int, 256, 4, 2048, "RSM texels per side of each light view (the paper: 256)"},
+    };
+    for (const ParamDecl& p : multiresParams()) info.params.push_back(p);
+    info.create = [](Frame& frame, const ParamValues& v) -> std::unique_ptr<Technique> {
+        RsmSettings rsm;
+        rsm.size = v.getInt("rsmSize");
+        return std::make_unique<MultiresGatherTechnique>(frame, rsm, v.getInt("vpls"), multiresSettingsFrom(v));
+    };
+    return info;
+}
+
+} // namespace bounce::gl

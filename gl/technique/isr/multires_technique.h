@@ -1,0 +1,18 @@
+// `multires-gather`: the stencil-based multiresolution gather of Nichols, Shopf & Wyman 2009, §3.2, with
+// the VPLs of the `rsm` baseline (a reflective shadow map sampled on a regular grid): RSM -> VPL cache ->
+// eye-space min-max pyramid -> one stencil pass -> one stenciled gather -> upsample.
+#pragma once
+
+#include "gl/technique/isr/multires_gather.h"
+#include "gl/technique/technique.h"
+
+namespace bounce::gl {
+
+TechniqueInfo multiresGatherTechniqueInfo();
+
+// The eye-space parameters every technique built on MultiresGather declares (multires-gather, hisr):
+// depthThreshold, normalThreshold, coarsestLevel.
+std::vector<ParamDecl> multiresParams();
+MultiresSettings multiresSettingsFrom(const ParamValues& values);
+
+} // namespace bounce::gl

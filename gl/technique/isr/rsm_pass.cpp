@@ -1,0 +1,294 @@
+#include "gl/technique/isr/rsm_pass.h"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "gl/frame/shadow_maps.h"
+#include "gl/gl.h"
+
+namespace bounce::gl {
+
+namespace {
+
+struct GpuRsmView {
+    glm::mat4 viewProj;
+    glm::vec4 originOrtho;
+    glm::vec4 directionTexel;
+};
+
+// Near and far planes that keep the whole scene in view of a light at `origin` (as the shadow maps do);
+// the near plane is small enough for a light 1 mm from a surface.
+void nearFar(const core::Bounds& b, const glm::vec3& origin, float& near, float& far)
+{
+    float maxDist = 0.0f;
+    for (int i = 0; i < 8; ++i) {
+        const glm::vec3 c(i & 1 ? b.hi.x : b.lo.x, i & 2 ? b.hi.y : b.lo.y, i & 4 ? b.hi.z : b.lo.z);
+        maxDist = std::max(maxDist, glm::length(c - origin));
+    }
+    far = std::max(maxDist * 1.01f, 1e-3f);
+    near = std::max(far * 1e-4f, 1e-5f);
+}
+
+glm::vec3 anyUp(const glm::vec3& d) { return std::abs(d.y) < 0.99f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0); }
+
+// The integral of the solid angle over [0, x] x [0, y] of the image plane at distance 1.
+double cornerSolidAngle(double x, double y) { return std::atan2(x * y, std::sqrt(1.0 + x * x + y * y)); }
+
+} // namespace
+
+float RsmPass::texelSide(const RsmView& v) const
+{
+    return v.orthographic ? std::sqrt(v.orthoTexelArea) : 2.0f * std::tan(0.5f * v.fovRad) / float(settings_.size);
+}
+
+double RsmPass::equalTexelSolidAngle(double fovRad, int size)
+{
+    const double s = std::sin(0.5 * fovRad);
+    return 4.0 * std::asin(s * s) / (double(size) * double(size)); // Eq. 4, in steradians
+}
+
+double RsmPass::exactTexelSolidAngle(double fovRad, int size, int x, int y)
+{
+    const double t = std::tan(0.5 * fovRad);
+    const double x0 = t * (-1.0 + 2.0 * x / size), x1 = t * (-1.0 + 2.0 * (x + 1) / size);
+    const double y0 = t * (-1.0 + 2.0 * y / size), y1 = t * (-1.0 + 2.0 * (y + 1) / size);
+    return cornerSolidAngle(x1, y1) - cornerSolidAngle(x0, y1) - cornerSolidAngle(x1, y0) + cornerSolidAngle(x0, y0);
+}
+
+RsmPass::RsmPass(const RsmSettings& settings)
+    : settings_(settings), fbo_("rsm.fbo"), program_(Program::graphics("rsm", "technique/isr/rsm.vert", "technique/isr/rsm.frag"))
+{
+    if (settings_.size < 1) throw std::invalid_argument("RSM size must be at least 1");
+    if (settings_.levels > 0) {
+        if (!std::has_single_bit(unsigned(settings_.size)))
+            throw std::invalid_argument("rsmSize must be a power of two for the RSM pyramid, not " +
+                                        std::to_string(settings_.size));
+        if (settings_.levels > std::bit_width(unsigned(settings_.size)) - 1)
+            throw std::invalid_argument("the RSM pyramid of a " + std::to_string(settings_.size) + "^2 RSM has at most " +
+                                        std::to_string(std::bit_width(unsigned(settings_.size)) - 1) + " levels");
+        reduce_ = Program::compute("rsm.reduce", "technique/isr/rsm_reduce.comp");
+    }
+}
+
+void RsmPass::buildViews(const Frame& frame)
+{
+    views_.clear();
+    const core::Bounds& b = frame.gpuScene().bounds();
+    if (b.empty()) return; // nothing to see
+    const std::vector<LightSource>& lights = frame.gpuScene().lights();
+    const int size = settings_.size;
+    for (int i = 0; i < int(lights.size()); ++i) {
+        const LightSource& s = lights[i];
+        float near = 0.0f, far = 0.0f;
+        RsmView v;
+        v.light = i;
+        if (s.type == kLightSpot && s.outerConeRad <= glm::radians(60.0f)) {
+            // One perspective view whose field of view is the spot's full cone (90 deg for cornell-spot).
+            nearFar(b, s.position, near, far);
+            v.fovRad = 2.0f * s.outerConeRad;
+            v.view = glm::lookAt(s.position, s.position + s.direction, anyUp(s.direction));
+            v.proj = glm::perspective(v.fovRad, 1.0f, near, far);
+            v.origin = s.position;
+            v.direction = s.direction;
+            views_.push_back(v);
+        } else if (s.type == kLightDirectional) {
+            const glm::vec3 c = b.centre();
+            const float r = std::max(0.5f * glm::length(b.extent()), 1e-3f);
+            v.orthographic = true;
+            v.origin = c - s.direction * (2.0f * r);
+            v.direction = s.direction;
+            v.view = glm::lookAt(v.origin, c, anyUp(s.direction));
+            v.proj = glm::ortho(-r, r, -r, r, 0.0f, 4.0f * r);
+            v.orthoTexelArea = (2.0f * r / float(size)) * (2.0f * r / float(size));
+            views_.push_back(v);
+        } else {
+            // Point light, wide spot, or the emitting triangles of one mesh (consecutive in the list):
+            // six cube faces around the light's position (the mesh's centroid for area lights).
+            if (s.type == kLightArea) {
+                if (i > 0 && lights[i - 1].type == kLightArea && lights[i - 1].group == s.group) continue;
+                v.areaFirst = i;
+                v.areaCount = 0;
+                while (i + v.areaCount < int(lights.size()) && lights[i + v.areaCount].type == kLightArea &&
+                       lights[i + v.areaCount].group == s.group)
+                    ++v.areaCount;
+            }
+            nearFar(b, s.position, near, far);
+            for (const ShadowView& face : cubeViews(s.position, near, far, size)) {
+                RsmView f = v;
+                f.view = face.view;
+                f.proj = face.proj;
+                f.origin = s.position;
+                f.direction = -glm::vec3(glm::transpose(face.view)[2]);
+                f.fovRad = glm::radians(90.0f);
+                views_.push_back(f);
+            }
+        }
+    }
+}
+
+void RsmPass::allocate(int layers)
+{
+    const int size = settings_.size;
+    const int width = settings_.levels > 0 ? size + size / 2 : size;
+    position_ = Texture::create2DArray("rsm.position", GL_RGBA32F, width, size, layers);
+    normal_ = Texture::create2DArray("rsm.normal", GL_RGBA32F, width, size, layers);
+    flux_ = Texture::create2DArray("rsm.flux", GL_RGBA32F, width, size, layers);
+    if (settings_.levels > 0) {
+        depthRange_ = Texture::create2DArray("rsm.depthRange", GL_RG32F, width, size, layers);
+        normalMin_ = Texture::create2DArray("rsm.normalMin", GL_RGBA16F, width, size, layers);
+        normalMax_ = Texture::create2DArray("rsm.normalMax", GL_RGBA16F, width, size, layers);
+    }
+    if (!depth_) depth_ = Texture::create2D("rsm.depth", GL_DEPTH_COMPONENT32F, size, size);
+    const float zero[4] = {0, 0, 0, 0};
+    position_.clear(0, zero);
+    normal_.clear(0, zero);
+    flux_.clear(0, zero);
+    solidAngleFovs_.clear();
+    solidAngles_ = Texture();
+}
+
+void RsmPass::updateSolidAngles()
+{
+    if (!settings_.exactSolidAngle) return;
+    std::vector<float> fovs;
+    for (const RsmView& v : views_) fovs.push_back(v.orthographic ? 0.0f : v.fovRad);
+    if (fovs.empty() || fovs == solidAngleFovs_) return;
+    const int size = settings_.size;
+    if (!solidAngles_ || solidAngles_.layers() != int(fovs.size()))
+        solidAngles_ = Texture::create2DArray("rsm.texelSolidAngles", GL_R32F, size, size, int(fovs.size()));
+    std::vector<float> table(std::size_t(size) * std::size_t(size));
+    for (std::size_t layer = 0; layer < fovs.size(); ++layer) {
+        // In double: a texel's solid angle is a small difference of O(1) corner integrals.
+        for (int y = 0; y < size; ++y)
+            for (int x = 0; x < size; ++x)
+                table[std::size_t(y) * size + x] =
+                    fovs[layer] > 0.0f ? float(exactTexelSolidAngle(fovs[layer], size, x, y)) : 0.0f;
+        glTextureSubImage3D(solidAngles_.id(), 0, 0, 0, GLint(layer), size, size, 1, GL_RED, GL_FLOAT, table.data());
+    }
+    solidAngleFovs_ = fovs;
+}
+
+void RsmPass::render(Frame& frame, PassTimers& timers)
+{
+    {
+        auto t = timers.scope("rsm");
+        buildViews(frame);
+        const int layers = std::max(1, viewCount());
+        if (!position_ || position_.layers() != layers) allocate(layers);
+        std::vector<GpuRsmView> gv;
+        for (const RsmView& v : views_)
+            gv.push_back({v.proj * v.view, glm::vec4(v.origin, v.orthographic ? 1.0f : 0.0f),
+                          glm::vec4(v.direction, texelSide(v))});
+        if (gv.empty()) gv.push_back({});
+        if (!viewsBuffer_ || viewsBuffer_.bytes() != gv.size() * sizeof(GpuRsmView))
+            viewsBuffer_ = Buffer::fromVector("rsm.views", gv);
+        else
+            viewsBuffer_.update(0, gv.size() * sizeof(GpuRsmView), gv.data());
+        updateSolidAngles();
+        renderViews(frame);
+    }
+    if (settings_.levels > 0 && !views_.empty()) {
+        auto t = timers.scope("rsm-mipmap");
+        reduce();
+    }
+}
+
+void RsmPass::renderViews(Frame& frame)
+{
+    if (views_.empty()) return;
+    const int size = settings_.size;
+    const bool pyramid = settings_.levels > 0;
+    fbo_.bind();
+    glViewport(0, 0, size, size);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    glDisable(GL_CULL_FACE); // back faces occlude; the shader makes them reflect nothing
+    glDisable(GL_BLEND);
+    frame.bindSceneData();
+    frame.gpuScene().baseColorTextures().bind(6);
+    if (solidAngles_) solidAngles_.bind(7);
+    program_.set("exactSolidAngle", settings_.exactSolidAngle ? 1 : 0);
+    program_.use();
+    const float empty[4] = {0, 0, 0, 0}, noDepth[4] = {1e30f, 0, 0, 0}, nMin[4] = {2, 2, 2, 0}, nMax[4] = {-2, -2, -2, 0};
+    for (int i = 0; i < viewCount(); ++i) {
+        const RsmView& v = views_[i];
+        fbo_.attachLayer(GL_COLOR_ATTACHMENT0, position_, i);
+        fbo_.attachLayer(GL_COLOR_ATTACHMENT1, normal_, i);
+        fbo_.attachLayer(GL_COLOR_ATTACHMENT2, flux_, i);
+        if (pyramid) {
+            fbo_.attachLayer(GL_COLOR_ATTACHMENT3, depthRange_, i);
+            fbo_.attachLayer(GL_COLOR_ATTACHMENT4, normalMin_, i);
+            fbo_.attachLayer(GL_COLOR_ATTACHMENT5, normalMax_, i);
+        }
+        fbo_.attach(GL_DEPTH_ATTACHMENT, depth_);
+        if (i == 0) {
+            if (pyramid)
+                fbo_.setDrawBuffers({GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2,
+                                     GL_COLOR_ATTACHMENT3, GL_COLOR_ATTACHMENT4, GL_COLOR_ATTACHMENT5});
+            else
+                fbo_.setDrawBuffers({GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2});
+            fbo_.checkComplete();
+        }
+        for (int d = 0; d < 3; ++d) glClearNamedFramebufferfv(fbo_.id(), GL_COLOR, d, empty);
+        if (pyramid) {
+            glClearNamedFramebufferfv(fbo_.id(), GL_COLOR, 3, noDepth);
+            glClearNamedFramebufferfv(fbo_.id(), GL_COLOR, 4, nMin);
+            glClearNamedFramebufferfv(fbo_.id(), GL_COLOR, 5, nMax);
+        }
+        const float one = 1.0f;
+        glClearNamedFramebufferfv(fbo_.id(), GL_DEPTH, 0, &one);
+
+        program_.set("viewProj", v.proj * v.view);
+        program_.set("lightIndex", std::max(v.light, 0));
+        program_.set("areaFirst", v.areaFirst);
+        program_.set("areaCount", v.areaCount);
+        program_.set("viewOrigin", v.origin);
+        program_.set("viewDirection", v.direction);
+        program_.set("orthographic", v.orthographic ? 1 : 0);
+        program_.set("orthoTexelArea", v.orthoTexelArea);
+        program_.set("equalSolidAngle", v.orthographic ? 0.0f : float(equalTexelSolidAngle(v.fovRad, size)));
+        program_.set("viewLayer", i);
+        frame.gpuScene().draw();
+    }
+}
+
+void RsmPass::reduce()
+{
+    position_.bindImage(0, GL_READ_WRITE, 0, GL_RGBA32F);
+    normal_.bindImage(1, GL_READ_WRITE, 0, GL_RGBA32F);
+    flux_.bindImage(2, GL_READ_WRITE, 0, GL_RGBA32F);
+    depthRange_.bindImage(3, GL_READ_WRITE, 0, GL_RG32F);
+    normalMin_.bindImage(4, GL_READ_WRITE, 0, GL_RGBA16F);
+    normalMax_.bindImage(5, GL_READ_WRITE, 0, GL_RGBA16F);
+    reduce_.set("size", settings_.size);
+    reduce_.use();
+    for (int level = 0; level < settings_.levels; ++level) {
+        const int dst = settings_.size >> (level + 1);
+        reduce_.set("level", level);
+        // Level 0 was rendered, not stored through images: make those writes visible to image loads too.
+        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
+        glDispatchCompute(GLuint((dst + 7) / 8), GLuint((dst + 7) / 8), GLuint(viewCount()));
+    }
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+}
+
+void RsmPass::bind() const
+{
+    position_.bind(kUnitBase + 0);
+    normal_.bind(kUnitBase + 1);
+    flux_.bind(kUnitBase + 2);
+    if (settings_.levels > 0) {
+        depthRange_.bind(kUnitBase + 3);
+        normalMin_.bind(kUnitBase + 4);
+        normalMax_.bind(kUnitBase + 5);
+    }
+    if (viewsBuffer_) viewsBuffer_.bindBase(GL_SHADER_STORAGE_BUFFER, kViewsBinding);
+}
+
+} // namespace bounce::gl

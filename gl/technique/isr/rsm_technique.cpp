@@ -1,0 +1,91 @@
+#include "gl/technique/isr/rsm_technique.h"
+
+#include <algorithm>
+
+#include "gl/technique/isr/rsm_pass.h"
+#include "gl/technique/isr/vpl_gather.h"
+#include "gl/technique/isr/vpl_sample.h"
+
+namespace bounce::gl {
+
+namespace {
+
+// RSM -> regular-grid VPLs -> full-screen gather. vpls < 0: every RSM texel is a VPL (rsm-full).
+class RsmGather final : public Technique {
+public:
+    RsmGather(const RsmSettings& settings, int vpls) : rsm_(settings), vpls_(vpls) {}
+
+    void render(Frame& frame, PassTimers& timers) override
+    {
+        rsm_.render(frame, timers);
+        const int side = vpls_ < 0 ? rsm_.size() : VplSampler::sideFor(vpls_, rsm_.viewCount(), rsm_.size());
+        const std::size_t needed = std::size_t(side) * side * std::max(rsm_.viewCount(), 1) * VplSampler::kVplBytes;
+        if (!cache_ || cache_.bytes() < needed) cache_ = Buffer("vpl.cache", needed);
+        count_ = sampler_.sample(rsm_, cache_, side, timers);
+        gather_.gather(frame, cache_, count_, timers);
+    }
+
+    std::vector<Counter> counters() const override { return {{"vpls", double(count_)}}; }
+
+private:
+    RsmPass rsm_;
+    VplSampler sampler_;
+    VplGather gather_;
+    Buffer cache_;
+    int vpls_;
+    int count_ = 0;
+};
+
+ParamDecl rsmSizeParam(double max)
+{
+    return {"rsmSize", ParamType::Int, 256, 4, max, "RSM texels per side of each light view (the paper: 256)"};
+}
+
+ParamDecl exactSolidAngleParam()
+{
+    return {"exactSolidAngle", ParamType::Bool, 0, 0, 1,
+            "exact solid angle of each RSM texel instead of Eq. 4's equal share (slightly slower RSM pass)"};
+}
+
+} // namespace
+
+TechniqueInfo rsmTechniqueInfo()
+{
+    TechniqueInfo info;
+    info.name = "rsm";
+    info.paper = "Nichols, Shopf & Wyman 2009 (baseline: Dachsbacher & Stamminger 2005)";
+    info.lightPaths = "onebounce-novis";
+    info.summary = "reflective shadow map, N VPLs on a regular grid, full-screen gather at every pixel";
+    info.params = {
+        {"vpls", ParamType::Int, 256, 1, 6 * 1024 * 1024,
+         "VPLs on a regular grid of the RSM (sqrt(vpls/views) per side of each view); gather cost is linear in it"},
+        rsmSizeParam(2048),
+        exactSolidAngleParam(),
+    };
+    info.create = [](Frame&, const ParamValues& v) -> std::unique_ptr<Technique> {
+        RsmSettings s;
+        s.size = v.getInt("rsmSize");
+        s.exactSolidAngle = v.getBool("exactSolidAngle");
+        return std::make_unique<RsmGather>(s, v.getInt("vpls"));
+    };
+    return info;
+}
+
+TechniqueInfo rsmFullTechniqueInfo()
+{
+    TechniqueInfo info;
+    info.name = "rsm-full";
+    info.paper = "Nichols, Shopf & Wyman 2009 (baseline: Dachsbacher & Stamminger 2005)";
+    info.lightPaths = "onebounce-novis";
+    info.summary = "every RSM texel a VPL (1024^2: the paper's one-million-VPL baseline), full-screen gather; slow";
+    info.params = {rsmSizeParam(1024), exactSolidAngleParam()};
+    info.create = [](Frame&, const ParamValues& v) -> std::unique_ptr<Technique> {
+        RsmSettings s;
+        s.size = v.getInt("rsmSize");
+        s.exactSolidAngle = v.getBool("exactSolidAngle");
+        return std::make_unique<RsmGather>(s, -1);
+    };
+    return info;
+}
+
+} // namespace bounce::gl

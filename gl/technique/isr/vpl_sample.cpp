@@ -1,0 +1,37 @@
+#include "gl/technique/isr/vpl_sample.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "gl/gl.h"
+
+namespace bounce::gl {
+
+VplSampler::VplSampler() : program_(Program::compute("vpl.sample", "technique/isr/vpl_sample.comp")) {}
+
+int VplSampler::sideFor(int vpls, int views, int size)
+{
+    const int side = int(std::floor(std::sqrt(double(vpls) / double(std::max(views, 1))) + 1e-9));
+    return std::clamp(side, 1, std::max(size, 1));
+}
+
+int VplSampler::sample(const RsmPass& rsm, Buffer& cache, int side, PassTimers& timers)
+{
+    auto t = timers.scope("vpl-sample");
+    const int count = side * side * rsm.viewCount();
+    if (count <= 0) return 0;
+    if (cache.bytes() < std::size_t(count) * kVplBytes) throw std::logic_error("VPL cache too small");
+    rsm.bind();
+    cache.bindBase(GL_SHADER_STORAGE_BUFFER, 8);
+    program_.set("rsmSize", rsm.size());
+    program_.set("side", side);
+    program_.set("viewCount", rsm.viewCount());
+    program_.set("level", float(std::log2(double(rsm.size()) / double(side))));
+    program_.use();
+    glDispatchCompute(GLuint((count + 63) / 64), 1, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+    return count;
+}
+
+} // namespace bounce::gl

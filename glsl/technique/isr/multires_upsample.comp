@@ -1,0 +1,66 @@
+#version 450 core
+// Upsample and combine (§3.2.2, after [NW09]): full-resolution indirect light from the flattened
+// multiresolution illumination buffer. For each pixel with geometry:
+//  1. its level k: the one level whose patch p >> k covering it is a valid fragment (alpha >= 1; exactly
+//     one exists, technique/isr/multires.glsl);
+//  2. k = 0: that pixel's own value. k >= 1: bilinear interpolation at the pixel centre among the four
+//     nearest level-k patch centres, keeping only neighbours that are themselves valid at level k and
+//     that lie on the same smooth surface as the pixel's own patch (multires.glsl: sameSurface; the
+//     stencil pass stored which of its 8 neighbours qualify as a mask in the alpha channel). The
+//     pixel's own patch always counts (its bilinear weight is at least 1/4); the kept weights are
+//     renormalised. So light is blended across patch borders on smooth surfaces, never across edges,
+//     and never with fragments of other levels;
+//  3. times the pixel's own diffuse colour rho_i (the gather left it out): Eq. 5's rho_i at full resolution.
+#include "technique/isr/multires.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+
+layout(binding = 20) uniform sampler2D mrIllumination;
+layout(rgba32f, binding = 0) uniform writeonly image2D indirectOut;
+
+vec4 illuminationAt(int level, ivec2 t) { return texelFetch(mrIllumination, levelOrigin[level] + t, 0); }
+
+struct PatchRanges {
+    vec2 depthRange;
+    vec3 normalMin, normalMax;
+};
+
+void main()
+{
+    ivec2 px = ivec2(gl_GlobalInvocationID.xy);
+    if (!levelContains(0, px)) return;
+    vec3 result = vec3(0.0);
+    if (texelFetch(gPosition, px, 0).w != 0.0) {
+        int k = -1;
+        for (int l = 0; l <= coarsestLevel && k < 0; ++l)
+            if (illuminationAt(l, px >> l).a >= 1.0) k = l;
+        vec3 e = vec3(0.0);
+        if (k == 0) {
+            e = illuminationAt(0, px).rgb;
+        } else if (k > 0) {
+            ivec2 own = px >> k;
+            vec4 ownValue = illuminationAt(k, own);
+            uint neighbours = uint(ownValue.a) - 1u; // the stencil pass's mask of same-surface neighbours
+            vec2 u = (vec2(px) + 0.5) / float(1 << k) - 0.5;
+            ivec2 base = ivec2(floor(u));
+            vec2 f = u - vec2(base);
+            float wsum = 0.0;
+            for (int i = 0; i < 4; ++i) {
+                ivec2 o2 = ivec2(i & 1, i >> 1);
+                ivec2 c = base + o2;
+                float w = (o2.x == 1 ? f.x : 1.0 - f.x) * (o2.y == 1 ? f.y : 1.0 - f.y);
+                if (w <= 0.0) continue;
+                if (c != own) {
+                    if ((neighbours & neighbourBit(c - own)) == 0u) continue;
+                    e += w * illuminationAt(k, c).rgb;
+                } else {
+                    e += w * ownValue.rgb;
+                }
+                wsum += w;
+            }
+            e /= wsum; // the own patch's weight is at least 1/4
+        }
+        result = texelFetch(gDiffuse, px, 0).rgb * e;
+    }
+    imageStore(indirectOut, px, vec4(result, 1.0));
+}

@@ -1,0 +1,476 @@
+// The stencil-based multiresolution gather (§3.2) and hierarchical image-space radiosity (§3.5) of
+// gl/technique/isr/ (multires_gather, multires_technique, vpl_tree, hisr_technique): the layout of the
+// flattened buffer, the coverage of every pixel by exactly one valid fragment, equality with the
+// full-resolution gathers at zero thresholds, the VPL tree against a CPU rebuild from the same RSM, and
+// odd viewports. Tiny images and RSMs: llvmpipe on two cores.
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "core/cornell.h"
+#include "core/image.h"
+#include "core/metrics.h"
+#include "gl/frame/frame.h"
+#include "gl/renderer.h"
+#include "gl/technique/isr/hisr_technique.h"
+#include "gl/technique/isr/multires_gather.h"
+#include "gl/technique/isr/rsm_pass.h"
+#include "gl/technique/isr/vpl_sample.h"
+#include "gl/technique/isr/vpl_tree.h"
+#include "tests/gl/gl_test_fixture.h"
+
+namespace bounce {
+namespace {
+
+using Sets = std::vector<std::pair<std::string, std::string>>;
+
+struct Rendered {
+    core::Image indirect;
+    core::Image position; // w channel of the G-buffer in .r: 1 where geometry
+    std::vector<gl::Counter> counters;
+};
+
+Rendered render(const core::Scene& scene, const std::string& technique, const Sets& sets, int w, int h)
+{
+    const gl::TechniqueInfo& info = gl::findTechnique(technique);
+    gl::ParamValues frameValues(gl::frameParams()), values(info.params);
+    frameValues.setValue("shadow.size", 256);
+    for (const auto& [k, v] : sets) values.set(info.params, k, v);
+    gl::Renderer r(scene, technique, frameValues, values, w, h);
+    r.renderFrame();
+    Rendered out{r.frame().read(r.frame().indirect()), core::Image(w, h), r.counters()};
+    const std::vector<float> p = r.frame().position().readFloats(0, 4);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) out.position.set(x, h - 1 - y, glm::vec3(p[(std::size_t(y) * w + x) * 4 + 3]));
+    return out;
+}
+
+double counter(const std::vector<gl::Counter>& cs, const std::string& name)
+{
+    for (const gl::Counter& c : cs)
+        if (c.name == name) return c.value;
+    ADD_FAILURE() << "no counter " << name;
+    return 0.0;
+}
+
+int geometryPixels(const core::Image& position)
+{
+    int n = 0;
+    for (int y = 0; y < position.height; ++y)
+        for (int x = 0; x < position.width; ++x) n += position.at(x, y).x != 0.0f;
+    return n;
+}
+
+void expectFinite(const core::Image& img, const std::string& what)
+{
+    std::size_t bad = 0;
+    for (float v : img.rgb) bad += !std::isfinite(v);
+    EXPECT_EQ(bad, 0u) << what << ": non-finite values";
+}
+
+// Relative RMSE of `got` against `want` below `tolerance`; on failure writes both images and the error
+// heat map under BOUNCE_TEST_OUT.
+void expectSameImage(const core::Image& got, const core::Image& want, double tolerance, const std::string& name)
+{
+    const core::ImageMetrics m = core::compareImages(got, want);
+    EXPECT_TRUE(m.allFinite()) << name;
+    EXPECT_GT(m.meanReference, 0.0) << name << ": the reference is black, the comparison says nothing";
+    EXPECT_LT(m.relativeRmse, tolerance) << name << " (max abs error " << m.maxError << ")";
+    if (m.relativeRmse < tolerance && m.allFinite()) return;
+    const std::filesystem::path dir = std::filesystem::path(BOUNCE_TEST_OUT) / "isr_multires";
+    std::filesystem::create_directories(dir);
+    core::writeExr((dir / (name + ".got.exr")).string(), got);
+    core::writeExr((dir / (name + ".want.exr")).string(), want);
+    core::writePng((dir / (name + ".error.png")).string(), core::errorHeatmap(got, want));
+    ADD_FAILURE() << "images written to " << dir;
+}
+
+class IsrMultiresTest : public GlTest {};
+
+// ---------------------------------------------------------------------------------------------------
+// Layout of the flattened buffer.
+
+// Level l has ceil(w / 2^l) x ceil(h / 2^l) patches (so every pixel has a parent at every size), levels
+// do not overlap, and the levels stop where one patch covers the image (1x1: level 0 only).
+TEST(IsrMultiresLayout, LevelRectsForOddSizes)
+{
+    const std::vector<glm::ivec4> r = gl::multiresLevelRects(333, 200, 4);
+    ASSERT_EQ(r.size(), 5u);
+    EXPECT_EQ(r[0], glm::ivec4(0, 0, 333, 200));
+    EXPECT_EQ(r[1], glm::ivec4(333, 0, 167, 100));
+    EXPECT_EQ(r[2], glm::ivec4(333, 100, 84, 50));
+    EXPECT_EQ(r[3], glm::ivec4(333, 150, 42, 25));
+    EXPECT_EQ(r[4], glm::ivec4(333, 175, 21, 13));
+    EXPECT_EQ(gl::multiresLevelRects(1, 1, 4).size(), 1u);
+    EXPECT_EQ(gl::multiresLevelRects(3, 1, 4).size(), 3u); // 3 -> 2 -> 1 patches wide
+    EXPECT_EQ(gl::multiresLevelRects(64, 64, 0).size(), 1u);
+    for (const auto& [w, h] : {std::pair{333, 200}, std::pair{1, 7}, std::pair{5, 3}}) {
+        const std::vector<glm::ivec4> rs = gl::multiresLevelRects(w, h, 15);
+        for (std::size_t l = 1; l < rs.size(); ++l) {
+            EXPECT_EQ(rs[l].z, (w + (1 << l) - 1) >> l);
+            EXPECT_EQ(rs[l].w, (h + (1 << l) - 1) >> l);
+            EXPECT_EQ(rs[l].x, w);
+            EXPECT_EQ(rs[l].y, rs[l - 1].x == w ? rs[l - 1].y + rs[l - 1].w : 0);
+        }
+        EXPECT_EQ(rs.back().z * rs.back().w, 1) << "levels stop at one patch covering the image";
+    }
+}
+
+// ---------------------------------------------------------------------------------------------------
+// Coverage: each pixel with geometry lies in exactly one valid fragment.
+
+// Runs MultiresGather over the cornell-spot G-buffer with a few arbitrary VPLs and checks, from the
+// alpha of the flattened illumination buffer (>= 1 exactly at the fragments that passed the stencil test):
+// every pixel with geometry has exactly one valid ancestor over the levels, background pixels at most one, and
+// the per-level counts of the stencil pass equal the fragments the stenciled gather wrote.
+void checkCoverage(int w, int h, const gl::MultiresSettings& settings, std::vector<int>* perLevelOut = nullptr)
+{
+    const core::Scene scene = core::makeCornell("cornell-spot");
+    gl::FrameSettings fs;
+    fs.width = w;
+    fs.height = h;
+    fs.shadowMapSize = 256;
+    gl::Frame frame(scene, fs);
+    gl::PassTimers timers;
+    frame.beginFrame();
+    frame.renderGBuffer(timers);
+    frame.clearIndirect();
+    struct GpuVpl { glm::vec4 positionArea, normal, flux; };
+    const std::vector<GpuVpl> vpls = {{{0.3f, 0.0f, 0.3f, 1e-3f}, {0, 1, 0, 0}, {0.01f, 0.01f, 0.01f, 0}},
+                                      {{0.55f, 0.3f, 0.3f, 1e-3f}, {-1, 0, 0, 0}, {0.02f, 0.0f, 0.0f, 0}}};
+    gl::Buffer cache = gl::Buffer::fromVector("test.vpls", vpls);
+    gl::MultiresGather gather(frame, settings);
+    gather.run(frame, cache, int(vpls.size()), timers);
+    timers.endFrame(false);
+
+    const gl::Texture& illum = gather.illumination();
+    const std::vector<float> a = illum.readFloats(0, 4);
+    const std::vector<float> pos = frame.position().readFloats(0, 4);
+    const int L = gather.coarsestLevel();
+    std::vector<int> marked(std::size_t(L) + 1, 0);
+    const auto alpha = [&](int l, int x, int y) {
+        const glm::ivec4 r = gather.levelRect(l);
+        return a[(std::size_t(r.y + y) * illum.width() + std::size_t(r.x + x)) * 4 + 3];
+    };
+    for (int l = 0; l <= L; ++l) {
+        const glm::ivec4 r = gather.levelRect(l);
+        for (int y = 0; y < r.w; ++y)
+            for (int x = 0; x < r.z; ++x) marked[l] += alpha(l, x, y) >= 1.0f;
+    }
+    int bad = 0;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            int covering = 0;
+            for (int l = 0; l <= L; ++l) covering += alpha(l, x >> l, y >> l) >= 1.0f;
+            const bool geometry = pos[(std::size_t(y) * w + x) * 4 + 3] != 0.0f;
+            // Background pixels inside a coarse patch are covered by it (their light is multiplied by 0).
+            if ((geometry ? covering != 1 : covering > 1) && ++bad <= 5)
+                ADD_FAILURE() << w << "x" << h << ": pixel " << x << "," << y << " (GL rows) covered " << covering
+                              << " times, geometry " << geometry;
+        }
+    EXPECT_EQ(bad, 0);
+    const std::vector<int> perLevel = gather.fragmentsPerLevel();
+    ASSERT_EQ(perLevel.size(), marked.size());
+    for (int l = 0; l <= L; ++l) EXPECT_EQ(perLevel[l], marked[l]) << "level " << l << ": stencil count vs gathered";
+    const std::vector<gl::Counter> cs = gather.counters();
+    double sum = 0.0;
+    for (int l = 0; l <= L; ++l) sum += counter(cs, "fragments.level" + std::to_string(l));
+    EXPECT_EQ(sum, counter(cs, "fragments.total"));
+    expectFinite(frame.read(frame.indirect()), "indirect");
+    if (perLevelOut) *perLevelOut = perLevel;
+}
+
+TEST_F(IsrMultiresTest, EveryPixelCoveredExactlyOnce)
+{
+    gl::MultiresSettings s; // default thresholds: a real mix of levels
+    std::vector<int> perLevel;
+    checkCoverage(64, 64, s, &perLevel);
+    int coarse = 0;
+    for (std::size_t l = 1; l < perLevel.size(); ++l) coarse += perLevel[l];
+    EXPECT_GT(coarse, 0) << "default thresholds should leave some patches coarse";
+    checkCoverage(333, 200, s);
+    checkCoverage(1, 1, s);
+    checkCoverage(7, 3, s);
+    s.coarsestLevel = 2;
+    checkCoverage(45, 31, s);
+    s.depthThreshold = 10.0f; // nothing is a discontinuity: all at the coarsest level where geometry is
+    s.normalThreshold = 4.0f;
+    checkCoverage(45, 31, s);
+}
+
+// ---------------------------------------------------------------------------------------------------
+// Equal to the full-resolution gathers at zero thresholds.
+
+// Both thresholds 0: every pixel is its own fragment (level 0), gathered at its own G-buffer position,
+// normal and albedo, so multires-gather equals rsm's per-pixel gather of the same regular-grid VPLs.
+// Tolerance 1e-3 relative RMSE (the bound; only the float summation differs).
+TEST_F(IsrMultiresTest, ZeroThresholdsEqualFullResolutionGather)
+{
+    const core::Scene scene = core::makeCornell("cornell-spot");
+    for (const auto& [w, h] : {std::pair{64, 64}, std::pair{333, 200}}) {
+        const std::string size = std::to_string(w) + "x" + std::to_string(h);
+        const Rendered m = render(scene, "multires-gather",
+                                  {{"vpls", "64"}, {"rsmSize", "32"}, {"depthThreshold", "0"}, {"normalThreshold", "0"}}, w, h);
+        const Rendered r = render(scene, "rsm", {{"vpls", "64"}, {"rsmSize", "32"}}, w, h);
+        expectSameImage(m.indirect, r.indirect, 1e-3, "multires-zero-vs-rsm-" + size);
+        EXPECT_EQ(counter(m.counters, "fragments.level0"), geometryPixels(m.position)) << size;
+        EXPECT_EQ(counter(m.counters, "fragments.total"), geometryPixels(m.position)) << size;
+        EXPECT_EQ(counter(m.counters, "vpls"), 64.0);
+    }
+}
+
+// The same equality against an independent path: the regular-grid VPLs of the cache read back and
+// gathered on the CPU in double at every pixel's own G-buffer values (Eqs. 1 and 5), compared with
+// MultiresGather at zero thresholds over the same cache. Tolerance 1e-3 relative RMSE (float vs double).
+TEST_F(IsrMultiresTest, ZeroThresholdsEqualCpuGather)
+{
+    constexpr double kPi = 3.14159265358979323846;
+    const core::Scene scene = core::makeCornell("cornell-spot");
+    for (const auto& [w, h] : {std::pair{64, 64}, std::pair{333, 200}}) {
+        gl::FrameSettings fs;
+        fs.width = w;
+        fs.height = h;
+        fs.shadowMapSize = 256;
+        gl::Frame frame(scene, fs);
+        gl::RsmSettings rs;
+        rs.size = 32;
+        gl::RsmPass rsm(rs);
+        gl::VplSampler sampler;
+        gl::Buffer cache("test.cache", 64 * gl::VplSampler::kVplBytes);
+        gl::MultiresSettings ms;
+        ms.depthThreshold = 0.0f;
+        ms.normalThreshold = 0.0f;
+        gl::MultiresGather gather(frame, ms);
+        gl::PassTimers timers;
+        frame.beginFrame();
+        frame.renderGBuffer(timers);
+        frame.clearIndirect();
+        rsm.render(frame, timers);
+        const int count = sampler.sample(rsm, cache, 8, timers);
+        gather.run(frame, cache, count, timers);
+        timers.endFrame(false);
+        ASSERT_EQ(count, 64);
+
+        struct GpuVpl { glm::vec4 positionArea, normal, flux; };
+        const std::vector<GpuVpl> vpls = cache.download<GpuVpl>();
+        const std::vector<float> P = frame.position().readFloats(0, 4), N = frame.normal().readFloats(0, 4),
+                                 D = frame.diffuse().readFloats(0, 4);
+        core::Image want(w, h);
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) {
+                const std::size_t i = (std::size_t(y) * w + x) * 4;
+                if (P[i + 3] == 0.0f) continue;
+                const glm::dvec3 p(P[i], P[i + 1], P[i + 2]), n(N[i], N[i + 1], N[i + 2]), rho(D[i], D[i + 1], D[i + 2]);
+                glm::dvec3 sum(0.0);
+                for (const GpuVpl& v : vpls) {
+                    const glm::dvec3 d = glm::dvec3(v.positionArea) - p;
+                    const double r2 = glm::dot(d, d), r = std::sqrt(r2);
+                    const glm::dvec3 wv = r > 0.0 ? d / r : n;
+                    const double cosI = std::max(glm::dot(n, wv), 0.0);
+                    const double cosJ = std::max(glm::dot(glm::dvec3(v.normal), -wv), 0.0);
+                    sum += rho / kPi * glm::dvec3(v.flux) * (cosI * cosJ / (kPi * r2 + double(v.positionArea.w)));
+                }
+                want.set(x, h - 1 - y, glm::vec3(sum));
+            }
+        const std::string size = std::to_string(w) + "x" + std::to_string(h);
+        expectSameImage(frame.read(frame.indirect()), want, 1e-3, "multires-zero-vs-cpu-" + size);
+        const std::vector<int> perLevel = gather.fragmentsPerLevel();
+        int geometry = 0;
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) geometry += P[(std::size_t(y) * w + x) * 4 + 3] != 0.0f;
+        EXPECT_EQ(perLevel.at(0), geometry) << size << ": every pixel with geometry is a level-0 fragment";
+    }
+}
+
+// tau = 0 refines every cluster down to single RSM texels, and with zero eye-space thresholds every pixel
+// is a fragment: hisr then equals rsm-full at the same RSM size (relative RMSE below 1e-3).
+TEST_F(IsrMultiresTest, HisrTauZeroEqualsRsmFull)
+{
+    const core::Scene scene = core::makeCornell("cornell-spot");
+    const Rendered hisr = render(scene, "hisr",
+                                 {{"rsmSize", "32"}, {"tau", "0"}, {"topGrid", "8"}, {"depthThreshold", "0"},
+                                  {"normalThreshold", "0"}},
+                                 48, 48);
+    const Rendered full = render(scene, "rsm-full", {{"rsmSize", "32"}}, 48, 48);
+    expectSameImage(hisr.indirect, full.indirect, 1e-3, "hisr-tau0-vs-rsm-full");
+    // Every fragment gathered every lit texel: no more clusters than texels, and at least some of them.
+    const double perFragment = counter(hisr.counters, "clusters.perFragment");
+    EXPECT_LE(perFragment, 32.0 * 32.0);
+    EXPECT_GT(perFragment, 100.0);
+}
+
+// With hisr's tree and a positive tau: fewer clusters per fragment than texels, and the image stays
+// close to rsm-full (a loose 10%: the paper's Fig. 13 reports 3-4% at usable thresholds).
+TEST_F(IsrMultiresTest, HisrClustersDropAsTauGrows)
+{
+    const core::Scene scene = core::makeCornell("cornell-spot");
+    // The paper's tree (no light-space discontinuity departures), every pixel a fragment.
+    const Sets eye = {{"rsmSize", "64"}, {"depthThreshold", "0"}, {"normalThreshold", "0"},
+                      {"lightDepthThreshold", "1e30"}, {"lightNormalThreshold", "1e30"}};
+    double previous = 1e30;
+    const Rendered full = render(scene, "rsm-full", {{"rsmSize", "64"}}, 32, 32);
+    for (const char* tau : {"0", "1e-5", "1e-4", "1e-3", "1"}) {
+        Sets s = eye;
+        s.push_back({"tau", tau});
+        const Rendered r = render(scene, "hisr", s, 32, 32);
+        expectFinite(r.indirect, std::string("hisr tau ") + tau);
+        const double perFragment = counter(r.counters, "clusters.perFragment");
+        EXPECT_LT(perFragment, previous) << "tau " << tau;
+        previous = perFragment;
+        if (std::string(tau) == "1e-5") {
+            const double err = core::relativeRmse(r.indirect, full.indirect);
+            EXPECT_LT(err, 0.1) << "hisr tau 1e-5 against rsm-full";
+        }
+    }
+    EXPECT_LE(previous, 16.0 * 16.0) << "tau above the light's intensity never refines: the 16x16 top patches";
+}
+
+// Larger thresholds merge more pixels into coarser patches: the number of valid fragments drops.
+TEST_F(IsrMultiresTest, FragmentsDropAsThresholdsGrow)
+{
+    const core::Scene scene = core::makeCornell("cornell-spot");
+    double previous = 1e30;
+    for (const auto& [d, n] : {std::pair{"0", "0"}, std::pair{"0.005", "0.05"}, std::pair{"0.03", "0.15"},
+                               std::pair{"0.2", "0.5"}}) {
+        const Rendered r = render(scene, "multires-gather",
+                                  {{"vpls", "16"}, {"rsmSize", "32"}, {"depthThreshold", d}, {"normalThreshold", n}}, 96, 96);
+        const double total = counter(r.counters, "fragments.total");
+        EXPECT_LT(total, previous) << "thresholds " << d << ", " << n;
+        previous = total;
+        expectFinite(r.indirect, "multires-gather");
+    }
+}
+
+// ---------------------------------------------------------------------------------------------------
+// The VPL tree against a CPU rebuild from the same RSM.
+
+// Reads the RSM back, builds every cluster on the CPU (sums, area-weighted means, max light distance)
+// by walking the layout of glsl/technique/isr/vpl_tree.glsl independently (row-major patches, explicit
+// bit interleaving), and compares each node (normals: the area-weighted mean vector, not renormalised). Tolerances: 1e-4 relative on sums (float order), 1e-4 m on
+// positions, 1e-3 on normals.
+TEST_F(IsrMultiresTest, VplTreeMatchesCpuClusters)
+{
+    const core::Scene scene = core::makeCornell("cornell-spot");
+    gl::FrameSettings fs;
+    fs.width = 8;
+    fs.height = 8;
+    fs.shadowMapSize = 256;
+    gl::Frame frame(scene, fs);
+    gl::RsmSettings rs;
+    rs.size = 32;
+    gl::RsmPass rsm(rs);
+    gl::VplTree tree(4); // 4 x 4 top patches of 8 x 8 texels: depth 3
+    gl::PassTimers timers;
+    frame.beginFrame();
+    rsm.render(frame, timers);
+    tree.build(rsm, timers);
+    timers.endFrame(false);
+    ASSERT_EQ(rsm.viewCount(), 1);
+    ASSERT_EQ(tree.depth(), 3);
+    ASSERT_EQ(tree.subtreeNodes(), 1 + 4 + 16 + 64);
+    ASSERT_EQ(tree.rootCount(), 16);
+
+    const std::vector<float> P = rsm.position().readFloats(0, 4), N = rsm.normal().readFloats(0, 4),
+                             F = rsm.flux().readFloats(0, 4);
+    const glm::vec3 origin = rsm.views()[0].origin;
+    struct Node { glm::vec4 positionArea, normal, flux, range; };
+    static_assert(sizeof(Node) == gl::VplTree::kNodeBytes);
+    const std::vector<Node> got = tree.nodes().download<Node>();
+    ASSERT_EQ(got.size(), std::size_t(tree.nodeCount()));
+    const auto interleave = [](int x, int y) {
+        int c = 0;
+        for (int b = 0; b < 8; ++b) c |= ((x >> b) & 1) << (2 * b) | ((y >> b) & 1) << (2 * b + 1);
+        return c;
+    };
+    glm::dvec3 rootFlux(0.0), rsmFlux(0.0);
+    int checked = 0;
+    for (int ty = 0; ty < 4; ++ty)
+        for (int tx = 0; tx < 4; ++tx)
+            for (int m = 0; m <= 3; ++m) {
+                const int side = 8 >> m;
+                for (int cy = 0; cy < side; ++cy)
+                    for (int cx = 0; cx < side; ++cx) {
+                        glm::dvec3 pos(0.0), nrm(0.0), flux(0.0);
+                        double area = 0.0, omega = 0.0, dist = 0.0;
+                        for (int y = 0; y < (1 << m); ++y)
+                            for (int x = 0; x < (1 << m); ++x) {
+                                const int X = tx * 8 + (cx << m) + x, Y = ty * 8 + (cy << m) + y;
+                                const std::size_t i = (std::size_t(Y) * 32 + X) * 4;
+                                const double a = N[i + 3];
+                                pos += a * glm::dvec3(P[i], P[i + 1], P[i + 2]);
+                                nrm += a * glm::dvec3(N[i], N[i + 1], N[i + 2]);
+                                area += a;
+                                flux += glm::dvec3(F[i], F[i + 1], F[i + 2]);
+                                omega += F[i + 3];
+                                if (P[i + 3] != 0.0f)
+                                    dist = std::max(dist, double(glm::length(glm::vec3(P[i], P[i + 1], P[i + 2]) - origin)));
+                                if (m == 0) rsmFlux += glm::dvec3(F[i], F[i + 1], F[i + 2]);
+                            }
+                        const int subtree = ty * 4 + tx;
+                        const Node& n = got[std::size_t(subtree * tree.subtreeNodes() + tree.levelOffset(m) +
+                                                        interleave(cx, cy))];
+                        const std::string where = "top " + std::to_string(tx) + "," + std::to_string(ty) + " level " +
+                                                  std::to_string(m) + " node " + std::to_string(cx) + "," + std::to_string(cy);
+                        for (int c = 0; c < 3; ++c)
+                            ASSERT_NEAR(n.flux[c], flux[c], 1e-4 * flux[c] + 1e-12) << where;
+                        ASSERT_NEAR(n.flux.w, omega, 1e-4 * omega + 1e-12) << where;
+                        ASSERT_NEAR(n.positionArea.w, area, 1e-4 * area + 1e-12) << where;
+                        ASSERT_NEAR(n.normal.w, dist, 1e-5) << where;
+                        if (area > 0.0) {
+                            const glm::dvec3 mean = pos / area, unit = nrm / area;
+                            for (int c = 0; c < 3; ++c) {
+                                ASSERT_NEAR(n.positionArea[c], mean[c], 1e-4) << where;
+                                ASSERT_NEAR(n.normal[c], unit[c], 1e-3) << where;
+                            }
+                        }
+                        if (m == 3) rootFlux += glm::dvec3(n.flux);
+                        ++checked;
+                    }
+            }
+    EXPECT_EQ(checked, tree.nodeCount());
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(rootFlux[c], rsmFlux[c], 1e-4 * rsmFlux[c]) << "the roots hold the RSM's flux";
+    EXPECT_GT(rsmFlux.x, 0.0);
+}
+
+// Eq. 8's constant: T = 2 (I - tau) / (3 tau RSM_res^2), infinite at tau = 0; I from the lights (W/sr).
+TEST(IsrMultiresEquations, HisrRefineConstant)
+{
+    EXPECT_NEAR(gl::hisrRefineConstant(0.5, 1e-3, 256), 2.0 * (0.5 - 1e-3) / (3.0 * 1e-3 * 65536.0), 1e-12);
+    EXPECT_TRUE(std::isinf(gl::hisrRefineConstant(0.5, 0.0, 256)));
+    EXPECT_LT(gl::hisrRefineConstant(0.5, 1.0, 256), 0.0) << "tau above I: never refine";
+    gl::LightSource spot;
+    spot.type = gl::kLightSpot;
+    spot.intensity = {0.23205f, 0.1638f, 0.0546f};
+    EXPECT_NEAR(gl::hisrPeakIntensity({spot}), 0.23205, 1e-7);
+}
+
+// ---------------------------------------------------------------------------------------------------
+// Odd viewports.
+
+// 333 x 200 (not a power of two, odd) and 1 x 1 (no level above the pixel): both techniques run without
+// a GL error (the fixture fails on any) and write finite light; the 1 x 1 image is a single fragment.
+TEST_F(IsrMultiresTest, OddAndOnePixelViewports)
+{
+    const core::Scene scene = core::makeCornell("cornell-spot");
+    for (const char* technique : {"multires-gather", "hisr"}) {
+        const Sets s = {{"rsmSize", "32"}};
+        const Rendered a = render(scene, technique, s, 333, 200);
+        expectFinite(a.indirect, std::string(technique) + " 333x200");
+        double sum = 0.0;
+        for (float v : a.indirect.rgb) sum += v;
+        EXPECT_GT(sum, 0.0) << technique;
+        EXPECT_LT(counter(a.counters, "fragments.total"), 333.0 * 200.0 / 2.0) << technique << ": patches merge";
+        const Rendered b = render(scene, technique, s, 1, 1);
+        expectFinite(b.indirect, std::string(technique) + " 1x1");
+        EXPECT_EQ(counter(b.counters, "fragments.total"), double(geometryPixels(b.position))) << technique;
+    }
+}
+
+} // namespace
+} // namespace bounce
