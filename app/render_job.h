@@ -1,0 +1,33 @@
+// What render, bench and demo share: turning --scene/--technique/--set into a scene and parameter
+// values (bad input -> UsageError), and the JSON record of a run (DESIGN.md, "Speed against error").
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "core/scene.h"
+#include "gl/context/context.h"
+#include "gl/renderer.h"
+#include "gl/technique/technique.h"
+
+namespace bounce::app {
+
+// Loads a built-in scene by name or a glTF file by path; any failure becomes a UsageError.
+core::Scene loadSceneForCli(const std::string& nameOrPath);
+
+// Applies "key=value" settings to the frame's or the technique's parameters; UsageError on bad input.
+void applySets(const std::vector<std::string>& sets, const gl::TechniqueInfo& technique, gl::ParamValues& frameValues,
+               gl::ParamValues& techniqueValues);
+
+// Creates the context for --backend; a missing 4.5 core context is a UsageError (exit 2).
+std::unique_ptr<gl::Context> createContextForCli(const std::string& backend, bool window = false);
+
+// The run's record: backend, renderer, size, technique, parameters, per-pass GPU ms, counters, bytes.
+nlohmann::json runRecord(const gl::ContextInfo& context, const std::string& scene, gl::Renderer& renderer);
+
+// Prints the per-pass table (median ms over the timed frames) to stdout.
+void printPassTable(gl::Renderer& renderer);
+
+} // namespace bounce::app

@@ -1,0 +1,77 @@
+#!/usr/bin/python3
+"""Speed against error: the project's headline plot.
+
+Reads a `bounce bench` results.csv and draws GPU time per frame (x) against relative RMSE (y), log scales,
+one curve per technique (its parameter sweep in order of time), one panel per error reference (the
+technique's own light paths, and `full`), and marks the Pareto front (no other point both faster and
+more accurate). Runs under Debian's python3 with python3-matplotlib.
+
+usage: plot_speed_error.py RESULTS.csv OUT.png [--title TEXT]
+"""
+import csv
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+
+def pareto(points):
+    """Indices of points not dominated by another (time and error both lower or equal, one lower)."""
+    front = []
+    for i, (t, e) in enumerate(points):
+        dominated = any((t2 <= t and e2 <= e) and (t2 < t or e2 < e) for j, (t2, e2) in enumerate(points) if j != i)
+        if not dominated:
+            front.append(i)
+    return sorted(front, key=lambda i: points[i][0])
+
+
+def main(argv):
+    if len(argv) < 3 or argv[1] in ("-h", "--help"):
+        print(__doc__)
+        return 0 if len(argv) > 1 and argv[1] in ("-h", "--help") else 2
+    rows = list(csv.DictReader(open(argv[1], newline="")))
+    title = argv[argv.index("--title") + 1] if "--title" in argv else "speed against error"
+    panels = [("rel_rmse_own", "relative RMSE vs own light paths"), ("rel_rmse_full", "relative RMSE vs full")]
+    panels = [p for p in panels if any(r.get(p[0]) not in (None, "", "nan") for r in rows)]
+    if not panels:
+        print("plot_speed_error.py: no error figures in %s (were references computed?)" % argv[1], file=sys.stderr)
+        return 1
+    fig, axes = plt.subplots(1, len(panels), figsize=(6.5 * len(panels), 5), squeeze=False)
+    for ax, (column, label) in zip(axes[0], panels):
+        points, labels = [], []
+        for scene in sorted({r["scene"] for r in rows}):
+            for technique in sorted({r["technique"] for r in rows if r["scene"] == scene}):
+                sel = [r for r in rows if r["scene"] == scene and r["technique"] == technique
+                       and r.get(column) not in (None, "", "nan") and float(r[column]) > 0]
+                sel.sort(key=lambda r: float(r["total_ms"]))
+                if not sel:
+                    continue
+                xs = [float(r["total_ms"]) for r in sel]
+                ys = [float(r[column]) for r in sel]
+                ax.plot(xs, ys, "o-", label="%s / %s" % (technique, scene), markersize=4)
+                points += list(zip(xs, ys))
+                labels += [r["params"] for r in sel]
+        front = pareto(points)
+        if front:
+            ax.step([points[i][0] for i in front], [points[i][1] for i in front], "k--", where="post",
+                    linewidth=1, label="Pareto front")
+            ax.scatter([points[i][0] for i in front], [points[i][1] for i in front], s=80, facecolors="none",
+                       edgecolors="k", zorder=3)
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlabel("GPU time per frame (ms, median)")
+        ax.set_ylabel(label)
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize=7)
+    fig.suptitle(title)
+    fig.tight_layout()
+    fig.savefig(argv[2] + ".tmp.png", dpi=120)
+    import os
+    os.replace(argv[2] + ".tmp.png", argv[2])
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv))

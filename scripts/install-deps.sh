@@ -1,0 +1,29 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages Bounce builds and tests with (only those missing), and the npm
+# packages of package.json (the Khronos glTF validator used by a test). Needs root for apt-get.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+packages=(
+  cmake ninja-build g++ pkg-config
+  libegl-dev libegl1-mesa-dev libgl-dev libosmesa6-dev libgl1-mesa-dri libglfw3-dev libglm-dev python3-glad
+  libtinygltf-dev nlohmann-json3-dev libstb-dev libtinyexr-dev libimgui-dev libgtest-dev
+  libembree-dev libtbb-dev
+  xvfb xauth python3-matplotlib python3-numpy
+)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "installing: ${missing[*]}"
+  sudo_cmd=()
+  [ "$(id -u)" -eq 0 ] || sudo_cmd=(sudo)
+  "${sudo_cmd[@]}" apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
+
+# The glTF validator (npm, from package-lock.json). Optional: without node the validator test skips.
+if command -v npm >/dev/null 2>&1 && [ -f package-lock.json ] && [ ! -d node_modules/gltf-validator ]; then
+  npm ci --no-audit --no-fund --silent || echo "warning: npm ci failed; the glTF validator test will be skipped"
+fi

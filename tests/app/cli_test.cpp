@@ -1,0 +1,164 @@
+// The `bounce` executable end to end: help, listing, bad input (exit status 2, a message saying what is
+// allowed, nothing written), a render that writes EXR + PNG + JSON, and the demo under Xvfb.
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+#include <sys/wait.h>
+
+#include "core/image.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CliRun {
+    int status = -1;
+    std::string output; // stdout and stderr together
+};
+
+CliRun run(const std::string& args)
+{
+    const std::string cmd = std::string(BOUNCE_BINARY) + " " + args + " 2>&1";
+    CliRun r;
+    FILE* p = popen(cmd.c_str(), "r");
+    if (!p) return r;
+    char buf[4096];
+    while (std::fgets(buf, sizeof buf, p)) r.output += buf;
+    const int s = pclose(p);
+    r.status = WIFEXITED(s) ? WEXITSTATUS(s) : -1;
+    return r;
+}
+
+fs::path outDir(const std::string& name)
+{
+    const fs::path d = fs::path(BOUNCE_TEST_OUT) / "cli" / name;
+    fs::remove_all(d);
+    fs::create_directories(d);
+    return d;
+}
+
+bool emptyDir(const fs::path& d) { return fs::is_empty(d); }
+
+TEST(Cli, HelpEverywhere)
+{
+    for (const char* cmd : {"--help", "render --help", "list --help", "demo --help", "reference --help",
+                            "compare --help", "bench --help"}) {
+        const CliRun r = run(cmd);
+        EXPECT_EQ(r.status, 0) << cmd << "\n" << r.output;
+        EXPECT_NE(r.output.find("usage"), std::string::npos) << cmd;
+    }
+}
+
+TEST(Cli, ListShowsScenesTechniquesAndParameters)
+{
+    const CliRun r = run("list");
+    ASSERT_EQ(r.status, 0) << r.output;
+    for (const char* s : {"cornell-area", "cornell-spot", "cornell-point", "direct", "shadow.size", "default"})
+        EXPECT_NE(r.output.find(s), std::string::npos) << s;
+}
+
+// Each bad input: exit 2, a message naming the problem, nothing written into the output folder.
+TEST(Cli, BadInputExitsTwoAndWritesNothing)
+{
+    const fs::path d = outDir("bad");
+    const std::string out = " --backend osmesa --out " + (d / "x.exr").string();
+    const struct { std::string args, says; } cases[] = {
+        {"render --bogus 1" + out, "unknown option"},
+        {"render --size 12x" + out, "--size"},
+        {"render --size 0x10" + out, "--size"},
+        {"render --technique nosuch" + out, "unknown technique"},
+        {"render --set nokey=1" + out, "unknown parameter"},
+        {"render --set shadow.size=3" + out, "out of range"},
+        {"render --set shadow.pcf=1.5" + out, "integer"},
+        {"render --set shadow.linear=maybe" + out, "bool"},
+        {"render --frames -1" + out, "--frames"},
+        {"render --scene /nonexistent/scene.gltf" + out, "scene.gltf"},
+        {"render --scene nosuchscene" + out, "nosuchscene"},
+        {"render --backend vulkan --out " + (d / "x.exr").string(), "egl"},
+        {"render --out " + (d / "x.jpg").string(), ".exr or .png"},
+        {"nosuchcommand", "unknown command"},
+    };
+    for (const auto& c : cases) {
+        const CliRun r = run(c.args);
+        EXPECT_EQ(r.status, 2) << c.args << "\n" << r.output;
+        EXPECT_NE(r.output.find(c.says), std::string::npos) << c.args << "\n" << r.output;
+        EXPECT_TRUE(emptyDir(d)) << c.args << " left files behind";
+    }
+}
+
+TEST(Cli, RenderWritesExrPngAndJsonRecord)
+{
+    const fs::path d = outDir("render");
+    const CliRun r = run("render --scene cornell-spot --size 48x32 --frames 2 --warmup 1 --backend osmesa --out " +
+                      (d / "spot.png").string());
+    ASSERT_EQ(r.status, 0) << r.output;
+    EXPECT_NE(r.output.find("GL renderer"), std::string::npos);
+    ASSERT_TRUE(fs::exists(d / "spot.exr"));
+    ASSERT_TRUE(fs::exists(d / "spot.png"));
+    ASSERT_TRUE(fs::exists(d / "spot.json"));
+    const bounce::core::Image img = bounce::core::readImage((d / "spot.exr").string());
+    EXPECT_EQ(img.width, 48);
+    EXPECT_EQ(img.height, 32);
+    std::ifstream in(d / "spot.json");
+    const nlohmann::json j = nlohmann::json::parse(in);
+    EXPECT_EQ(j["technique"], "direct");
+    EXPECT_EQ(j["backend"], "osmesa");
+    EXPECT_FALSE(j["renderer"].get<std::string>().empty());
+    EXPECT_GE(j["passes"].size(), 3u);
+    for (const auto& p : j["passes"]) EXPECT_EQ(p["frames"], 2);
+    EXPECT_GT(j["bytesAllocatedTotal"].get<double>(), 0.0);
+    EXPECT_TRUE(j["bytesAllocated"].contains("gbuffer.position"));
+    // No temporary files survive.
+    for (const auto& e : fs::directory_iterator(d))
+        EXPECT_EQ(e.path().string().find(".tmp"), std::string::npos) << e.path();
+}
+
+// A glTF file given by path renders like the built-in scene it was written from.
+TEST(Cli, RenderAGltfByPath)
+{
+    const fs::path d = outDir("gltf");
+    const std::string asset = std::string(BOUNCE_SOURCE_ROOT) + "/assets/cornell-spot.gltf";
+    const CliRun a = run("render --scene " + asset + " --size 32x32 --frames 1 --warmup 0 --backend osmesa --out " +
+                      (d / "a.exr").string());
+    ASSERT_EQ(a.status, 0) << a.output;
+    const CliRun b = run("render --scene cornell-spot --size 32x32 --frames 1 --warmup 0 --backend osmesa --out " +
+                      (d / "b.exr").string());
+    ASSERT_EQ(b.status, 0) << b.output;
+    const auto ia = bounce::core::readImage((d / "a.exr").string()), ib = bounce::core::readImage((d / "b.exr").string());
+    ASSERT_EQ(ia.rgb.size(), ib.rgb.size());
+    for (std::size_t i = 0; i < ia.rgb.size(); ++i) EXPECT_NEAR(ia.rgb[i], ib.rgb[i], 1e-5f + 1e-5f * ib.rgb[i]) << i;
+}
+
+// The demo in a real window (Xvfb in CI): a few frames, a technique switch, a screenshot that must be
+// the Cornell box: not black, the red wall on the left, the green wall on the right.
+TEST(Cli, DemoRunsSwitchesTechniqueAndShowsTheCornellBox)
+{
+    if (!std::getenv("DISPLAY")) GTEST_SKIP() << "no DISPLAY: the suite runs under xvfb-run in CI (test.sh)";
+    const fs::path d = outDir("demo");
+    const fs::path shot = d / "shot.exr";
+    const CliRun r = run("demo --scene cornell-area --size 160x120 --script wait:2,technique:rsm,set:vpls=64,wait:2,screenshot:" +
+                      shot.string() + ",quit");
+    ASSERT_EQ(r.status, 0) << r.output;
+    ASSERT_TRUE(fs::exists(shot)) << r.output;
+    ASSERT_TRUE(fs::exists(d / "shot.png"));
+    const bounce::core::Image img = bounce::core::readImage(shot.string());
+    double sum = 0.0;
+    glm::vec3 left(0.0f), right(0.0f);
+    for (int y = img.height / 3; y < 2 * img.height / 3; ++y)
+        for (int x = 0; x < img.width; ++x) {
+            const glm::vec3 v = img.at(x, y);
+            sum += v.x + v.y + v.z;
+            if (x < img.width / 4) left += v;
+            if (x >= img.width - img.width / 4) right += v;
+        }
+    EXPECT_GT(sum, 0.0) << "black screenshot";
+    EXPECT_GT(left.x, 2.0f * left.y) << "the left wall should be red";
+    EXPECT_GT(right.y, 2.0f * right.x) << "the right wall should be green";
+}
+
+} // namespace
