@@ -1,6 +1,7 @@
 // bounce render: one scene, one technique, to EXR (linear radiance) + PNG (tone mapped) + JSON record.
 #include <cstdio>
 #include <filesystem>
+#include <memory>
 
 #include "app/commands.h"
 #include "app/options.h"
@@ -65,7 +66,14 @@ int cmdRender(const Args& args)
     std::printf("GL renderer: %s (%s, %s)\n", context->info().renderer.c_str(), context->info().platform.c_str(),
                 context->info().version.c_str());
 
-    gl::Renderer renderer(scene, techniqueName, frameValues, techniqueValues, width, height);
+    // A technique refuses a combination of parameters it cannot honour when it is made (std::invalid_argument).
+    std::unique_ptr<gl::Renderer> made;
+    try {
+        made = std::make_unique<gl::Renderer>(scene, techniqueName, frameValues, techniqueValues, width, height);
+    } catch (const std::invalid_argument& e) {
+        throw UsageError(techniqueName + ": " + e.what());
+    }
+    gl::Renderer& renderer = *made;
     for (int i = 0; i < warmup; ++i) renderer.renderFrame(false);
     for (int i = 0; i < frames; ++i) renderer.renderFrame(true);
     const core::Image image = renderer.image();

@@ -1,5 +1,6 @@
 #include "gl/technique/technique.h"
 
+#include <bit>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -25,6 +26,7 @@ std::string describe(const ParamDecl& d)
     const char* type = d.type == ParamType::Int ? "int" : d.type == ParamType::Bool ? "bool" : "float";
     s << d.name << " (" << type;
     if (d.type != ParamType::Bool) s << " in [" << d.min << ", " << d.max << "]";
+    if (d.powerOfTwo) s << ", a power of two";
     s << ", default " << d.defaultValue << ")";
     return s.str();
 }
@@ -54,6 +56,8 @@ void ParamValues::set(const std::vector<ParamDecl>& decls, const std::string& na
             throw std::invalid_argument("parameter '" + name + "' is an integer, not '" + text + "'");
         if (v < decl->min || v > decl->max)
             throw std::invalid_argument("parameter " + describe(*decl) + ": " + text + " is out of range");
+        if (decl->powerOfTwo && !std::has_single_bit(static_cast<unsigned long long>(v)))
+            throw std::invalid_argument("parameter " + describe(*decl) + ": " + text + " is not a power of two");
     }
     values_[name] = v;
 }

@@ -24,6 +24,7 @@ struct ParamDecl {
     double min = 0.0;
     double max = 0.0;
     std::string meaning;    // one line
+    bool powerOfTwo = false; // Int only: the value must also be a power of two
 };
 
 // Parameter values by name, every declared parameter present (defaults filled in).

@@ -76,6 +76,7 @@ TEST(Cli, BadInputExitsTwoAndWritesNothing)
         {"render --set shadow.size=3" + out, "out of range"},
         {"render --set shadow.pcf=1.5" + out, "integer"},
         {"render --set shadow.linear=maybe" + out, "bool"},
+        {"render --technique isr --set rsmSize=100" + out, "power of two"},
         {"render --frames -1" + out, "--frames"},
         {"render --scene /nonexistent/scene.gltf" + out, "scene.gltf"},
         {"render --scene nosuchscene" + out, "nosuchscene"},

@@ -113,11 +113,11 @@ TechniqueInfo hisrTechniqueInfo()
     info.summary = "hierarchical image-space radiosity: per-fragment VPL clusters from a VPL tree of the full RSM";
     info.params = {
         {"rsmSize", ParamType::Int, 256, 1, 1024,
-         "RSM texels per side of each light view, a power of two: the finest VPLs (the paper: 256)"},
+         "RSM texels per side of each light view, a power of two: the finest VPLs (the paper: 256)", true},
         {"tau", ParamType::Float, 1e-4, 0, 1e30,
          "Eq. 8 error threshold tau (W/sr, as the light's intensity I): larger, coarser clusters; 0: every texel (rsm-full)"},
         {"topGrid", ParamType::Int, 16, 1, 1024,
-         "top patches per side of each view where the traversal starts, a power of two (the paper: 16)"},
+         "top patches per side of each view where the traversal starts, a power of two (the paper: 16)", true},
         {"lightDepthThreshold", ParamType::Float, 0.1, 0, 1e30,
          "departure: clusters whose relative light-distance range exceeds this are always refined; 1e30: the paper"},
         {"lightNormalThreshold", ParamType::Float, 0.01, 0, 1e30,

@@ -68,7 +68,7 @@ TechniqueInfo isrTechniqueInfo()
     info.summary = "image-space radiosity: per-frame multiresolution VPL clusters from light-space min-max mipmaps, "
                    "gathered at multiresolution eye-space patches";
     info.params = {
-        {"rsmSize", ParamType::Int, 256, 4, 2048, "RSM texels per side of each light view, a power of two (the paper: 256)"},
+        {"rsmSize", ParamType::Int, 256, 4, 2048, "RSM texels per side of each light view, a power of two (the paper: 256)", true},
         {"lightDepthThreshold", ParamType::Float, 0.05, 0, 100,
          "light-space discontinuity: largest relative depth range (max d - min d) / min d of one VPL's patch"},
         {"lightNormalThreshold", ParamType::Float, 0.2, 0, 4,
