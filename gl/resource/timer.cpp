@@ -7,6 +7,10 @@
 
 namespace bounce::gl {
 
+namespace {
+constexpr GLuint64 kImplausibleNs = 3600ull * 1000000000ull; // one hour
+} // namespace
+
 void QueryDeleter::operator()(unsigned id) const { glDeleteQueries(1, &id); }
 
 PassTimers::Scope::~Scope()
@@ -44,6 +48,13 @@ void PassTimers::endFrame(bool keep)
         GLuint64 ns = 0;
         glGetQueryObjectui64v(pool_[p.query].id(), GL_QUERY_RESULT, &ns);
         const int i = pass(p.pass);
+        // llvmpipe answers a context's very first TIME_ELAPSED query (the shadow pass of the first frame)
+        // with a timestamp since its epoch, hours, instead of an interval; no pass of one frame takes an
+        // hour, so such a reading is dropped rather than kept as a sample.
+        if (ns > kImplausibleNs) {
+            if (std::size_t(i) >= frame.size()) { frame.resize(i + 1, 0.0); seen.resize(i + 1, false); }
+            continue;
+        }
         if (std::size_t(i) >= frame.size()) { frame.resize(i + 1, 0.0); seen.resize(i + 1, false); }
         frame[i] += double(ns) * 1e-6;
         seen[i] = true;
