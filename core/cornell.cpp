@@ -127,11 +127,53 @@ Light punctual(const std::string& name, LightType type, const glm::vec3& positio
     return l;
 }
 
+// An axis-aligned box as quads (each listed once; quadMesh orients them away from the box's centre).
+std::vector<Quad> boxQuads(const glm::vec3& lo, const glm::vec3& hi, bool withBottom)
+{
+    const auto corner = [&](int i) { return glm::vec3(i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z); };
+    std::vector<Quad> q = {
+        {corner(2), corner(3), corner(7), corner(6)}, // top
+        {corner(0), corner(2), corner(6), corner(4)}, // -x
+        {corner(1), corner(3), corner(7), corner(5)}, // +x
+        {corner(0), corner(1), corner(3), corner(2)}, // -z
+        {corner(4), corner(5), corner(7), corner(6)}, // +z
+    };
+    if (withBottom) q.push_back({corner(0), corner(1), corner(5), corner(4)});
+    return q;
+}
+
+// cornell-slats: cornell-spot with more depth complexity, the project's own second scene for the image-
+// space techniques (not part of cornell-box.md). Seven white slats 2.5 cm wide and 25 cm high stand in
+// a row 2-3.5 cm behind the open front, so that the eye sees the blocks through gaps; a white shelf
+// 1.5 cm thick spans from the green wall to x = 0.2 m at 0.36 m height, shading the floor below it and
+// cutting the light's view of the green wall.
+void addSlatsAndShelf(Scene& scene, std::uint32_t material)
+{
+    std::vector<Quad> slats;
+    for (int k = 0; k < 7; ++k) {
+        const float x = 0.07f + 0.07f * float(k);
+        for (const Quad& q : boxQuads({x - 0.0125f, 0.0f, 0.02f}, {x + 0.0125f, 0.25f, 0.035f}, false)) slats.push_back(q);
+    }
+    const auto centreOfAll = [](const std::vector<Quad>& quads) {
+        glm::dvec3 c(0.0);
+        for (const Quad& q : quads)
+            for (const glm::vec3& v : q) c += glm::dvec3(v);
+        return c / double(4 * quads.size());
+    };
+    // Each slat faces away from its own axis: the facing of a face is taken from its centroid's x.
+    scene.meshes.push_back(quadMesh("slats", material, slats, [](const glm::dvec3& c) {
+        const double k = std::round((c.x - 0.07) / 0.07), x = 0.07 + 0.07 * k;
+        return c - glm::dvec3(x, 0.125, 0.0275);
+    }));
+    const std::vector<Quad> shelf = boxQuads({0.0f, 0.36f, 0.15f}, {0.2f, 0.375f, 0.45f}, true);
+    scene.meshes.push_back(quadMesh("shelf", material, shelf, awayFrom(centreOfAll(shelf))));
+}
+
 } // namespace
 
 std::vector<std::string> builtinSceneNames()
 {
-    return {"cornell-area", "cornell-spot", "cornell-point", "cornell-point-ceiling"};
+    return {"cornell-area", "cornell-spot", "cornell-point", "cornell-point-ceiling", "cornell-slats"};
 }
 
 Scene makeCornell(std::string_view variant)
@@ -140,7 +182,7 @@ Scene makeCornell(std::string_view variant)
     if (std::find(names.begin(), names.end(), variant) == names.end())
         throw SceneError(
             std::string(variant) +
-            ": not a Cornell box variant (cornell-area, cornell-spot, cornell-point, cornell-point-ceiling)");
+            ": not a Cornell box variant (cornell-area, cornell-spot, cornell-point, cornell-point-ceiling, cornell-slats)");
 
     Scene scene;
     scene.name = std::string(variant);
@@ -165,8 +207,9 @@ Scene makeCornell(std::string_view variant)
         scene.materials.push_back(emitter);
         scene.meshes.push_back(quadMesh("light", std::uint32_t(scene.materials.size() - 1), {kLightQuad},
                                         [](const glm::dvec3&) { return glm::dvec3(0.0, -1.0, 0.0); }));
-    } else if (variant == "cornell-spot") {
+    } else if (variant == "cornell-spot" || variant == "cornell-slats") {
         scene.lights.push_back(punctual("spot", LightType::Spot, kSpotPosition));
+        if (variant == "cornell-slats") addSlatsAndShelf(scene, white);
     } else if (variant == "cornell-point") {
         scene.lights.push_back(punctual("point", LightType::Point, kPointPosition));
     } else { // cornell-point-ceiling

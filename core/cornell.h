@@ -10,8 +10,10 @@
 
 namespace bounce::core {
 
-// "cornell-area", "cornell-spot", "cornell-point", and the hard variant "cornell-point-ceiling" (the
-// point light 1 mm under the ceiling). Throws SceneError (gltf_io.h) for any other name.
+// "cornell-area", "cornell-spot", "cornell-point", the hard variant "cornell-point-ceiling" (the point
+// light 1 mm under the ceiling) and "cornell-slats" (cornell-spot with a row of slats and a shelf: more
+// depth complexity; the project's own, not cornell-box.md's). Throws SceneError (gltf_io.h) for any
+// other name.
 Scene makeCornell(std::string_view variant);
 
 // The names makeCornell accepts, canonical variants first.

@@ -50,6 +50,8 @@ TEST(Cornell, TriangleCounts)
     EXPECT_EQ(makeCornell("cornell-area").triangleCount(), 2u * (5 + 5 + 5) + 2);
     for (const char* v : {"cornell-spot", "cornell-point", "cornell-point-ceiling"})
         EXPECT_EQ(makeCornell(v).triangleCount(), 30u) << v;
+    // Seven open-bottomed slats (5 quads) and a closed shelf (6 quads) on top of cornell-spot's 30.
+    EXPECT_EQ(makeCornell("cornell-slats").triangleCount(), 30u + 2u * (7 * 5 + 6));
 }
 
 TEST(Cornell, AllVariantsAreValid)
@@ -228,7 +230,7 @@ TEST(Cornell, UnknownVariantThrows) { EXPECT_THROW(makeCornell("cornell-banana")
 
 TEST(SceneLoading, BuiltinNamesAndErrors)
 {
-    EXPECT_EQ(builtinSceneNames().size(), 4u);
+    EXPECT_EQ(builtinSceneNames().size(), 5u);
     EXPECT_EQ(loadScene("cornell-spot").contentHash(), makeCornell("cornell-spot").contentHash());
     try {
         loadScene("no-such-scene");
