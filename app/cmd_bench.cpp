@@ -39,7 +39,9 @@ const char* kUsage =
     "A sweep is the cartesian product of its lists. A run may also name \"against\": {\"technique\": T,\n"
     "\"set\": {...}} (relative RMSE of the indirect light against it, e.g. full-resolution gathering) and\n"
     "\"temporalFrames\": N (the light moves along a fixed circle; mean frame-to-frame difference of the\n"
-    "indirect light). Timings are only comparable within one run.\n";
+    "indirect light). A run may override \"size\", \"warmup\" and \"frames\" and restrict \"scenes\". The top-level \"compareTo\": [paths...]\n"
+    "adds references beyond the technique's own and `full` (e.g. \"onebounce\"). Timings are only comparable\n"
+    "within one run.\n";
 
 struct Setting {
     std::string technique;
@@ -49,6 +51,10 @@ struct Setting {
     std::vector<std::string> baselineSets;
     // Optional: frames of a moving light for the temporal-coherence figure (0: none).
     int temporalFrames = 0;
+    // Optional: this run's own image size (0: the config's) and scenes (empty: all of the config's).
+    int width = 0, height = 0;
+    std::vector<std::string> scenes;
+    int warmup = -1, frames = -1; // -1: the config's
 };
 
 std::string numberText(const nlohmann::json& v)
@@ -97,8 +103,14 @@ std::vector<Setting> expand(const nlohmann::json& runs)
         }
         const int temporal = run.value("temporalFrames", 0);
         if (temporal < 0 || temporal == 1) throw UsageError("bench config: temporalFrames must be 0 or >= 2");
+        int width = 0, height = 0;
+        if (run.contains("size")) parseSize(run["size"].get<std::string>(), width, height);
+        const auto scenes = run.value("scenes", std::vector<std::string>{});
+        const int warmup = run.value("warmup", -1), frames = run.value("frames", -1);
+        if (warmup < -1 || frames == 0 || frames < -1) throw UsageError("bench config: a run's warmup >= 0 and frames >= 1");
         for (const auto& c : combos)
-            out.push_back({run["technique"].get<std::string>(), c, baseline, baselineSets, temporal});
+            out.push_back({run["technique"].get<std::string>(), c, baseline, baselineSets, temporal, width, height, scenes,
+                           warmup, frames});
     }
     return out;
 }
@@ -172,6 +184,11 @@ int cmdBench(const Args& args)
     if (warmup < 0 || frames < 1) throw UsageError("bench config: warmup >= 0 and frames >= 1");
     const std::vector<Setting> settings = expand(config.value("runs", nlohmann::json::array()));
     const auto sceneNames = config.value("scenes", std::vector<std::string>{"cornell-spot"});
+    const auto compareTo = config.value("compareTo", std::vector<std::string>{});
+    for (const Setting& s : settings)
+        for (const std::string& n : s.scenes)
+            if (std::find(sceneNames.begin(), sceneNames.end(), n) == sceneNames.end())
+                throw UsageError("bench config: a run names scene '" + n + "', which is not in \"scenes\"");
     // Check every technique and parameter before the first (long) render.
     for (const Setting& s : settings) {
         const gl::TechniqueInfo* info = nullptr;
@@ -195,19 +212,31 @@ int cmdBench(const Args& args)
 
     nlohmann::json results = nlohmann::json::array();
     std::ostringstream csv;
-    csv << "scene,technique,params,light_paths,total_ms,rel_rmse_own,rel_rmse_full,rmse_own,ssim_own,baseline,"
-           "rel_rmse_baseline,flicker,passes\n";
-    core::Progress progress("bench", double(scenes.size() * settings.size()), "renders");
+    csv << "scene,technique,params,size,light_paths,total_ms,rel_rmse_own,rel_rmse_full,rmse_own,ssim_own,baseline,"
+           "rel_rmse_baseline,flicker,passes";
+    for (const std::string& p : compareTo) csv << ",rel_rmse_" << p;
+    csv << "\n";
+    const auto runsOn = [](const Setting& s, const std::string& scene) {
+        return s.scenes.empty() || std::find(s.scenes.begin(), s.scenes.end(), scene) != s.scenes.end();
+    };
+    std::size_t renders = 0;
+    for (const auto& n : sceneNames)
+        for (const Setting& s : settings) renders += runsOn(s, n);
+    core::Progress progress("bench", double(renders), "renders");
     for (std::size_t si = 0; si < scenes.size(); ++si) {
         const core::Scene& scene = scenes[si];
-        std::map<std::string, core::Image> refs; // light paths -> reference image (cached on disk too)
+        // Reference images (cached on disk too) and baseline renders, by light paths or technique + size.
+        std::map<std::string, core::Image> refs, baselines;
         for (const Setting& s : settings) {
+            if (!runsOn(s, sceneNames[si])) continue;
+            const int w = s.width > 0 ? s.width : width, h = s.height > 0 ? s.height : height;
+            const std::string sizeText = std::to_string(w) + "x" + std::to_string(h);
             const gl::TechniqueInfo& info = gl::findTechnique(s.technique);
             gl::ParamValues f(gl::frameParams()), t(info.params);
             applySets(s.sets, info, f, t);
-            gl::Renderer r(scene, s.technique, f, t, width, height);
-            for (int i = 0; i < warmup; ++i) r.renderFrame(false);
-            for (int i = 0; i < frames; ++i) r.renderFrame(true);
+            gl::Renderer r(scene, s.technique, f, t, w, h);
+            for (int i = 0; i < (s.warmup >= 0 ? s.warmup : warmup); ++i) r.renderFrame(false);
+            for (int i = 0; i < (s.frames > 0 ? s.frames : frames); ++i) r.renderFrame(true);
             const core::Image image = r.image();
             nlohmann::json rec = runRecord(context->info(), sceneNames[si], r);
             rec["settings"] = joined(s.sets, " ");
@@ -219,9 +248,12 @@ int cmdBench(const Args& args)
                 passText += buf;
             }
             double relOwn = NAN, relFull = NAN, rmseOwn = NAN, ssimOwn = NAN;
-            for (const std::string paths : {info.lightPaths, std::string("full")}) {
-                if (!refs.count(paths)) refs[paths] = referenceImage(scene, sceneNames[si], paths, width, height, refSpec);
-                const core::ImageMetrics m = core::compareImages(image, refs[paths]);
+            std::vector<std::string> against = {info.lightPaths, "full"};
+            against.insert(against.end(), compareTo.begin(), compareTo.end());
+            for (const std::string& paths : against) {
+                const std::string key = paths + "@" + sizeText;
+                if (!refs.count(key)) refs[key] = referenceImage(scene, sceneNames[si], paths, w, h, refSpec);
+                const core::ImageMetrics m = core::compareImages(image, refs[key]);
                 rec["error"][paths] = {{"rmse", m.rmse}, {"relativeRmse", m.relativeRmse}, {"relativeMse", m.relativeMse},
                                        {"mae", m.mae}, {"ssim", m.ssim}, {"maxError", m.maxError}};
                 if (paths == info.lightPaths) { relOwn = m.relativeRmse; rmseOwn = m.rmse; ssimOwn = m.ssim; }
@@ -232,10 +264,14 @@ int cmdBench(const Args& args)
                 const gl::TechniqueInfo& binfo = gl::findTechnique(s.baseline);
                 gl::ParamValues bf(gl::frameParams()), bt(binfo.params);
                 applySets(s.baselineSets, binfo, bf, bt);
-                gl::Renderer b(scene, s.baseline, bf, bt, width, height);
-                b.renderFrame(false);
+                const std::string key = s.baseline + " " + joined(s.baselineSets, " ") + "@" + sizeText;
+                if (!baselines.count(key)) { // e.g. rsm-full at 1024^2: minutes per frame, rendered once per sweep
+                    gl::Renderer b(scene, s.baseline, bf, bt, w, h);
+                    b.renderFrame(false);
+                    baselines[key] = b.frame().read(b.frame().indirect());
+                }
                 // Indirect light only: the quantity the two gathers compute differently.
-                relBaseline = core::relativeRmse(r.frame().read(r.frame().indirect()), b.frame().read(b.frame().indirect()));
+                relBaseline = core::relativeRmse(r.frame().read(r.frame().indirect()), baselines[key]);
                 rec["baseline"] = {{"technique", s.baseline}, {"settings", joined(s.baselineSets, " ")},
                                    {"relativeRmseIndirect", relBaseline}};
             }
@@ -243,11 +279,14 @@ int cmdBench(const Args& args)
                 flicker = temporalFlicker(scene, r, s.temporalFrames);
                 rec["temporal"] = {{"frames", s.temporalFrames}, {"meanFrameDifference", flicker}};
             }
+            rec["size"] = sizeText;
             results.push_back(rec);
             csv << csvField(sceneNames[si]) << "," << s.technique << "," << csvField(joined(s.sets, " ")) << ","
-                << info.lightPaths << "," << rec["totalMs"].get<double>() << "," << relOwn << "," << relFull << ","
+                << sizeText << "," << info.lightPaths << "," << rec["totalMs"].get<double>() << "," << relOwn << "," << relFull << ","
                 << rmseOwn << "," << ssimOwn << "," << csvField(s.baseline.empty() ? "" : s.baseline + " " + joined(s.baselineSets, " "))
-                << "," << relBaseline << "," << flicker << "," << csvField(passText) << "\n";
+                << "," << relBaseline << "," << flicker << "," << csvField(passText);
+            for (const std::string& p : compareTo) csv << "," << rec["error"][p]["relativeRmse"].get<double>();
+            csv << "\n";
             progress.add(1.0);
         }
     }
@@ -259,12 +298,14 @@ int cmdBench(const Args& args)
     // report.md: one table per scene, then the per-pass breakdown like the papers' tables.
     std::ostringstream md;
     md << "# Bounce benchmark\n\nGL renderer: " << context->info().renderer << " (" << context->info().platform
-       << "). " << width << "x" << height << ", " << warmup << " warm-up + " << frames
+       << "). " << width << "x" << height << " unless a row says otherwise, " << warmup << " warm-up + " << frames
        << " timed frames (median GPU ms). Timings compare only within this run.\n\n";
     for (const auto& sceneName : sceneNames) {
-        md << "## " << sceneName
-           << "\n\n| technique | parameters | light paths | ms | rel. RMSE (own) | rel. RMSE (full) | SSIM (own) | "
-              "rel. RMSE vs baseline (indirect) | flicker |\n|---|---|---|---:|---:|---:|---:|---|---:|\n";
+        md << "## " << sceneName << "\n\n| technique | parameters | size | light paths | ms | rel. RMSE (own) | rel. RMSE (full) |";
+        for (const std::string& p : compareTo) md << " rel. RMSE (" << p << ") |";
+        md << " SSIM (own) | rel. RMSE vs baseline (indirect) | flicker |\n|---|---|---|---|---:|---:|---:|";
+        for (std::size_t i = 0; i < compareTo.size(); ++i) md << "---:|";
+        md << "---:|---|---:|\n";
         for (const auto& rec : results) {
             if (rec["scene"] != sceneName) continue;
             const std::string lp = rec["lightPaths"];
@@ -280,11 +321,17 @@ int cmdBench(const Args& args)
                 std::snprintf(buf, sizeof buf, "%.4f", rec["temporal"]["meanFrameDifference"].get<double>());
                 flicker = buf;
             }
-            std::snprintf(buf, sizeof buf, "| %s | %s | %s | %.3f | %.4f | %.4f | %.4f | %s | %s |\n",
+            std::snprintf(buf, sizeof buf, "| %s | %s | %s | %s | %.3f | %.4f | %.4f |",
                           rec["technique"].get<std::string>().c_str(), rec["settings"].get<std::string>().c_str(),
-                          lp.c_str(), rec["totalMs"].get<double>(), rec["error"][lp]["relativeRmse"].get<double>(),
-                          rec["error"]["full"]["relativeRmse"].get<double>(), rec["error"][lp]["ssim"].get<double>(),
-                          baseline.c_str(), flicker.c_str());
+                          rec["size"].get<std::string>().c_str(), lp.c_str(), rec["totalMs"].get<double>(),
+                          rec["error"][lp]["relativeRmse"].get<double>(), rec["error"]["full"]["relativeRmse"].get<double>());
+            md << buf;
+            for (const std::string& p : compareTo) {
+                std::snprintf(buf, sizeof buf, " %.4f |", rec["error"][p]["relativeRmse"].get<double>());
+                md << buf;
+            }
+            std::snprintf(buf, sizeof buf, " %.4f | %s | %s |\n", rec["error"][lp]["ssim"].get<double>(), baseline.c_str(),
+                          flicker.c_str());
             md << buf;
         }
         md << "\n### per-pass GPU ms\n\n";
