@@ -136,26 +136,8 @@ int cmdReference(const Args& args)
     std::printf("written:      %s\n", out.string().c_str());
 
     if (o.has("json")) {
-        nlohmann::json j;
+        nlohmann::json j = ref::runRecord(settings, r);
         j["scene"] = o.get("scene");
-        j["paths"] = ref::lightPathsName(settings.paths);
-        j["width"] = settings.width;
-        j["height"] = settings.height;
-        j["spp"] = r.spp;
-        j["targetSpp"] = settings.spp;
-        j["targetNoise"] = settings.targetNoise;
-        if (std::isfinite(r.relativeNoise))
-            j["relativeNoise"] = r.relativeNoise;
-        else
-            j["relativeNoise"] = nullptr;
-        j["reachedTarget"] = r.reachedTarget;
-        j["seed"] = settings.seed;
-        j["threads"] = settings.threads;
-        j["maxDepth"] = settings.maxDepth;
-        j["seconds"] = r.seconds;
-        j["rays"] = r.rays;
-        j["raysPerSecond"] = r.raysPerSecond();
-        j["nonFiniteSamples"] = r.nonFiniteSamples;
         j["fromCache"] = r.fromCache;
         j["image"] = out.string();
         const std::filesystem::path json = o.get("json");

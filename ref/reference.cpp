@@ -78,6 +78,30 @@ std::vector<std::string> lightPathsNames()
     return names;
 }
 
+nlohmann::json runRecord(const RenderSettings& settings, const RenderResult& r)
+{
+    nlohmann::json j;
+    j["paths"] = lightPathsName(settings.paths);
+    j["width"] = settings.width;
+    j["height"] = settings.height;
+    j["spp"] = r.spp;
+    j["targetSpp"] = settings.spp;
+    j["targetNoise"] = settings.targetNoise;
+    if (std::isfinite(r.relativeNoise))
+        j["relativeNoise"] = r.relativeNoise;
+    else
+        j["relativeNoise"] = nullptr; // 1 spp: no variance estimate
+    j["reachedTarget"] = r.reachedTarget;
+    j["seed"] = settings.seed;
+    j["threads"] = settings.threads;
+    j["maxDepth"] = settings.maxDepth;
+    j["seconds"] = r.seconds;
+    j["rays"] = r.rays;
+    j["raysPerSecond"] = r.raysPerSecond();
+    j["nonFiniteSamples"] = r.nonFiniteSamples;
+    return j;
+}
+
 std::string defaultCacheDir()
 {
     if (const char* c = std::getenv("BOUNCE_CACHE"); c && *c) return c;
@@ -147,27 +171,9 @@ RenderResult cachedReference(const core::Scene& scene, const core::Camera& camer
     if (!cacheable) return r;
     fs::create_directories(dir);
     core::writeExr(exr.string(), r.image);
-    nlohmann::json j;
+    nlohmann::json j = runRecord(settings, r);
     j["key"] = key;
     j["scene"] = scene.name;
-    j["paths"] = lightPathsName(settings.paths);
-    j["width"] = settings.width;
-    j["height"] = settings.height;
-    j["spp"] = r.spp;
-    j["targetSpp"] = settings.spp;
-    j["targetNoise"] = settings.targetNoise;
-    if (std::isfinite(r.relativeNoise))
-        j["relativeNoise"] = r.relativeNoise;
-    else
-        j["relativeNoise"] = nullptr;
-    j["reachedTarget"] = r.reachedTarget;
-    j["seed"] = settings.seed;
-    j["maxDepth"] = settings.maxDepth;
-    j["seconds"] = r.seconds;
-    j["rays"] = r.rays;
-    j["raysPerSecond"] = r.raysPerSecond();
-    j["threads"] = settings.threads;
-    j["nonFiniteSamples"] = r.nonFiniteSamples;
     j["estimatorVersion"] = kEstimatorVersion;
     core::writeFileAtomic(sidecar.string(), j.dump(2) + "\n");
     return r;

@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "core/image.h"
 #include "core/scene.h"
 
@@ -66,6 +68,10 @@ struct RenderResult {
 
 // Throws std::invalid_argument for a bad setting (no stopping rule, sizes < 1...) or an invalid scene.
 RenderResult render(const core::Scene& scene, const core::Camera& camera, const RenderSettings& settings);
+
+// A run's record as JSON: light paths, size, spp and noise (target and reached), seed, threads, max
+// depth, seconds, rays and rays/s. The cache's sidecar and `bounce reference --json` add their own keys.
+nlohmann::json runRecord(const RenderSettings& settings, const RenderResult& result);
 
 // The default cache folder: $BOUNCE_CACHE if set, else $XDG_CACHE_HOME/bounce/references, else
 // $HOME/.cache/bounce/references, else ./.bounce-cache/references.

@@ -17,8 +17,9 @@ struct GpuShadowView {
     glm::vec4 texelWorld;
 };
 
-// Near and far planes for a light at `origin`: everything in the scene fits.
-void nearFar(const core::Bounds& b, const glm::vec3& origin, float& near, float& far)
+} // namespace
+
+void lightNearFar(const core::Bounds& b, const glm::vec3& origin, float& near, float& far)
 {
     float maxDist = 0.0f;
     for (int i = 0; i < 8; ++i) {
@@ -29,9 +30,7 @@ void nearFar(const core::Bounds& b, const glm::vec3& origin, float& near, float&
     near = std::max(far * 1e-4f, 1e-5f);
 }
 
-glm::vec3 anyUp(const glm::vec3& d) { return std::abs(d.y) < 0.99f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0); }
-
-} // namespace
+glm::vec3 lightUpVector(const glm::vec3& d) { return std::abs(d.y) < 0.99f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0); }
 
 std::vector<ShadowView> cubeViews(const glm::vec3& origin, float near, float far, int size)
 {
@@ -69,10 +68,10 @@ void ShadowMaps::buildViews(const GpuScene& scene)
         g.shadow = glm::ivec4(int(views_.size()), 1, -1, 0);
         float near = 0.0f, far = 0.0f;
         if (s.type == kLightSpot && s.outerConeRad <= glm::radians(60.0f)) {
-            nearFar(b, s.position, near, far);
+            lightNearFar(b, s.position, near, far);
             ShadowView v;
             const float fov = std::min(2.0f * s.outerConeRad * 1.02f, glm::radians(170.0f));
-            v.view = glm::lookAt(s.position, s.position + s.direction, anyUp(s.direction));
+            v.view = glm::lookAt(s.position, s.position + s.direction, lightUpVector(s.direction));
             v.proj = glm::perspective(fov, 1.0f, near, far);
             v.origin = s.position;
             v.far = far;
@@ -82,7 +81,7 @@ void ShadowMaps::buildViews(const GpuScene& scene)
             const glm::vec3 c = b.centre();
             const float r = std::max(0.5f * glm::length(b.extent()), 1e-3f);
             ShadowView v;
-            v.view = glm::lookAt(c - s.direction * (2.0f * r), c, anyUp(s.direction));
+            v.view = glm::lookAt(c - s.direction * (2.0f * r), c, lightUpVector(s.direction));
             v.proj = glm::ortho(-r, r, -r, r, 0.0f, 4.0f * r);
             v.origin = c - s.direction * (2.0f * r);
             v.far = 0.0f;
@@ -98,13 +97,13 @@ void ShadowMaps::buildViews(const GpuScene& scene)
                 g.shadow.y = 6;
             } else {
                 groupLayer.emplace_back(s.group, int(views_.size()));
-                nearFar(b, s.position, near, far);
+                lightNearFar(b, s.position, near, far);
                 const auto cube = cubeViews(s.position, near, far, size_);
                 views_.insert(views_.end(), cube.begin(), cube.end());
                 g.shadow.y = 6;
             }
         } else { // point light, or a spot too wide for one perspective view
-            nearFar(b, s.position, near, far);
+            lightNearFar(b, s.position, near, far);
             const auto cube = cubeViews(s.position, near, far, size_);
             views_.insert(views_.end(), cube.begin(), cube.end());
             g.shadow.y = 6;

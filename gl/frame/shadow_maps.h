@@ -53,6 +53,12 @@ private:
 };
 
 // The six cube-face views around `origin`, in glsl/common/scene.glsl's cubeFace() order.
+// Near and far planes that keep the whole scene in view of a light at `origin`; the near plane stays
+// small enough for a light 1 mm from a surface. Shared by the shadow maps and the RSMs.
+void lightNearFar(const core::Bounds& b, const glm::vec3& origin, float& near, float& far);
+// An up vector for a light looking along d (any direction not parallel to it).
+glm::vec3 lightUpVector(const glm::vec3& d);
+
 std::vector<ShadowView> cubeViews(const glm::vec3& origin, float near, float far, int size);
 
 } // namespace bounce::gl

@@ -21,21 +21,6 @@ struct GpuRsmView {
     glm::vec4 directionTexel;
 };
 
-// Near and far planes that keep the whole scene in view of a light at `origin` (as the shadow maps do);
-// the near plane is small enough for a light 1 mm from a surface.
-void nearFar(const core::Bounds& b, const glm::vec3& origin, float& near, float& far)
-{
-    float maxDist = 0.0f;
-    for (int i = 0; i < 8; ++i) {
-        const glm::vec3 c(i & 1 ? b.hi.x : b.lo.x, i & 2 ? b.hi.y : b.lo.y, i & 4 ? b.hi.z : b.lo.z);
-        maxDist = std::max(maxDist, glm::length(c - origin));
-    }
-    far = std::max(maxDist * 1.01f, 1e-3f);
-    near = std::max(far * 1e-4f, 1e-5f);
-}
-
-glm::vec3 anyUp(const glm::vec3& d) { return std::abs(d.y) < 0.99f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0); }
-
 // The integral of the solid angle over [0, x] x [0, y] of the image plane at distance 1.
 double cornerSolidAngle(double x, double y) { return std::atan2(x * y, std::sqrt(1.0 + x * x + y * y)); }
 
@@ -89,9 +74,9 @@ void RsmPass::buildViews(const Frame& frame)
         v.light = i;
         if (s.type == kLightSpot && s.outerConeRad <= glm::radians(60.0f)) {
             // One perspective view whose field of view is the spot's full cone (90 deg for cornell-spot).
-            nearFar(b, s.position, near, far);
+            lightNearFar(b, s.position, near, far);
             v.fovRad = 2.0f * s.outerConeRad;
-            v.view = glm::lookAt(s.position, s.position + s.direction, anyUp(s.direction));
+            v.view = glm::lookAt(s.position, s.position + s.direction, lightUpVector(s.direction));
             v.proj = glm::perspective(v.fovRad, 1.0f, near, far);
             v.origin = s.position;
             v.direction = s.direction;
@@ -102,7 +87,7 @@ void RsmPass::buildViews(const Frame& frame)
             v.orthographic = true;
             v.origin = c - s.direction * (2.0f * r);
             v.direction = s.direction;
-            v.view = glm::lookAt(v.origin, c, anyUp(s.direction));
+            v.view = glm::lookAt(v.origin, c, lightUpVector(s.direction));
             v.proj = glm::ortho(-r, r, -r, r, 0.0f, 4.0f * r);
             v.orthoTexelArea = (2.0f * r / float(size)) * (2.0f * r / float(size));
             views_.push_back(v);
@@ -117,7 +102,7 @@ void RsmPass::buildViews(const Frame& frame)
                        lights[i + v.areaCount].group == s.group)
                     ++v.areaCount;
             }
-            nearFar(b, s.position, near, far);
+            lightNearFar(b, s.position, near, far);
             for (const ShadowView& face : cubeViews(s.position, near, far, size)) {
                 RsmView f = v;
                 f.view = face.view;
