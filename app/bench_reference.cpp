@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "app/commands.h"
+#include "app/options.h"
 #include "ref/reference.h"
 
 namespace bounce::app {
@@ -16,6 +17,7 @@ ReferenceSpec referenceSpecFrom(const nlohmann::json& r, const std::string& cach
     s.noise = r.value("noise", 0.0);
     if (s.spp < 0 || s.noise < 0.0 || (s.spp == 0 && s.noise <= 0.0))
         throw UsageError("bench config: \"reference\" needs spp > 0 or noise > 0");
+    if (r.contains("size")) parseSize(r["size"].get<std::string>(), s.width, s.height);
     return s;
 }
 

@@ -34,14 +34,15 @@ const char* kUsage =
     "light paths and `full`), and write DIR/results.csv, DIR/results.json, DIR/report.md and\n"
     "DIR/speed_error.png (time against relative RMSE, log scales, Pareto front marked).\n"
     "\n"
-    "Config: {\"size\": \"WxH\", \"warmup\": N, \"frames\": N, \"reference\": {\"spp\": N} | {\"noise\": X},\n"
+    "Config: {\"size\": \"WxH\", \"warmup\": N, \"frames\": N, \"reference\": {\"spp\": N} | {\"noise\": X} [+ \"size\"],\n"
     "         \"scenes\": [...], \"runs\": [{\"technique\": T, \"set\": {k: v}, \"sweep\": {k: [v...]}}]}\n"
     "A sweep is the cartesian product of its lists. A run may also name \"against\": {\"technique\": T,\n"
     "\"set\": {...}} (relative RMSE of the indirect light against it, e.g. full-resolution gathering) and\n"
     "\"temporalFrames\": N (the light moves along a fixed circle; mean frame-to-frame difference of the\n"
-    "indirect light). A run may override \"size\", \"warmup\" and \"frames\" and restrict \"scenes\". The top-level \"compareTo\": [paths...]\n"
-    "adds references beyond the technique's own and `full` (e.g. \"onebounce\"). Timings are only comparable\n"
-    "within one run.\n";
+    "indirect light). A run may override \"size\", \"warmup\" and \"frames\" and restrict \"scenes\".\n"
+    "The top-level \"compareTo\": [paths...] adds references beyond the technique's own and `full` (e.g.\n"
+    "\"onebounce\"). A reference \"size\" that divides every run's size compares box-downsampled images\n"
+    "against references of that size: less noise for the same cost. Timings compare only within one run.\n";
 
 struct Setting {
     std::string technique;
@@ -204,6 +205,13 @@ int cmdBench(const Args& args)
     std::vector<core::Scene> scenes;
     for (const auto& n : sceneNames) scenes.push_back(loadSceneForCli(n));
     const ReferenceSpec refSpec = referenceSpecFrom(config.value("reference", nlohmann::json::object()), o.get("cache"));
+    for (const Setting& s : settings) {
+        const int w = s.width > 0 ? s.width : width, h = s.height > 0 ? s.height : height;
+        if ((refSpec.width > 0 && w % refSpec.width != 0) || (refSpec.height > 0 && h % refSpec.height != 0))
+            throw UsageError("bench config: the reference size " + std::to_string(refSpec.width) + "x" +
+                             std::to_string(refSpec.height) + " does not divide the run size " + std::to_string(w) + "x" +
+                             std::to_string(h) + " (" + s.technique + ")");
+    }
 
     const fs::path out = o.get("out");
     fs::create_directories(out);
@@ -250,10 +258,18 @@ int cmdBench(const Args& args)
             double relOwn = NAN, relFull = NAN, rmseOwn = NAN, ssimOwn = NAN;
             std::vector<std::string> against = {info.lightPaths, "full"};
             against.insert(against.end(), compareTo.begin(), compareTo.end());
+            // References at their own size (when the config gives one): the image is box-downsampled to it.
+            const int rw = refSpec.width > 0 ? refSpec.width : w, rh = refSpec.height > 0 ? refSpec.height : h;
+            core::Image compared;
+            try {
+                compared = core::boxDownsample(image, rw, rh);
+            } catch (const std::invalid_argument& e) {
+                throw UsageError(std::string("bench config: the reference size must divide every run's size: ") + e.what());
+            }
             for (const std::string& paths : against) {
-                const std::string key = paths + "@" + sizeText;
-                if (!refs.count(key)) refs[key] = referenceImage(scene, sceneNames[si], paths, w, h, refSpec);
-                const core::ImageMetrics m = core::compareImages(image, refs[key]);
+                const std::string key = paths + "@" + std::to_string(rw) + "x" + std::to_string(rh);
+                if (!refs.count(key)) refs[key] = referenceImage(scene, sceneNames[si], paths, rw, rh, refSpec);
+                const core::ImageMetrics m = core::compareImages(compared, refs[key]);
                 rec["error"][paths] = {{"rmse", m.rmse}, {"relativeRmse", m.relativeRmse}, {"relativeMse", m.relativeMse},
                                        {"mae", m.mae}, {"ssim", m.ssim}, {"maxError", m.maxError}};
                 if (paths == info.lightPaths) { relOwn = m.relativeRmse; rmseOwn = m.rmse; ssimOwn = m.ssim; }

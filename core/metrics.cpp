@@ -4,6 +4,8 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "core/brdf.h"
@@ -207,6 +209,23 @@ double ssim(const Image& a, const Image& reference)
 {
     checkSizes(a, reference);
     return ssimChecked(a, reference);
+}
+
+Image boxDownsample(const Image& image, int width, int height)
+{
+    if (width < 1 || height < 1 || image.width % width != 0 || image.height % height != 0)
+        throw std::invalid_argument("box downsampling: " + std::to_string(width) + "x" + std::to_string(height) +
+                                    " does not divide " + std::to_string(image.width) + "x" + std::to_string(image.height));
+    const int fx = image.width / width, fy = image.height / height;
+    Image out(width, height);
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            glm::dvec3 sum(0.0);
+            for (int j = 0; j < fy; ++j)
+                for (int i = 0; i < fx; ++i) sum += glm::dvec3(image.at(x * fx + i, y * fy + j));
+            out.set(x, y, glm::vec3(sum / double(fx * fy)));
+        }
+    return out;
 }
 
 Image errorHeatmap(const Image& a, const Image& reference)

@@ -63,6 +63,12 @@ double meanAbsoluteError(const Image& a, const Image& reference);
 double maxError(const Image& a, const Image& reference);
 double ssim(const Image& a, const Image& reference);
 
+// The box-filtered average of `image` over blocks of (image.width / width) x (image.height / height)
+// pixels: what a renderer with width x height box-filtered pixels sees. Throws std::invalid_argument
+// unless width and height divide the image's size. Comparing at a coarser size lets a reference of the
+// same cost carry less noise per pixel (bounce bench's "reference": {"size": ...}).
+Image boxDownsample(const Image& image, int width, int height);
+
 // Per-pixel relative error e = sum_c |a_c - r_c| / (sum_c r_c + eps), eps = 1% of the reference's mean
 // of sum_c r_c (1e-6 if that is 0, so black regions only light up where a is not black), on a colour
 // ramp linear in log10(e): black at or below 1e-4, blue at 1e-3 (0.1%), cyan at 10^-2.25, green at

@@ -186,4 +186,23 @@ TEST(Metrics, HeatmapColours)
     EXPECT_EQ(errorHeatmap(a, r).at(0, 0), glm::vec3(1.0f));
 }
 
+// Box downsampling averages whole blocks (a 4x2 image to 2x1: two 2x2 blocks) and refuses sizes that
+// do not divide the image.
+TEST(Metrics, BoxDownsampleAveragesBlocks)
+{
+    Image a(4, 2);
+    for (int y = 0; y < 2; ++y)
+        for (int x = 0; x < 4; ++x) a.set(x, y, glm::vec3(float(x + 4 * y), 1.0f, x < 2 ? 0.0f : 8.0f));
+    const Image d = boxDownsample(a, 2, 1);
+    ASSERT_EQ(d.width, 2);
+    ASSERT_EQ(d.height, 1);
+    EXPECT_FLOAT_EQ(d.at(0, 0).x, (0 + 1 + 4 + 5) / 4.0f);
+    EXPECT_FLOAT_EQ(d.at(1, 0).x, (2 + 3 + 6 + 7) / 4.0f);
+    EXPECT_FLOAT_EQ(d.at(1, 0).y, 1.0f);
+    EXPECT_FLOAT_EQ(d.at(1, 0).z, 8.0f);
+    EXPECT_EQ(boxDownsample(a, 4, 2).rgb, a.rgb);
+    EXPECT_THROW(boxDownsample(a, 3, 1), std::invalid_argument);
+    EXPECT_THROW(boxDownsample(a, 0, 1), std::invalid_argument);
+}
+
 } // namespace
