@@ -20,11 +20,6 @@ layout(rgba32f, binding = 0) uniform writeonly image2D indirectOut;
 
 vec4 illuminationAt(int level, ivec2 t) { return texelFetch(mrIllumination, levelOrigin[level] + t, 0); }
 
-struct PatchRanges {
-    vec2 depthRange;
-    vec3 normalMin, normalMax;
-};
-
 void main()
 {
     ivec2 px = ivec2(gl_GlobalInvocationID.xy);
