@@ -4,6 +4,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -83,6 +84,11 @@ TEST(Cli, BadInputExitsTwoAndWritesNothing)
         {"render --backend vulkan --out " + (d / "x.exr").string(), "egl"},
         {"render --out " + (d / "x.jpg").string(), ".exr or .png"},
         {"nosuchcommand", "unknown command"},
+        {"reference --scene cornell-spot --paths twobounce --spp 4" + out, "onebounce-novis"},
+        {"reference --scene cornell-spot --spp 0" + out, "--spp"},
+        {"reference --scene cornell-spot --noise 2 --out " + (d / "r.exr").string(), "--noise"},
+        {"compare " + (d / "none-a.exr").string() + " " + (d / "none-b.exr").string(), "none-a.exr"},
+        {"bench --config /nonexistent/bench.json --out " + (d / "bench").string(), "bench.json"},
     };
     for (const auto& c : cases) {
         const CliRun r = run(c.args);
@@ -117,6 +123,87 @@ TEST(Cli, RenderWritesExrPngAndJsonRecord)
     // No temporary files survive.
     for (const auto& e : fs::directory_iterator(d))
         EXPECT_EQ(e.path().string().find(".tmp"), std::string::npos) << e.path();
+}
+
+// `bounce reference`: the image and its record, rendered and then served from the cache.
+TEST(Cli, ReferenceWritesImageAndRecordThenHitsTheCache)
+{
+    const fs::path d = outDir("reference");
+    const std::string args = "reference --scene cornell-spot --paths direct --size 24x16 --spp 8 --threads 2 --cache-dir " +
+                             (d / "cache").string() + " --out " + (d / "ref.exr").string() + " --json " +
+                             (d / "ref.json").string();
+    const CliRun first = run(args);
+    ASSERT_EQ(first.status, 0) << first.output;
+    EXPECT_NE(first.output.find("rays/s"), std::string::npos) << first.output;
+    const bounce::core::Image img = bounce::core::readImage((d / "ref.exr").string());
+    EXPECT_EQ(img.width, 24);
+    EXPECT_EQ(img.height, 16);
+    std::ifstream in(d / "ref.json");
+    const nlohmann::json j = nlohmann::json::parse(in);
+    EXPECT_EQ(j["paths"], "direct");
+    EXPECT_EQ(j["spp"], 8);
+    EXPECT_FALSE(j["fromCache"].get<bool>());
+    EXPECT_GT(j["raysPerSecond"].get<double>(), 0.0);
+    const CliRun second = run(args);
+    ASSERT_EQ(second.status, 0) << second.output;
+    std::ifstream in2(d / "ref.json");
+    EXPECT_TRUE(nlohmann::json::parse(in2)["fromCache"].get<bool>()) << second.output;
+    const bounce::core::Image again = bounce::core::readImage((d / "ref.exr").string());
+    EXPECT_EQ(again.rgb, img.rgb) << "the cached image differs from the rendered one";
+}
+
+// `bounce compare`: figures for images of one size (zero for an image against itself, the closed form
+// for a constant offset), a clear refusal for images of different sizes.
+TEST(Cli, CompareReportsFiguresAndRefusesDifferentSizes)
+{
+    const fs::path d = outDir("compare");
+    bounce::core::Image a(8, 6), b(8, 6), c(6, 8);
+    for (float& v : a.rgb) v = 1.0f;
+    for (float& v : b.rgb) v = 1.5f;
+    bounce::core::writeImage((d / "a.exr").string(), a);
+    bounce::core::writeImage((d / "b.exr").string(), b);
+    bounce::core::writeImage((d / "c.exr").string(), c);
+    const CliRun same = run("compare " + (d / "a.exr").string() + " " + (d / "b.exr").string() + " --json " +
+                            (d / "ab.json").string() + " --heatmap " + (d / "ab.png").string());
+    ASSERT_EQ(same.status, 0) << same.output;
+    EXPECT_TRUE(fs::exists(d / "ab.png"));
+    std::ifstream in(d / "ab.json");
+    const nlohmann::json j = nlohmann::json::parse(in);
+    EXPECT_NEAR(j["rmse"].get<double>(), 0.5, 1e-6) << j.dump();
+    EXPECT_NEAR(j["relativeRmse"].get<double>(), 0.5 / 1.5, 1e-6) << j.dump();
+    const fs::path before = d / "ac.json";
+    const CliRun different = run("compare " + (d / "a.exr").string() + " " + (d / "c.exr").string() + " --json " +
+                                 before.string());
+    EXPECT_EQ(different.status, 2) << different.output;
+    EXPECT_NE(different.output.find("8x6"), std::string::npos) << different.output;
+    EXPECT_NE(different.output.find("6x8"), std::string::npos) << different.output;
+    EXPECT_FALSE(fs::exists(before)) << "a refused comparison wrote its record";
+}
+
+// `bounce bench` on a tiny config: the four files, one row per scene x run, errors against the
+// technique's own paths and `full`.
+TEST(Cli, BenchWritesTheFourFiles)
+{
+    const fs::path d = outDir("bench");
+    const fs::path config = d / "tiny.json";
+    std::ofstream(config) << R"({"size": "16x16", "warmup": 0, "frames": 1, "reference": {"spp": 4},
+                                "scenes": ["cornell-spot", "cornell-point"], "runs": [{"technique": "direct"}]})";
+    const CliRun r = run("bench --backend osmesa --config " + config.string() + " --out " + (d / "out").string() +
+                         " --cache " + (d / "cache").string());
+    ASSERT_EQ(r.status, 0) << r.output;
+    for (const char* f : {"results.csv", "results.json", "report.md"})
+        EXPECT_TRUE(fs::exists(d / "out" / f)) << f << "\n" << r.output;
+    if (std::system("/usr/bin/python3 -c 'import matplotlib' >/dev/null 2>&1") == 0) {
+        EXPECT_TRUE(fs::exists(d / "out" / "speed_error.png")) << r.output;
+    }
+    std::ifstream in(d / "out" / "results.csv");
+    std::string line;
+    int rows = 0;
+    while (std::getline(in, line)) rows += !line.empty();
+    EXPECT_GE(rows, 3) << "a header and one row per scene";
+    std::ifstream md(d / "out" / "report.md");
+    const std::string report((std::istreambuf_iterator<char>(md)), std::istreambuf_iterator<char>());
+    EXPECT_NE(report.find("cornell-point"), std::string::npos);
 }
 
 // A glTF file given by path renders like the built-in scene it was written from.
