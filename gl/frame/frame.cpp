@@ -4,12 +4,27 @@
 
 namespace bounce::gl {
 
+namespace {
+
+// The direct-light program for the kinds of light the scene has: a loop over a kind the scene lacks
+// still costs a masked pass through its body on a SIMD rasteriser (llvmpipe), the polygon form factor
+// of the emitting triangles most of all (glsl/common/lighting.glsl).
+Program directProgram(const GpuScene& scene)
+{
+    std::vector<Define> kinds;
+    if (scene.punctualLightCount() > 0) kinds.push_back({"PUNCTUAL_LIGHTS", "1"});
+    if (int(scene.lights().size()) > scene.punctualLightCount()) kinds.push_back({"AREA_LIGHTS", "1"});
+    return Program::graphics("direct", "frame/fullscreen.vert", "frame/direct.frag", kinds);
+}
+
+} // namespace
+
 Frame::Frame(const core::Scene& scene, const FrameSettings& settings)
     : scene_(scene), settings_(settings), camera_(scene.camera), gpu_(scene, settings.textureSize),
       shadows_(gpu_, settings.shadowMapSize), gbufferFbo_("gbuffer.fbo"), directFbo_("direct.fbo"),
       compositeFbo_("composite.fbo"), emptyVao_("fullscreen"),
       gbufferProgram_(Program::graphics("gbuffer", "frame/gbuffer.vert", "frame/gbuffer.frag")),
-      directProgram_(Program::graphics("direct", "frame/fullscreen.vert", "frame/direct.frag")),
+      directProgram_(directProgram(gpu_)),
       compositeProgram_(Program::graphics("composite", "frame/fullscreen.vert", "frame/composite.frag"))
 {
     shadows_.setPcf(settings.pcfLinear);
@@ -48,8 +63,10 @@ void Frame::setCamera(const core::Camera& camera) { camera_ = camera; }
 
 void Frame::setLights(const std::vector<core::Light>& lights)
 {
+    const int punctualBefore = gpu_.punctualLightCount();
     gpu_.setLights(lights);
     shadows_.update(gpu_);
+    if ((punctualBefore > 0) != (gpu_.punctualLightCount() > 0)) directProgram_ = directProgram(gpu_);
 }
 
 void Frame::resize(int width, int height)
@@ -118,6 +135,7 @@ void Frame::renderDirect(PassTimers& timers)
     bindGBuffer();
     bindSceneData();
     directProgram_.set("cameraPosition", camera_.position);
+    directProgram_.set("punctualLightCount", gpu_.punctualLightCount());
     directProgram_.set("lightCount", shadows_.lightCount());
     directProgram_.set("pcfRadius", settings_.pcfRadius);
     directProgram_.use();

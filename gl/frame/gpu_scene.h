@@ -56,9 +56,10 @@ public:
     std::size_t triangleCount() const { return indexCount_ / 3; }
     const core::Bounds& bounds() const { return bounds_; }
 
-    // Lights of the scene (punctual from core::Light, area from emissive triangles); the demo may move
-    // punctual lights, which rebuilds this list through setLights().
+    // Lights of the scene: the punctual ones (from core::Light) first, then one per emissive triangle;
+    // the demo may move punctual lights, which rebuilds this list through setLights().
     const std::vector<LightSource>& lights() const { return lights_; }
+    int punctualLightCount() const { return int(punctual_.size()); } // lights() [0, this) are punctual
     void setLights(const std::vector<core::Light>& punctual);
     const std::vector<core::Light>& punctualLights() const { return punctual_; }
 
