@@ -21,6 +21,7 @@
 #include "gl/technique/isr/hisr_technique.h"
 #include "gl/technique/isr/multires_gather.h"
 #include "gl/technique/isr/rsm_pass.h"
+#include "gl/technique/isr/vpl_gather.h"
 #include "gl/technique/isr/vpl_sample.h"
 #include "gl/technique/isr/vpl_tree.h"
 #include "tests/gl/gl_test_fixture.h"
@@ -144,7 +145,8 @@ void checkCoverage(int w, int h, const gl::MultiresSettings& settings, std::vect
     struct GpuVpl { glm::vec4 positionArea, normal, flux; };
     const std::vector<GpuVpl> vpls = {{{0.3f, 0.0f, 0.3f, 1e-3f}, {0, 1, 0, 0}, {0.01f, 0.01f, 0.01f, 0}},
                                       {{0.55f, 0.3f, 0.3f, 1e-3f}, {-1, 0, 0, 0}, {0.02f, 0.0f, 0.0f, 0}}};
-    gl::Buffer cache = gl::Buffer::fromVector("test.vpls", vpls);
+    gl::Buffer cache("test.vpls", gl::vplCacheBytes(int(vpls.size())));
+    cache.update(0, vpls.size() * sizeof(GpuVpl), vpls.data());
     gl::MultiresGather gather(frame, settings);
     gather.run(frame, cache, int(vpls.size()), timers);
     timers.endFrame(false);
@@ -242,7 +244,7 @@ TEST_F(IsrMultiresTest, ZeroThresholdsEqualCpuGather)
         rs.size = 32;
         gl::RsmPass rsm(rs);
         gl::VplSampler sampler;
-        gl::Buffer cache("test.cache", 64 * gl::VplSampler::kVplBytes);
+        gl::Buffer cache("test.cache", gl::vplCacheBytes(64));
         gl::MultiresSettings ms;
         ms.depthThreshold = 0.0f;
         ms.normalThreshold = 0.0f;

@@ -234,7 +234,8 @@ TEST_F(IsrRsmTest, SingleVplOverDiskMatchesDiskToPointIntegral)
     frame.renderGBuffer(timers);
     frame.clearIndirect();
     const GpuVpl vpl{{0.0f, float(h), 0.0f, float(area)}, {0.0f, -1.0f, 0.0f, 0.0f}, {flux, 0.0f}};
-    gl::Buffer cache("test.vpl", sizeof vpl, &vpl);
+    gl::Buffer cache("test.vpl", gl::vplCacheBytes(1));
+    cache.update(0, sizeof vpl, &vpl);
     gl::VplGather gather;
     gather.gather(frame, cache, 1, timers);
     timers.endFrame(false);
@@ -604,7 +605,8 @@ TEST_F(IsrRsmTest, VplsOnReceiverAndInCornersStayFinite)
         {{0.0f, 0.5488f, 0.5592f, area}, {0, -1, 0, 0}, flux},   // ceiling corner
         {{0.2f, 0.0f, 0.5592f, area}, {0, 1, 0, 0}, flux},       // floor along the back wall
     };
-    gl::Buffer cache("test.vpl", vpls.size() * sizeof(GpuVpl), vpls.data());
+    gl::Buffer cache("test.vpl", gl::vplCacheBytes(int(vpls.size())));
+    cache.update(0, vpls.size() * sizeof(GpuVpl), vpls.data());
     gl::VplGather gather;
     gather.gather(frame, cache, int(vpls.size()), timers);
     timers.endFrame(false);
@@ -614,7 +616,8 @@ TEST_F(IsrRsmTest, VplsOnReceiverAndInCornersStayFinite)
     EXPECT_GT(largest, 0.0f);
 
     // The receiver's own VPL alone: nothing at its own pixel (cos_j = 0 in its plane), finite elsewhere.
-    gl::Buffer own("test.vpl.own", sizeof(GpuVpl), vpls.data());
+    gl::Buffer own("test.vpl.own", gl::vplCacheBytes(1));
+    own.update(0, sizeof(GpuVpl), vpls.data());
     frame.clearIndirect();
     gather.gather(frame, own, 1, timers);
     timers.endFrame(false);

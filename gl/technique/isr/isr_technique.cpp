@@ -29,8 +29,7 @@ public:
     void render(Frame& frame, PassTimers& timers) override
     {
         rsm_.render(frame, timers);
-        const std::size_t needed = std::size_t(IsrCluster::capacity(rsm_, settings_.minLevel)) * VplSampler::kVplBytes;
-        if (!cache_ || cache_.bytes() < needed) cache_ = Buffer("vpl.cache", needed);
+        reserveVplCache(cache_, IsrCluster::capacity(rsm_, settings_.minLevel));
         count_ = cluster_.cluster(rsm_, cache_, settings_, timers);
         if (multires_) multires_->run(frame, cache_, count_, timers);
         else gather_->gather(frame, cache_, count_, timers);

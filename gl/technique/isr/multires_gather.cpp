@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "gl/gl.h"
+#include "gl/technique/isr/vpl_gather.h"
 
 namespace bounce::gl {
 
@@ -43,7 +44,7 @@ MultiresGather::MultiresGather(Frame& frame, const MultiresSettings& settings)
       counts_("multires.fragmentCounts", sizeof(unsigned) * kMaxLevels),
       reduce_(Program::compute("multires.minmax", "technique/isr/multires_minmax.comp")),
       stencilSetup_(Program::graphics("multires.stencil", "frame/fullscreen.vert", "technique/isr/multires_stencil.frag")),
-      cacheGather_(gatherProgram("multires.gather", "technique/isr/multires_gather.frag")),
+      cacheGather_(gatherProgram("multires.gather", "technique/isr/multires_gather.frag", vplBlockDefines())),
       upsample_(Program::compute("multires.upsample", "technique/isr/multires_upsample.comp"))
 {
     if (settings_.coarsestLevel < 0) throw std::invalid_argument("coarsestLevel must be at least 0");
@@ -175,8 +176,8 @@ void MultiresGather::gather(Frame& frame, Program& program, PassTimers& timers, 
     frame.bindGBuffer();
     bindPyramid();
     setCommonUniforms(program);
-    // VPLs written by compute passes must be visible to this pass's SSBO reads.
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    // VPLs and clusters written by compute passes must be visible to this pass's SSBO and uniform-block reads.
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_UNIFORM_BARRIER_BIT);
     for (int i = 0; i < draws; ++i) {
         if (setupDraw) setupDraw(program, i);
         program.use();
@@ -219,14 +220,9 @@ void MultiresGather::run(Frame& frame, const Buffer& vpls, int vplCount, PassTim
 {
     buildPyramid(frame, timers);
     markValidFragments(frame, timers);
-    vpls.bindBase(GL_SHADER_STORAGE_BUFFER, 8);
-    const int count = std::max(vplCount, 0);
-    const int perDraw = std::max(1, loopBudget());
-    const int draws = std::max(1, (count + perDraw - 1) / perDraw);
-    gather(frame, cacheGather_, timers, draws, [&](Program& p, int i) {
-        p.set("vplBegin", i * perDraw);
-        p.set("vplEnd", int(std::min<long long>(count, (long long)(i + 1) * perDraw)));
-    });
+    // One additive draw per uniform block of the cache (vpl_gather.h); one with no VPLs clears nothing.
+    gather(frame, cacheGather_, timers, std::max(vplBlockCount(vplCount), 1),
+           [&](Program& p, int block) { p.set("vplCount", bindVplBlock(vpls, block, vplCount)); });
     upsample(frame, timers);
 }
 

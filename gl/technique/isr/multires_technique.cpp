@@ -4,6 +4,7 @@
 
 #include "gl/technique/isr/multires_gather.h"
 #include "gl/technique/isr/rsm_pass.h"
+#include "gl/technique/isr/vpl_gather.h"
 #include "gl/technique/isr/vpl_sample.h"
 
 namespace bounce::gl {
@@ -21,8 +22,7 @@ public:
     {
         rsm_.render(frame, timers);
         const int side = VplSampler::sideFor(vpls_, rsm_.viewCount(), rsm_.size());
-        const std::size_t needed = std::size_t(side) * side * std::max(rsm_.viewCount(), 1) * VplSampler::kVplBytes;
-        if (!cache_ || cache_.bytes() < needed) cache_ = Buffer("vpl.cache", needed);
+        reserveVplCache(cache_, side * side * std::max(rsm_.viewCount(), 1));
         count_ = sampler_.sample(rsm_, cache_, side, timers);
         gather_.run(frame, cache_, count_, timers);
     }

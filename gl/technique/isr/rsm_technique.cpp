@@ -19,8 +19,7 @@ public:
     {
         rsm_.render(frame, timers);
         const int side = vpls_ < 0 ? rsm_.size() : VplSampler::sideFor(vpls_, rsm_.viewCount(), rsm_.size());
-        const std::size_t needed = std::size_t(side) * side * std::max(rsm_.viewCount(), 1) * VplSampler::kVplBytes;
-        if (!cache_ || cache_.bytes() < needed) cache_ = Buffer("vpl.cache", needed);
+        reserveVplCache(cache_, side * side * std::max(rsm_.viewCount(), 1));
         count_ = sampler_.sample(rsm_, cache_, side, timers);
         gather_.gather(frame, cache_, count_, timers);
     }

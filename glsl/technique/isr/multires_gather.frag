@@ -1,7 +1,7 @@
 #version 450 core
 // §3.2.2, the stenciled gather: one full-screen quad over the flattened multiresolution buffer with the
-// stencil test EQUAL, so only valid fragments run (early stencil culling). Each sums every VPL of the
-// VPL cache at its patch's mean position and normal. Written WITHOUT the receiver's diffuse colour:
+// stencil test EQUAL, so only valid fragments run (early stencil culling). Each sums the VPLs of the
+// VPL cache at its patch's mean position and normal, one uniform block of the cache per draw (additive). Written WITHOUT the receiver's diffuse colour:
 //   E_i = 1/pi sum_j rho_j Phi_j cos_i cos_j / (pi r^2 + A_j)        (Eqs. 1 and 5 divided by rho_i)
 // The upsampling multiplies by the full-resolution rho_i, so albedo (texture) detail inside a coarse patch
 // survives and a patch straddling two colours is not averaged. Writes rgb only (alpha holds the
@@ -11,8 +11,7 @@
 
 layout(early_fragment_tests) in;
 
-uniform int vplBegin; // this draw's range of the cache (long gathers take several additive draws)
-uniform int vplEnd;
+uniform int vplCount; // VPLs of this draw's block (vpl.glsl: vplBlock)
 
 layout(location = 0) out vec4 outIllumination;
 
@@ -27,7 +26,7 @@ void main()
         // A patch whose pixels are all black reflects nothing: skip its gather (its result is multiplied by 0).
         if (len > 0.0 && max(p.diffuse.r, max(p.diffuse.g, p.diffuse.b)) > 0.0) {
             vec3 n = p.normal / len;
-            for (int j = vplBegin; j < vplEnd; ++j) sum += vplContribution(vpls[j], p.position, n, vec3(1.0));
+            for (int j = 0; j < vplCount; ++j) sum += vplContribution(vplBlock[j], p.position, n, vec3(1.0));
         }
     }
     outIllumination = vec4(sum, 0.0); // alpha is masked off: the stencil pass's marks stay

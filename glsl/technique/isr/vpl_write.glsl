@@ -3,8 +3,6 @@
 #ifndef BOUNCE_ISR_VPL_WRITE_GLSL
 #define BOUNCE_ISR_VPL_WRITE_GLSL
 
-// vpl.glsl's read-only block is moved to an unused binding; this program writes the cache instead.
-#define VPL_BINDING 15
 #include "technique/isr/vpl.glsl"
 #include "technique/isr/rsm.glsl"
 
