@@ -7,10 +7,6 @@
 
 namespace bounce::gl {
 
-namespace {
-constexpr GLuint64 kImplausibleNs = 3600ull * 1000000000ull; // one hour
-} // namespace
-
 void QueryDeleter::operator()(unsigned id) const { glDeleteQueries(1, &id); }
 
 PassTimers::Scope::~Scope()
@@ -30,6 +26,30 @@ int PassTimers::pass(const std::string& name)
 PassTimers::Scope PassTimers::scope(const std::string& name)
 {
     const std::size_t q = pending_.size();
+    if (pool_.empty()) {
+        // llvmpipe answers the first TIME_ELAPSED query of a context with a timestamp (minutes to hours)
+        // instead of an interval, also when nothing ran inside it; a query around a clear of a 1x1
+        // framebuffer, read at once, takes that answer before any pass does (harmless elsewhere).
+        unsigned id = 0;
+        glCreateQueries(GL_TIME_ELAPSED, 1, &id);
+        pool_.emplace_back(id);
+        GLuint64 ignored = 0;
+        GLuint tex = 0, fbo = 0;
+        GLint previous = 0;
+        glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &previous);
+        glCreateTextures(GL_TEXTURE_2D, 1, &tex);
+        glTextureStorage2D(tex, 1, GL_RGBA8, 1, 1);
+        glCreateFramebuffers(1, &fbo);
+        glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, tex, 0);
+        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo);
+        glBeginQuery(GL_TIME_ELAPSED, id);
+        glClear(GL_COLOR_BUFFER_BIT);
+        glEndQuery(GL_TIME_ELAPSED);
+        glGetQueryObjectui64v(id, GL_QUERY_RESULT, &ignored);
+        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, GLuint(previous));
+        glDeleteFramebuffers(1, &fbo);
+        glDeleteTextures(1, &tex);
+    }
     if (q == pool_.size()) {
         unsigned id = 0;
         glCreateQueries(GL_TIME_ELAPSED, 1, &id);
@@ -48,13 +68,6 @@ void PassTimers::endFrame(bool keep)
         GLuint64 ns = 0;
         glGetQueryObjectui64v(pool_[p.query].id(), GL_QUERY_RESULT, &ns);
         const int i = pass(p.pass);
-        // llvmpipe answers a context's very first TIME_ELAPSED query (the shadow pass of the first frame)
-        // with a timestamp since its epoch, hours, instead of an interval; no pass of one frame takes an
-        // hour, so such a reading is dropped rather than kept as a sample.
-        if (ns > kImplausibleNs) {
-            if (std::size_t(i) >= frame.size()) { frame.resize(i + 1, 0.0); seen.resize(i + 1, false); }
-            continue;
-        }
         if (std::size_t(i) >= frame.size()) { frame.resize(i + 1, 0.0); seen.resize(i + 1, false); }
         frame[i] += double(ns) * 1e-6;
         seen[i] = true;
