@@ -26,6 +26,13 @@ const char* backendName(Backend backend)
     return "?";
 }
 
+bool softwareRasterizer()
+{
+    const char* r = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+    const std::string renderer = r ? r : "";
+    return renderer.find("llvmpipe") != std::string::npos || renderer.find("softpipe") != std::string::npos;
+}
+
 std::unique_ptr<Context> Context::create(Backend backend, const ContextOptions& options)
 {
     switch (backend) {

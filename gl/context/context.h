@@ -67,4 +67,9 @@ protected:
     ContextInfo info_;
 };
 
+// Whether the current context renders on the CPU with Mesa's llvmpipe or softpipe. Some passes work
+// around their limits: shader loops end after 65535 iterations (MultiresGather::loopBudget), and fragment
+// work is rasterised later than its draw call, so timer scopes wait for it (PassTimers).
+bool softwareRasterizer();
+
 } // namespace bounce::gl

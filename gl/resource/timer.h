@@ -24,15 +24,16 @@ class PassTimers {
 public:
     class Scope {
     public:
-        Scope(Scope&& o) noexcept : active_(o.active_) { o.active_ = false; }
+        Scope(Scope&& o) noexcept : active_(o.active_), serialize_(o.serialize_) { o.active_ = false; }
         ~Scope();
         Scope(const Scope&) = delete;
         Scope& operator=(const Scope&) = delete;
 
     private:
         friend class PassTimers;
-        explicit Scope(bool active) : active_(active) {}
+        Scope(bool active, bool serialize) : active_(active), serialize_(serialize) {}
         bool active_;
+        bool serialize_; // wait for the pass's work before the next pass's query begins
     };
 
     // Opens a timed scope for `pass` (queries cannot nest: one pass at a time).
@@ -52,7 +53,7 @@ private:
     std::vector<std::string> order_;
     std::vector<std::vector<double>> samples_; // per pass, per kept frame (ms, summed within a frame)
     std::vector<double> last_;
-    bool open_ = false;
+    bool serialize_ = false; // llvmpipe: each scope waits for its work (timer.cpp)
     int pass(const std::string& name);
 };
 

@@ -5,6 +5,7 @@
 #include <string>
 #include <stdexcept>
 
+#include "gl/context/context.h"
 #include "gl/gl.h"
 #include "gl/technique/isr/vpl_gather.h"
 
@@ -191,13 +192,7 @@ void MultiresGather::gather(Frame& frame, Program& program, PassTimers& timers, 
 
 int MultiresGather::loopBudget()
 {
-    static const int budget = [] {
-        const char* r = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
-        const std::string renderer = r ? r : "";
-        const bool limited = renderer.find("llvmpipe") != std::string::npos || renderer.find("softpipe") != std::string::npos;
-        return limited ? 60000 : std::numeric_limits<int>::max(); // 65535 less the shader's other loops
-    }();
-    return budget;
+    return softwareRasterizer() ? 60000 : std::numeric_limits<int>::max(); // 65535 less the shader's other loops
 }
 
 void MultiresGather::upsample(Frame& frame, PassTimers& timers)
