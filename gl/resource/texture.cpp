@@ -97,6 +97,19 @@ Texture Texture::create2DMultisample(const std::string& label, unsigned f, int w
     return t;
 }
 
+Texture Texture::createBufferView(const std::string& label, unsigned f, const Buffer& buffer)
+{
+    const std::size_t texels = buffer.bytes() / bytesPerTexel(f);
+    GLint maxTexels = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &maxTexels);
+    if (texels > std::size_t(std::max(maxTexels, 0)))
+        throw std::invalid_argument(label + ": " + std::to_string(texels) + " texels exceed GL_MAX_TEXTURE_BUFFER_SIZE (" +
+                                    std::to_string(maxTexels) + ")");
+    Texture t = make(label, GL_TEXTURE_BUFFER, f, int(texels), 1, 1, 1, 0); // the buffer is counted already
+    glTextureBuffer(t.id(), f, buffer.id());
+    return t;
+}
+
 void Texture::setFilter(unsigned minFilter, unsigned magFilter)
 {
     glTextureParameteri(id(), GL_TEXTURE_MIN_FILTER, GLint(minFilter));

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "gl/resource/allocations.h"
+#include "gl/resource/buffer.h"
 #include "gl/resource/handle.h"
 
 namespace bounce::gl {
@@ -21,6 +22,9 @@ public:
     static Texture createCubeArray(const std::string& label, unsigned internalFormat, int size, int cubes);
     static Texture create2DMultisample(const std::string& label, unsigned internalFormat, int width, int height,
                                        int samples);
+    // A buffer texture (samplerBuffer) over the whole of `buffer`, read as texels of `internalFormat`: a
+    // view, it allocates nothing. Throws std::invalid_argument beyond GL_MAX_TEXTURE_BUFFER_SIZE texels.
+    static Texture createBufferView(const std::string& label, unsigned internalFormat, const Buffer& buffer);
 
     unsigned id() const { return handle_.id(); }
     explicit operator bool() const { return bool(handle_); }

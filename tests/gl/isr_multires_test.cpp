@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -331,6 +332,85 @@ TEST_F(IsrMultiresTest, HisrClustersDropAsTauGrows)
         }
     }
     EXPECT_LE(previous, 16.0 * 16.0) << "tau above the light's intensity never refines: the 16x16 top patches";
+}
+
+// The per-fragment traversal against an independent one on the CPU: the tree built from the same RSM is
+// read back and walked recursively at every pixel (zero eye-space thresholds: every pixel a fragment at
+// its G-buffer position) with Eq. 8 and the discontinuity departure, at a tau that refines some clusters
+// and not others; the sum of Eqs. 1 and 5 over the chosen clusters (double) must match the gather (1e-3
+// relative RMSE: float sums, and a cluster whose Eq. 8 test is a tie in float may go either way), and so
+// must the number of clusters gathered (0.1%).
+TEST_F(IsrMultiresTest, HisrTraversalMatchesCpuTraversal)
+{
+    const core::Scene scene = core::makeCornell("cornell-spot");
+    constexpr int kSize = 24, kRsm = 32;
+    const double tau = 1e-3;
+    const Rendered gpu = render(scene, "hisr",
+                                {{"rsmSize", std::to_string(kRsm)}, {"tau", "1e-3"}, {"topGrid", "4"},
+                                 {"depthThreshold", "0"}, {"normalThreshold", "0"}, {"lightRefineLevel", "1"}},
+                                kSize, kSize);
+
+    // The same RSM and tree, built again (both are deterministic), and the frame's G-buffer.
+    gl::FrameSettings fs;
+    fs.width = kSize;
+    fs.height = kSize;
+    fs.shadowMapSize = 256;
+    gl::Frame frame(scene, fs);
+    gl::RsmSettings rs;
+    rs.size = kRsm;
+    gl::RsmPass rsm(rs);
+    gl::VplTree tree(4); // as topGrid=4 and hisr's default light thresholds
+    gl::PassTimers timers;
+    frame.beginFrame();
+    frame.renderGBuffer(timers);
+    rsm.render(frame, timers);
+    tree.build(rsm, timers);
+    timers.endFrame(false);
+    struct Node { glm::vec4 positionArea, normal, flux, range; };
+    const std::vector<Node> nodes = tree.nodes().download<Node>();
+    const float T = float(gl::hisrRefineConstant(gl::hisrPeakIntensity(frame.gpuScene().lights()), tau, kRsm));
+    ASSERT_GT(T, 0.0f);
+    const std::vector<float> P = frame.position().readFloats(0, 4), N = frame.normal().readFloats(0, 4),
+                             D = frame.diffuse().readFloats(0, 4);
+
+    constexpr double kPi = 3.14159265358979323846;
+    core::Image want(kSize, kSize);
+    double clusters = 0.0;
+    int fragments = 0;
+    for (int y = 0; y < kSize; ++y)
+        for (int x = 0; x < kSize; ++x) {
+            const std::size_t i = (std::size_t(y) * kSize + x) * 4;
+            if (P[i + 3] == 0.0f) continue;
+            ++fragments;
+            const glm::vec3 p(P[i], P[i + 1], P[i + 2]);
+            const glm::dvec3 n = glm::normalize(glm::dvec3(N[i], N[i + 1], N[i + 2]));
+            glm::dvec3 sum(0.0);
+            // Recursive walk of one subtree: node `code` of level m.
+            const std::function<void(int, int, int)> walk = [&](int root, int m, int code) {
+                const Node& c = nodes[std::size_t(root * tree.subtreeNodes() + tree.levelOffset(m) + code)];
+                if (std::max({c.flux.x, c.flux.y, c.flux.z}) <= 0.0f) return;
+                const glm::vec3 d = glm::vec3(c.positionArea) - p;
+                const bool refine = m > 0 && (glm::dot(d, d) <= T * c.normal.w * c.normal.w || (m > 1 && c.range.y != 0.0f));
+                if (refine) {
+                    for (int k = 0; k < 4; ++k) walk(root, m - 1, 4 * code + k);
+                    return;
+                }
+                const glm::dvec3 dd(d), nj = glm::length(glm::dvec3(c.normal)) > 0.0 ? glm::normalize(glm::dvec3(c.normal))
+                                                                                     : glm::dvec3(0.0);
+                const double r2 = glm::dot(dd, dd), r = std::sqrt(r2);
+                const double cosI = std::max(glm::dot(n, dd / r), 0.0), cosJ = std::max(-glm::dot(nj, dd / r), 0.0);
+                sum += glm::dvec3(c.flux) / kPi * (cosI * cosJ / (kPi * r2 + double(c.positionArea.w)));
+                clusters += 1.0;
+            };
+            for (int root = 0; root < tree.rootCount(); ++root) walk(root, tree.depth(), 0);
+            want.set(x, kSize - 1 - y, glm::vec3(sum * glm::dvec3(D[i], D[i + 1], D[i + 2])));
+        }
+    expectSameImage(gpu.indirect, want, 1e-3, "hisr-vs-cpu-traversal");
+    EXPECT_NEAR(counter(gpu.counters, "clusters.gathered"), clusters, 1e-3 * clusters);
+    EXPECT_EQ(counter(gpu.counters, "fragments.level0"), double(fragments));
+    // Some clusters were refined and some were not: the test exercised both branches of Eq. 8.
+    EXPECT_GT(clusters / fragments, double(tree.rootCount()));
+    EXPECT_LT(clusters / fragments, double(kRsm * kRsm) / 2.0);
 }
 
 // Larger thresholds merge more pixels into coarser patches: the number of valid fragments drops.

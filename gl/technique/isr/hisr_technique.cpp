@@ -60,7 +60,7 @@ public:
         const double T = hisrRefineConstant(hisrPeakIntensity(frame.gpuScene().lights()), tau_, rsm_.size());
         stats_.clearToZero();
         stats_.bindBase(GL_SHADER_STORAGE_BUFFER, 13);
-        tree_.bind();
+        tree_.bindTexels();
         tree_.setUniforms(program_);
         program_.set("alwaysRefine", std::isinf(T) ? 1 : 0);
         program_.set("discontinuityLevel", discontinuityLevel_);

@@ -20,6 +20,8 @@ VplTree::VplTree(int topGrid, float lightDepthThreshold, float lightNormalThresh
 
 void VplTree::bind() const { nodes_.bindBase(GL_SHADER_STORAGE_BUFFER, kBinding); }
 
+void VplTree::bindTexels() const { texels_.bind(kTexelUnit); }
+
 void VplTree::setUniforms(Program& program) const
 {
     program.set("treeDepth", depth_);
@@ -48,7 +50,10 @@ void VplTree::build(const RsmPass& rsm, PassTimers& timers)
     roots_ = rsm.viewCount() * grid_ * grid_;
     if (roots_ == 0) return;
     const std::size_t bytes = std::size_t(nodeCount()) * kNodeBytes;
-    if (!nodes_ || nodes_.bytes() != bytes) nodes_ = Buffer("vpl-tree.nodes", bytes);
+    if (!nodes_ || nodes_.bytes() != bytes) {
+        nodes_ = Buffer("vpl-tree.nodes", bytes);
+        texels_ = Texture::createBufferView("vpl-tree.texels", GL_RGBA32F, nodes_);
+    }
 
     rsm.bind();
     bind();
@@ -67,7 +72,8 @@ void VplTree::build(const RsmPass& rsm, PassTimers& timers)
         const long long threads = (1LL << (2 * (depth_ - m))) * roots_;
         glDispatchCompute(GLuint((threads + 63) / 64), 1, 1);
     }
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    // Read back as an SSBO by tests, as a buffer texture by the gather.
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
 }
 
 } // namespace bounce::gl

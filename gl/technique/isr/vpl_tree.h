@@ -10,6 +10,7 @@
 
 #include "gl/resource/buffer.h"
 #include "gl/resource/program.h"
+#include "gl/resource/texture.h"
 #include "gl/resource/timer.h"
 #include "gl/technique/isr/rsm_pass.h"
 
@@ -18,6 +19,7 @@ namespace bounce::gl {
 class VplTree {
 public:
     static constexpr unsigned kBinding = 12;
+    static constexpr unsigned kTexelUnit = 21; // glsl/technique/isr/hisr_gather.frag: vplTreeTexels
     static constexpr int kMaxDepth = 10;   // glsl: VPL_TREE_MAX_DEPTH
     static constexpr std::size_t kNodeBytes = 64;
 
@@ -28,7 +30,9 @@ public:
 
     // Rebuilds the tree from `rsm` (level 0 of it only; its size must be a power of two).
     void build(const RsmPass& rsm, PassTimers& timers);
-    void bind() const; // the nodes at SSBO binding kBinding
+    void bind() const; // the nodes at SSBO binding kBinding (the build passes write them there)
+    // The nodes as a buffer texture at unit kTexelUnit (four RGBA32F texels each): what the gather reads.
+    void bindTexels() const;
     // Sets the layout uniforms of glsl/technique/isr/vpl_tree.glsl on `program`.
     void setUniforms(Program& program) const;
 
@@ -46,6 +50,7 @@ private:
     int grid_ = 0, depth_ = 0, roots_ = 0, subtreeNodes_ = 0;
     std::vector<int> offsets_;
     Buffer nodes_;
+    Texture texels_; // a view of nodes_
     Program leaves_, reduce_;
 };
 
