@@ -222,19 +222,31 @@ TEST(Cli, RenderAGltfByPath)
     for (std::size_t i = 0; i < ia.rgb.size(); ++i) EXPECT_NEAR(ia.rgb[i], ib.rgb[i], 1e-5f + 1e-5f * ib.rgb[i]) << i;
 }
 
-// The demo in a real window (Xvfb in CI): a few frames, a technique switch, a screenshot that must be
-// the Cornell box: not black, the red wall on the left, the green wall on the right.
+// The demo in a real window (Xvfb in CI): a few frames, switches through the techniques of the image-space
+// radiosity family (with a parameter set from the script, as a widget would) and a side-by-side
+// comparison, and a screenshot that must be the Cornell box: not black, the red wall on the left, the
+// green wall on the right, and brighter than direct light alone (the indirect light is there).
 TEST(Cli, DemoRunsSwitchesTechniqueAndShowsTheCornellBox)
 {
     if (!std::getenv("DISPLAY")) GTEST_SKIP() << "no DISPLAY: the suite runs under xvfb-run in CI (test.sh)";
     const fs::path d = outDir("demo");
-    const fs::path shot = d / "shot.exr";
-    const CliRun r = run("demo --scene cornell-area --size 160x120 --script wait:2,technique:rsm,set:vpls=64,wait:2,screenshot:" +
-                      shot.string() + ",quit");
+    const fs::path shot = d / "shot.exr", direct = d / "direct.exr";
+    const CliRun r = run("demo --scene cornell-area --size 160x120 --script wait:2,screenshot:" + direct.string() +
+                         ",technique:multires-gather,set:vpls=64,wait:1,technique:isr,set:rsmSize=64,wait:1,"
+                         "technique:hisr,set:rsmSize=64,wait:1,technique:rsm,set:vpls=64,wait:2,screenshot:" +
+                         shot.string() + ",compare:isr,wait:1,quit");
     ASSERT_EQ(r.status, 0) << r.output;
     ASSERT_TRUE(fs::exists(shot)) << r.output;
     ASSERT_TRUE(fs::exists(d / "shot.png"));
+    const auto total = [](const bounce::core::Image& i) {
+        double s = 0.0;
+        for (float v : i.rgb) s += v;
+        return s;
+    };
     const bounce::core::Image img = bounce::core::readImage(shot.string());
+    const bounce::core::Image directImg = bounce::core::readImage(direct.string());
+    EXPECT_GT(total(img) / double(img.rgb.size()), 1.05 * total(directImg) / double(directImg.rgb.size()))
+        << "rsm adds no indirect light to direct";
     double sum = 0.0;
     glm::vec3 left(0.0f), right(0.0f);
     for (int y = img.height / 3; y < 2 * img.height / 3; ++y)

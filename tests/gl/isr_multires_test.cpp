@@ -124,6 +124,20 @@ TEST(IsrMultiresLayout, LevelRectsForOddSizes)
     }
 }
 
+// The automatic coarsest level keeps at least 64 patches across the longer side (the paper's 64 x 64
+// coarsest buffer: 16 x 16 pixels at its 1024 x 1024).
+TEST(IsrMultiresLayout, AutoCoarsestLevelKeepsSixtyFourPatchesAcross)
+{
+    EXPECT_EQ(gl::autoCoarsestLevel(1024, 1024), 4);
+    EXPECT_EQ(gl::autoCoarsestLevel(512, 512), 3);
+    EXPECT_EQ(gl::autoCoarsestLevel(333, 200), 2); // 84 patches across at level 2, 42 at level 3
+    EXPECT_EQ(gl::autoCoarsestLevel(200, 333), 2);
+    EXPECT_EQ(gl::autoCoarsestLevel(126, 126), 0);
+    EXPECT_EQ(gl::autoCoarsestLevel(127, 127), 1); // 64 patches of 2 pixels, the last one pixel wide
+    EXPECT_EQ(gl::autoCoarsestLevel(128, 1), 1);
+    EXPECT_EQ(gl::autoCoarsestLevel(1, 1), 0);
+}
+
 // ---------------------------------------------------------------------------------------------------
 // Coverage: each pixel with geometry lies in exactly one valid fragment.
 
@@ -191,7 +205,8 @@ void checkCoverage(int w, int h, const gl::MultiresSettings& settings, std::vect
 
 TEST_F(IsrMultiresTest, EveryPixelCoveredExactlyOnce)
 {
-    gl::MultiresSettings s; // default thresholds: a real mix of levels
+    gl::MultiresSettings s; // default thresholds, 16 x 16 coarsest patches: a real mix of levels at 64 x 64
+    s.coarsestLevel = 4;
     std::vector<int> perLevel;
     checkCoverage(64, 64, s, &perLevel);
     int coarse = 0;
@@ -421,7 +436,9 @@ TEST_F(IsrMultiresTest, FragmentsDropAsThresholdsGrow)
     for (const auto& [d, n] : {std::pair{"0", "0"}, std::pair{"0.005", "0.05"}, std::pair{"0.03", "0.15"},
                                std::pair{"0.2", "0.5"}}) {
         const Rendered r = render(scene, "multires-gather",
-                                  {{"vpls", "16"}, {"rsmSize", "32"}, {"depthThreshold", d}, {"normalThreshold", n}}, 96, 96);
+                                  {{"vpls", "16"}, {"rsmSize", "32"}, {"depthThreshold", d}, {"normalThreshold", n},
+                                   {"coarsestLevel", "4"}},
+                                  96, 96);
         const double total = counter(r.counters, "fragments.total");
         EXPECT_LT(total, previous) << "thresholds " << d << ", " << n;
         previous = total;

@@ -40,6 +40,14 @@ std::vector<glm::ivec4> multiresLevelRects(int width, int height, int coarsestLe
     return rects;
 }
 
+int autoCoarsestLevel(int width, int height)
+{
+    const int side = std::max(width, height);
+    int l = 0;
+    while (l + 1 < MultiresGather::kMaxLevels && ceilDiv(side, 1 << (l + 1)) >= 64) ++l;
+    return l;
+}
+
 MultiresGather::MultiresGather(Frame& frame, const MultiresSettings& settings)
     : settings_(settings), fbo_("multires.fbo"),
       counts_("multires.fragmentCounts", sizeof(unsigned) * kMaxLevels),
@@ -48,7 +56,8 @@ MultiresGather::MultiresGather(Frame& frame, const MultiresSettings& settings)
       cacheGather_(gatherProgram("multires.gather", "technique/isr/multires_gather.frag", vplBlockDefines())),
       upsample_(Program::compute("multires.upsample", "technique/isr/multires_upsample.comp"))
 {
-    if (settings_.coarsestLevel < 0) throw std::invalid_argument("coarsestLevel must be at least 0");
+    if (settings_.coarsestLevel < MultiresSettings::kAutoLevel)
+        throw std::invalid_argument("coarsestLevel must be at least 0, or -1 for the paper's 64 x 64 coarsest buffer");
     allocate(frame.width(), frame.height());
 }
 
@@ -62,7 +71,9 @@ void MultiresGather::allocate(int width, int height)
 {
     width_ = width;
     height_ = height;
-    rects_ = multiresLevelRects(width, height, settings_.coarsestLevel);
+    const int coarsest = settings_.coarsestLevel == MultiresSettings::kAutoLevel ? autoCoarsestLevel(width, height)
+                                                                                 : settings_.coarsestLevel;
+    rects_ = multiresLevelRects(width, height, coarsest);
     levels_ = int(rects_.size()) - 1;
     int atlasW = width, atlasH = height, pyrW = 1, pyrH = 1;
     if (levels_ > 0) {

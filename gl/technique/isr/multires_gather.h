@@ -35,7 +35,11 @@ struct MultiresSettings {
     // of its unit normals spans >= normalThreshold. 0 forces full resolution (every pixel at level 0).
     float depthThreshold = 0.02f;
     float normalThreshold = 0.15f;
-    int coarsestLevel = 4; // coarsest patches: 2^coarsestLevel pixels per side (4: 16 x 16, as the paper)
+    // Coarsest patches: 2^coarsestLevel pixels per side. kAutoLevel: the paper's coarsest buffer of 64 x 64
+    // patches (§2: "coarse 64^2 pixel clusters"; 16 x 16 pixels at its 1024^2, 8 x 8 at 512^2): the
+    // finest level with at least 64 patches across the image's longer side (autoCoarsestLevel).
+    static constexpr int kAutoLevel = -1;
+    int coarsestLevel = kAutoLevel;
 };
 
 class MultiresGather {
@@ -55,7 +59,8 @@ public:
     void buildPyramid(Frame& frame, PassTimers& timers);
     void markValidFragments(Frame& frame, PassTimers& timers);
     // Draws the stenciled quad `draws` times with additive blending (rgb), calling setupDraw(program, i)
-    // before draw i: long gathers are split into ranges of VPLs or clusters (see loopBudget()).
+    // before draw i: gathers are split into blocks of the VPL cache (vpl_gather.h) or ranges of top
+    // patches of the VPL tree (see loopBudget()).
     void gather(Frame& frame, Program& program, PassTimers& timers, int draws = 1,
                 const std::function<void(Program&, int)>& setupDraw = {});
     void upsample(Frame& frame, PassTimers& timers);
@@ -99,5 +104,8 @@ private:
 // the pixels: level 0 (the image) at the left, level l >= 1 (ceil(w / 2^l) x ceil(h / 2^l) patches)
 // stacked bottom-up in one column to its right. Exposed for tests.
 std::vector<glm::ivec4> multiresLevelRects(int width, int height, int coarsestLevel);
+// The coarsest level of MultiresSettings::kAutoLevel: the largest l with ceil(max(width, height) / 2^l)
+// >= 64 (0 for images under 127 pixels across).
+int autoCoarsestLevel(int width, int height);
 
 } // namespace bounce::gl

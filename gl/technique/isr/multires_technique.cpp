@@ -53,8 +53,8 @@ std::vector<ParamDecl> multiresParams()
          "eye-space discontinuity: a patch is subdivided when (max - min) eye depth >= this x min depth; 0: full resolution"},
         {"normalThreshold", ParamType::Float, d.normalThreshold, 0, 4,
          "eye-space discontinuity: a patch is subdivided when any normal component spans >= this; 0: full resolution"},
-        {"coarsestLevel", ParamType::Int, double(d.coarsestLevel), 0, MultiresGather::kMaxLevels - 1,
-         "coarsest multiresolution patch: 2^level pixels per side (4: 16x16); fewer levels, more fragments"},
+        {"coarsestLevel", ParamType::Int, double(d.coarsestLevel), -1, MultiresGather::kMaxLevels - 1,
+         "coarsest multiresolution patch: 2^level pixels per side; -1: the paper's 64x64 coarsest buffer (8x8 pixels at 512^2)"},
     };
 }
 
