@@ -405,7 +405,7 @@ TEST_F(IsrMultiresTest, HisrTraversalMatchesCpuTraversal)
                 const Node& c = nodes[std::size_t(root * tree.subtreeNodes() + tree.levelOffset(m) + code)];
                 if (std::max({c.flux.x, c.flux.y, c.flux.z}) <= 0.0f) return;
                 const glm::vec3 d = glm::vec3(c.positionArea) - p;
-                const bool refine = m > 0 && (glm::dot(d, d) <= T * c.normal.w * c.normal.w || (m > 1 && c.range.y != 0.0f));
+                const bool refine = m > 0 && (glm::dot(d, d) <= T * c.normal.w * c.normal.w || (m > 1 && c.normal.w < 0.0f));
                 if (refine) {
                     for (int k = 0; k < 4; ++k) walk(root, m - 1, 4 * code + k);
                     return;
@@ -520,7 +520,7 @@ TEST_F(IsrMultiresTest, VplTreeMatchesCpuClusters)
                             ASSERT_NEAR(n.flux[c], flux[c], 1e-4 * flux[c] + 1e-12) << where;
                         ASSERT_NEAR(n.flux.w, omega, 1e-4 * omega + 1e-12) << where;
                         ASSERT_NEAR(n.positionArea.w, area, 1e-4 * area + 1e-12) << where;
-                        ASSERT_NEAR(n.normal.w, dist, 1e-5) << where;
+                        ASSERT_NEAR(std::abs(n.normal.w), dist, 1e-5) << where;
                         if (area > 0.0) {
                             const glm::dvec3 mean = pos / area, unit = nrm / area;
                             for (int c = 0; c < 3; ++c) {

@@ -7,14 +7,14 @@
 // with |V_ij| the distance from the fragment to the cluster's mean position, |V_j| the largest light
 // distance over the patch, and T = 2 (I - tau) / (3 tau RSM_res^2) per frame (refineT; alwaysRefine
 // when tau = 0: every texel, as rsm-full). Clusters that reflect nothing are skipped with their subtree.
-// Departure: a cluster that spans a light-space discontinuity (range.y, vpl_tree_reduce.comp) above
+// Departure: a cluster that spans a light-space discontinuity (negative |V_j|, vpl_tree.glsl) above
 // level discontinuityLevel is refined whatever its distance: its mean position floats between surfaces
 // and its mean normal belongs to none of them.
 //
 // The walk needs no stack: a subtree is a complete quadtree with the children of node c at 4c .. 4c+3 of
 // the next finer level, so after a node that is not refined the walk moves to its next sibling, first
 // climbing while it was the last of four. The tree is read as one flat texture, as the paper stores it
-// (a buffer texture over the tree's buffer: four RGBA32F texels per node).
+// (a buffer texture over the tree's buffer: four RGBA32F texels per node, of which the walk reads three).
 #include "technique/isr/multires.glsl"
 #include "technique/isr/vpl.glsl"
 #include "technique/isr/vpl_tree.glsl"
@@ -59,7 +59,7 @@ void main()
                         vec3 d = positionArea.xyz - p;
                         bool refine = m > 0 &&
                                       (alwaysRefine != 0 || dot(d, d) <= refineT * normalDistance.w * normalDistance.w ||
-                                       (m > discontinuityLevel && texelFetch(vplTreeTexels, texel + 3).y != 0.0));
+                                       (m > discontinuityLevel && normalDistance.w < 0.0));
                         if (refine) {
                             --m;
                             code *= 4;

@@ -17,10 +17,12 @@ struct VplNode {
     vec4 positionArea; // xyz area-weighted mean position of its lit texels (m), w: summed area A_j (m^2)
     vec4 normal;       // xyz area-weighted mean of the lit texels' unit normals (length <= 1: normalise to
                        // use), w: |V_j| max, the largest light distance of its texels with geometry (the
-                       // light-space depth max-mipmap of §3.5.1)
+                       // light-space depth max-mipmap of §3.5.1), NEGATED when the cluster spans a
+                       // light-space discontinuity (vpl_tree_reduce.comp): the gather decides on the
+                       // first three vec4 alone
     vec4 flux;         // rgb summed reflected flux rho_j Phi_j (W), w: summed solid angle omega_j (sr)
-    vec4 range;        // x: smallest light distance of its texels with geometry (1e30 when none),
-                       // y: 1 when the cluster spans a light-space discontinuity (see vpl_tree_reduce.comp)
+    vec4 range;        // x: smallest light distance of its texels with geometry (1e30 when none), for the
+                       // build's discontinuity test
 };
 
 uniform int treeDepth;                                // T: levels above the texels

@@ -34,6 +34,6 @@ void main()
     node.positionArea = vec4(p.xyz, n.w);
     node.normal = vec4(n.xyz, distance);
     node.flux = f;
-    node.range = vec4(p.w != 0.0 ? distance : 1e30, 0.0, 0.0, 0.0); // a texel is never discontinuous
+    node.range = vec4(p.w != 0.0 ? distance : 1e30, 0.0, 0.0, 0.0);
     treeOut[index] = node;
 }

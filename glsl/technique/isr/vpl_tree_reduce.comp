@@ -6,7 +6,8 @@
 // A cluster spans a light-space discontinuity (a departure, after §3.3-3.4's discontinuity-aware light
 // patches) when a child does, when its relative light-distance range (max - min) / min exceeds
 // lightDepthThreshold, or when its lit normals diverge: 1 - |mean of the unit normals| > lightNormalThreshold
-// (0 for equal normals; two normals at an angle theta give 1 - cos(theta / 2)).
+// (0 for equal normals; two normals at an angle theta give 1 - cos(theta / 2)). The flag is stored as
+// the sign of the cluster's |V_j| (vpl_tree.glsl), so that the gather decides on three texels.
 #include "technique/isr/vpl_tree.glsl"
 
 layout(local_size_x = 64) in;
@@ -36,9 +37,9 @@ void main()
         position += a * c.positionArea.xyz;
         normal += a * c.normal.xyz;
         area += a;
-        distance = max(distance, c.normal.w);
+        distance = max(distance, abs(c.normal.w));
         nearest = min(nearest, c.range.x);
-        discontinuous = discontinuous || c.range.y != 0.0;
+        discontinuous = discontinuous || c.normal.w < 0.0;
         flux += c.flux.rgb;
         omega += c.flux.w;
     }
@@ -47,8 +48,8 @@ void main()
     if (area > 0.0 && 1.0 - length(meanNormal) > lightNormalThreshold) discontinuous = true;
     VplNode node;
     node.positionArea = vec4(area > 0.0 ? position / area : vec3(0.0), area);
-    node.normal = vec4(meanNormal, distance);
-    node.range = vec4(nearest, discontinuous ? 1.0 : 0.0, 0.0, 0.0);
+    node.normal = vec4(meanNormal, discontinuous ? -distance : distance);
+    node.range = vec4(nearest, 0.0, 0.0, 0.0);
     node.flux = vec4(flux, omega);
     tree[base + treeLevelOffset[level] + code] = node;
 }
