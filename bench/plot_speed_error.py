@@ -2,9 +2,10 @@
 """Speed against error: the project's headline plot.
 
 Reads a `bounce bench` results.csv and draws GPU time per frame (x) against relative RMSE (y), log scales,
-one curve per technique (its parameter sweep in order of time), one panel per error reference (the
-technique's own light paths, and `full`), and marks the Pareto front (no other point both faster and
-more accurate). Runs under Debian's python3 with python3-matplotlib.
+one curve per technique (its parameter sweep in order of time), one row of panels per scene and image
+size (times compare only at one size, errors only on one scene), one column per error reference (the
+technique's own light paths, and `full`), and marks each panel's Pareto front (no other point both faster
+and more accurate). Runs under Debian's python3 with python3-matplotlib.
 
 usage: plot_speed_error.py RESULTS.csv OUT.png [--title TEXT]
 """
@@ -38,33 +39,37 @@ def main(argv):
     if not panels:
         print("plot_speed_error.py: no error figures in %s (were references computed?)" % argv[1], file=sys.stderr)
         return 1
-    fig, axes = plt.subplots(1, len(panels), figsize=(6.5 * len(panels), 5), squeeze=False)
-    for ax, (column, label) in zip(axes[0], panels):
-        points, labels = [], []
-        for scene in sorted({r["scene"] for r in rows}):
-            for technique in sorted({r["technique"] for r in rows if r["scene"] == scene}):
-                sel = [r for r in rows if r["scene"] == scene and r["technique"] == technique
+    groups = sorted({(r["scene"], r["size"]) for r in rows},
+                    key=lambda g: (g[0], -int(g[1].split("x")[0]) * int(g[1].split("x")[1])))
+    techniques = sorted({r["technique"] for r in rows})
+    colour = {t: "C%d" % (i % 10) for i, t in enumerate(techniques)}  # one colour per technique in every panel
+    fig, axes = plt.subplots(len(groups), len(panels), figsize=(6.5 * len(panels), 4.5 * len(groups)), squeeze=False)
+    for row, (scene, size) in zip(axes, groups):
+        for ax, (column, label) in zip(row, panels):
+            points = []
+            for technique in sorted({r["technique"] for r in rows if r["scene"] == scene and r["size"] == size}):
+                sel = [r for r in rows if r["scene"] == scene and r["size"] == size and r["technique"] == technique
                        and r.get(column) not in (None, "", "nan") and float(r[column]) > 0]
                 sel.sort(key=lambda r: float(r["total_ms"]))
                 if not sel:
                     continue
                 xs = [float(r["total_ms"]) for r in sel]
                 ys = [float(r[column]) for r in sel]
-                ax.plot(xs, ys, "o-", label="%s / %s" % (technique, scene), markersize=4)
+                ax.plot(xs, ys, "o-", label=technique, markersize=4, color=colour[technique])
                 points += list(zip(xs, ys))
-                labels += [r["params"] for r in sel]
-        front = pareto(points)
-        if front:
-            ax.step([points[i][0] for i in front], [points[i][1] for i in front], "k--", where="post",
-                    linewidth=1, label="Pareto front")
-            ax.scatter([points[i][0] for i in front], [points[i][1] for i in front], s=80, facecolors="none",
-                       edgecolors="k", zorder=3)
-        ax.set_xscale("log")
-        ax.set_yscale("log")
-        ax.set_xlabel("GPU time per frame (ms, median)")
-        ax.set_ylabel(label)
-        ax.grid(True, which="both", alpha=0.3)
-        ax.legend(fontsize=7)
+            front = pareto(points)
+            if front:
+                ax.step([points[i][0] for i in front], [points[i][1] for i in front], "k--", where="post",
+                        linewidth=1, label="Pareto front")
+                ax.scatter([points[i][0] for i in front], [points[i][1] for i in front], s=80, facecolors="none",
+                           edgecolors="k", zorder=3)
+            ax.set_xscale("log")
+            ax.set_yscale("log")
+            ax.set_title("%s, %s" % (scene, size), fontsize=10)
+            ax.set_xlabel("GPU time per frame (ms, median)")
+            ax.set_ylabel(label)
+            ax.grid(True, which="both", alpha=0.3)
+            ax.legend(fontsize=7)
     fig.suptitle(title)
     fig.tight_layout()
     fig.savefig(argv[2] + ".tmp.png", dpi=120)
