@@ -17,6 +17,7 @@ const std::vector<TechniqueInfo>& techniques()
         t.push_back(rsmTechniqueInfo());
         t.push_back(rsmFullTechniqueInfo());
         t.push_back(multiresGatherTechniqueInfo());
+        t.push_back(multiresSplatTechniqueInfo());
         t.push_back(isrTechniqueInfo());
         t.push_back(hisrTechniqueInfo());
         return t;

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <functional>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -443,6 +444,70 @@ TEST_F(IsrMultiresTest, FragmentsDropAsThresholdsGrow)
         EXPECT_LT(total, previous) << "thresholds " << d << ", " << n;
         previous = total;
         expectFinite(r.indirect, "multires-gather");
+    }
+}
+
+// ---------------------------------------------------------------------------------------------------
+// Multiresolution splatting [NW09] (multires-splat) against the stencil and the gather.
+
+// The iterative refinement selects exactly the stencil pass's valid fragments (the same count per level,
+// the same neighbour marks at every texel of the flattened buffer), and splatting every VPL to them adds up
+// to what the stenciled gather computes (1e-5 relative: the same float terms in another order), at a
+// power-of-two size with 16 x 16 coarsest patches, at 333 x 200 with the automatic level, and at 1 x 1.
+TEST_F(IsrMultiresTest, RefineAndSplatEqualStencilAndGather)
+{
+    const core::Scene scene = core::makeCornell("cornell-spot");
+    struct GpuVpl { glm::vec4 positionArea, normal, flux; };
+    std::vector<GpuVpl> vpls;
+    for (int i = 0; i < 40; ++i) // a spread of VPLs on the floor, the walls and the ceiling
+        vpls.push_back({{0.05f + 0.0113f * i, i % 3 == 0 ? 0.0f : 0.02f * i, 0.1f + 0.009f * i, 1e-3f},
+                        {0.0f, i % 2 ? 1.0f : -1.0f, 0.0f, 0.0f}, {0.01f, 0.005f * (i % 4), 0.002f, 0.0f}});
+    for (const auto& [w, h, coarsest] : {std::tuple{64, 64, 4}, std::tuple{333, 200, -1}, std::tuple{1, 1, -1}}) {
+        const std::string size = std::to_string(w) + "x" + std::to_string(h);
+        gl::FrameSettings fs;
+        fs.width = w;
+        fs.height = h;
+        fs.shadowMapSize = 256;
+        gl::Frame frame(scene, fs);
+        gl::PassTimers timers;
+        frame.beginFrame();
+        frame.renderGBuffer(timers);
+        gl::Buffer cache("test.vpls", gl::vplCacheBytes(int(vpls.size())));
+        cache.update(0, vpls.size() * sizeof(GpuVpl), vpls.data());
+        gl::MultiresSettings ms;
+        ms.coarsestLevel = coarsest;
+        gl::MultiresGather gather(frame, ms);
+
+        gather.run(frame, cache, int(vpls.size()), timers);
+        const std::vector<float> stenciled = gather.illumination().readFloats(0, 4);
+        const std::vector<int> stencilCounts = gather.fragmentsPerLevel();
+        const core::Image gathered = frame.read(frame.indirect());
+
+        gather.buildPyramid(frame, timers);
+        const int points = gather.refine(frame, timers);
+        gather.splat(frame, cache, int(vpls.size()), timers);
+        gather.upsample(frame, timers);
+        timers.endFrame(false);
+        const std::vector<float> splatted = gather.illumination().readFloats(0, 4);
+        EXPECT_EQ(gather.fragmentsPerLevel(), stencilCounts) << size;
+        int total = 0;
+        for (int c : stencilCounts) total += c;
+        EXPECT_GT(points, 0) << size;
+        EXPECT_LE(points, total) << size << ": one point per valid fragment that reflects light";
+        ASSERT_EQ(splatted.size(), stenciled.size());
+        int marks = 0, light = 0;
+        for (std::size_t i = 0; i < stenciled.size(); i += 4) {
+            if (splatted[i + 3] != stenciled[i + 3] && ++marks <= 3)
+                ADD_FAILURE() << size << ": texel " << i / 4 << " marked " << splatted[i + 3] << " by the refinement, "
+                              << stenciled[i + 3] << " by the stencil pass";
+            for (int c = 0; c < 3; ++c)
+                if (std::abs(splatted[i + c] - stenciled[i + c]) > 1e-5f * std::abs(stenciled[i + c]) + 1e-12f && ++light <= 3)
+                    ADD_FAILURE() << size << ": texel " << i / 4 << " splatted " << splatted[i + c] << ", gathered "
+                                  << stenciled[i + c];
+        }
+        EXPECT_EQ(marks, 0) << size;
+        EXPECT_EQ(light, 0) << size;
+        if (total > 1) expectSameImage(frame.read(frame.indirect()), gathered, 1e-5, "splat-vs-gather-" + size);
     }
 }
 

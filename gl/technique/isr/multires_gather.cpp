@@ -232,6 +232,89 @@ void MultiresGather::run(Frame& frame, const Buffer& vpls, int vplCount, PassTim
     upsample(frame, timers);
 }
 
+int MultiresGather::refine(Frame& frame, PassTimers& timers)
+{
+    auto t = timers.scope("refine");
+    const std::size_t pixels = std::size_t(width_) * std::size_t(height_);
+    if (!splatVertices_ || splatVertices_.bytes() < pixels * 32) {
+        // Work lists and vertices for the worst case, every pixel a fragment (32-byte vertices).
+        refine_ = Program::compute("multires.refine", "technique/isr/multires_refine.comp");
+        splat_ = Program::graphics("multires.splat", "technique/isr/multires_splat.vert", "technique/isr/multires_splat.frag",
+                                   vplBlockDefines());
+        workLists_[0] = Buffer("multires.refine.work0", pixels * sizeof(unsigned));
+        workLists_[1] = Buffer("multires.refine.work1", pixels * sizeof(unsigned));
+        refineCounts_ = Buffer("multires.refine.counts", 2 * sizeof(unsigned));
+        splatVertices_ = Buffer("multires.splat.vertices", pixels * 32);
+        splatVao_ = VertexArray("multires.splat");
+        glVertexArrayVertexBuffer(splatVao_.id(), 0, splatVertices_.id(), 0, 32);
+        for (unsigned a = 0; a < 2; ++a) {
+            glEnableVertexArrayAttrib(splatVao_.id(), a);
+            glVertexArrayAttribFormat(splatVao_.id(), a, 4, GL_FLOAT, GL_FALSE, 16 * a);
+            glVertexArrayAttribBinding(splatVao_.id(), a, 0);
+        }
+    }
+    counts_.clearToZero();
+    refineCounts_.clearToZero();
+    const float zero[4] = {0, 0, 0, 0};
+    illumination_.clear(0, zero);
+    frame.bindGBuffer();
+    bindPyramid();
+    counts_.bindBase(GL_SHADER_STORAGE_BUFFER, kCountsBinding);
+    refineCounts_.bindBase(GL_SHADER_STORAGE_BUFFER, 16);
+    splatVertices_.bindBase(GL_SHADER_STORAGE_BUFFER, 17);
+    illumination_.bindImage(0, GL_WRITE_ONLY);
+    setCommonUniforms(refine_);
+    refine_.use();
+    // CoarseImageSampling: every patch of the coarsest level; then one pass per finer level over the
+    // children of the patches the pass before subdivided. The next pass's size is read back, as [NW09]'s
+    // geometry-shader refinement learns its output's length.
+    int in = -1, current = 0;
+    for (int level = levels_; level >= 0; --level) {
+        const int count = in < 0 ? rects_[level].z * rects_[level].w : in;
+        workLists_[current].bindBase(GL_SHADER_STORAGE_BUFFER, 14);
+        workLists_[1 - current].bindBase(GL_SHADER_STORAGE_BUFFER, 15);
+        refine_.set("level", level);
+        refine_.set("inCount", in);
+        glDispatchCompute(GLuint((count + 63) / 64), 1, 1);
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+        unsigned next = 0;
+        refineCounts_.download(0, sizeof next, &next);
+        if (next == 0) break;
+        const unsigned reset = 0;
+        refineCounts_.update(0, sizeof reset, &reset);
+        in = int(next);
+        current = 1 - current;
+    }
+    unsigned counts[2] = {0, 0};
+    refineCounts_.download(0, sizeof counts, counts);
+    splatCount_ = int(counts[1]);
+    // The splat reads the vertices as attributes, the upsampling the marks as a texture.
+    glMemoryBarrier(GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
+    return splatCount_;
+}
+
+void MultiresGather::splat(Frame& frame, const Buffer& vpls, int vplCount, PassTimers& timers)
+{
+    auto t = timers.scope("splat");
+    fbo_.bind();
+    glViewport(0, 0, illumination_.width(), illumination_.height());
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_STENCIL_TEST);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_FALSE); // alpha keeps the refinement's marks
+    glEnable(GL_BLEND);
+    glBlendEquation(GL_FUNC_ADD);
+    glBlendFunc(GL_ONE, GL_ONE);
+    splat_.set("bufferSize", glm::vec2(illumination_.width(), illumination_.height()));
+    splat_.use();
+    splatVao_.bind();
+    glMemoryBarrier(GL_UNIFORM_BARRIER_BIT); // VPLs written by compute passes
+    // For each VPL, one point per valid fragment: instances are VPLs, one draw per block of the cache.
+    for (int block = 0; block < vplBlockCount(vplCount) && splatCount_ > 0; ++block)
+        glDrawArraysInstanced(GL_POINTS, 0, splatCount_, bindVplBlock(vpls, block, vplCount));
+    glDisable(GL_BLEND);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+}
+
 std::vector<int> MultiresGather::fragmentsPerLevel() const
 {
     std::vector<unsigned> raw(kMaxLevels, 0u);

@@ -10,6 +10,11 @@
 //   "upsample"       every pixel takes the valid fragment covering it, interpolated among same-level
 //                    neighbours [NW09], times the full-resolution diffuse colour, into frame.indirect()
 // Layout, thresholds and the exact upsampling rule: glsl/technique/isr/multires.glsl and the README.
+//
+// The path §3.2 replaces, multiresolution splatting [NW09], fills the same buffer for the paper's Table 1
+// (technique multires-splat): "refine" (iterative subdivision from the coarsest patches, one compute pass
+// per level, building the list of valid fragments) and "splat" (that list drawn as points once per VPL,
+// added by blending) instead of "stencil-setup" and "gather"; the upsampling is the same.
 #pragma once
 
 #include <array>
@@ -64,6 +69,11 @@ public:
     void gather(Frame& frame, Program& program, PassTimers& timers, int draws = 1,
                 const std::function<void(Program&, int)>& setupDraw = {});
     void upsample(Frame& frame, PassTimers& timers);
+    // [NW09]'s path, after buildPyramid(): refine() selects the valid fragments by iterative subdivision
+    // (the same set, counts and neighbour marks as markValidFragments()) and keeps them as a vertex list;
+    // splat() draws that list once per VPL of the cache [0, vplCount). Returns the points per VPL.
+    int refine(Frame& frame, PassTimers& timers);
+    void splat(Frame& frame, const Buffer& vpls, int vplCount, PassTimers& timers);
     // Loop iterations one shader invocation may run: llvmpipe silently ends every invocation after 65535
     // loop iterations in total (gallivm's loop limiter, shared by all loops of a shader), so there long
     // gathers are split over several draws; unlimited elsewhere.
@@ -94,6 +104,11 @@ private:
     Framebuffer fbo_;
     Buffer counts_;
     Program reduce_, stencilSetup_, cacheGather_, upsample_;
+    // [NW09]'s path, allocated on the first refine(): work lists, counters, the splat vertices.
+    Buffer workLists_[2], refineCounts_, splatVertices_;
+    VertexArray splatVao_;
+    Program refine_, splat_;
+    int splatCount_ = 0;
 
     void allocate(int width, int height);
     void setCommonUniforms(Program& program) const;

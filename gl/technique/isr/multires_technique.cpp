@@ -11,10 +11,13 @@ namespace bounce::gl {
 
 namespace {
 
-class MultiresGatherTechnique final : public Technique {
+// rsm's regular-grid VPLs into the multiresolution buffer: by the one-pass stencil and the stenciled
+// gather of §3.2 (multires-gather), or by [NW09]'s iterative refinement and per-VPL splatting that §3.2
+// replaces (multires-splat, the other half of the paper's Table 1). Same VPLs, same buffer, same upsampling.
+class MultiresTechnique final : public Technique {
 public:
-    MultiresGatherTechnique(Frame& frame, const RsmSettings& rsm, int vpls, const MultiresSettings& multires)
-        : rsm_(rsm), vpls_(vpls), gather_(frame, multires)
+    MultiresTechnique(Frame& frame, const RsmSettings& rsm, int vpls, const MultiresSettings& multires, bool splat)
+        : rsm_(rsm), vpls_(vpls), gather_(frame, multires), splat_(splat)
     {
     }
 
@@ -24,13 +27,21 @@ public:
         const int side = VplSampler::sideFor(vpls_, rsm_.viewCount(), rsm_.size());
         reserveVplCache(cache_, side * side * std::max(rsm_.viewCount(), 1));
         count_ = sampler_.sample(rsm_, cache_, side, timers);
-        gather_.run(frame, cache_, count_, timers);
+        if (!splat_) {
+            gather_.run(frame, cache_, count_, timers);
+            return;
+        }
+        gather_.buildPyramid(frame, timers);
+        points_ = gather_.refine(frame, timers);
+        gather_.splat(frame, cache_, count_, timers);
+        gather_.upsample(frame, timers);
     }
 
     std::vector<Counter> counters() const override
     {
         std::vector<Counter> c{{"vpls", double(count_)}};
         for (const Counter& f : gather_.counters()) c.push_back(f);
+        if (splat_) c.push_back({"splat.points", double(points_) * double(count_)});
         return c;
     }
 
@@ -40,8 +51,27 @@ private:
     Buffer cache_;
     int vpls_;
     MultiresGather gather_;
-    int count_ = 0;
+    bool splat_;
+    int count_ = 0, points_ = 0;
 };
+
+std::vector<ParamDecl> multiresTechniqueParams()
+{
+    std::vector<ParamDecl> p = {
+        {"vpls", ParamType::Int, 256, 1, 1024 * 1024,
+         "VPLs on a regular grid of the RSM (as rsm); gather cost is linear in it"},
+        {"rsmSize", ParamType::Int, 256, 4, 2048, "RSM texels per side of each light view (the paper: 256)"},
+    };
+    for (const ParamDecl& d : multiresParams()) p.push_back(d);
+    return p;
+}
+
+std::unique_ptr<Technique> createMultires(Frame& frame, const ParamValues& v, bool splat)
+{
+    RsmSettings rsm;
+    rsm.size = v.getInt("rsmSize");
+    return std::make_unique<MultiresTechnique>(frame, rsm, v.getInt("vpls"), multiresSettingsFrom(v), splat);
+}
 
 } // namespace
 
@@ -74,17 +104,21 @@ TechniqueInfo multiresGatherTechniqueInfo()
     info.paper = "Nichols, Shopf & Wyman 2009";
     info.lightPaths = "onebounce-novis";
     info.summary = "rsm's regular-grid VPLs gathered at multiresolution eye-space patches chosen by a one-pass stencil";
-    info.params = {
-        {"vpls", ParamType::Int, 256, 1, 1024 * 1024,
-         "VPLs on a regular grid of the RSM (as rsm); gather cost is linear in it"},
-        {"rsmSize", ParamType::Int, 256, 4, 2048, "RSM texels per side of each light view (the paper: 256)"},
-    };
-    for (const ParamDecl& p : multiresParams()) info.params.push_back(p);
-    info.create = [](Frame& frame, const ParamValues& v) -> std::unique_ptr<Technique> {
-        RsmSettings rsm;
-        rsm.size = v.getInt("rsmSize");
-        return std::make_unique<MultiresGatherTechnique>(frame, rsm, v.getInt("vpls"), multiresSettingsFrom(v));
-    };
+    info.params = multiresTechniqueParams();
+    info.create = [](Frame& frame, const ParamValues& v) { return createMultires(frame, v, false); };
+    return info;
+}
+
+TechniqueInfo multiresSplatTechniqueInfo()
+{
+    TechniqueInfo info;
+    info.name = "multires-splat";
+    info.paper = "Nichols & Wyman 2009 (the baseline of Nichols, Shopf & Wyman 2009, Table 1)";
+    info.lightPaths = "onebounce-novis";
+    info.summary = "multiresolution splatting: the same patches found by iterative refinement, every VPL splatted "
+                   "to them as points (what the stencil and the gather replace)";
+    info.params = multiresTechniqueParams();
+    info.create = [](Frame& frame, const ParamValues& v) { return createMultires(frame, v, true); };
     return info;
 }
 

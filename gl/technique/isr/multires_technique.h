@@ -9,6 +9,9 @@
 namespace bounce::gl {
 
 TechniqueInfo multiresGatherTechniqueInfo();
+// `multires-splat`: [NW09]'s multiresolution splatting, the path §3.2 replaces (the paper's Table 1):
+// RSM -> VPL cache -> eye-space min-max pyramid -> iterative refinement -> per-VPL point splats -> upsample.
+TechniqueInfo multiresSplatTechniqueInfo();
 
 // The eye-space parameters every technique built on MultiresGather declares (multires-gather, hisr):
 // depthThreshold, normalThreshold, coarsestLevel.
