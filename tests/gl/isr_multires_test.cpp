@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <memory>
 #include <string>
 #include <tuple>
 #include <utility>
@@ -94,6 +95,31 @@ void expectSameImage(const core::Image& got, const core::Image& want, double tol
     ADD_FAILURE() << "images written to " << dir;
 }
 
+// The VPL cache's layout (glsl/technique/isr/vpl.glsl) and the VPL tree's (vpl_tree.glsl).
+struct GpuVpl { glm::vec4 positionArea, normal, flux; };
+struct Node { glm::vec4 positionArea, normal, flux, range; };
+
+// A frame of `scene` at w x h (256^2 shadow maps), begun, with its G-buffer rendered unless `gbuffer` is false.
+std::unique_ptr<gl::Frame> testFrame(const core::Scene& scene, int w, int h, gl::PassTimers& timers, bool gbuffer = true)
+{
+    gl::FrameSettings fs;
+    fs.width = w;
+    fs.height = h;
+    fs.shadowMapSize = 256;
+    auto frame = std::make_unique<gl::Frame>(scene, fs);
+    frame->beginFrame();
+    if (gbuffer) frame->renderGBuffer(timers);
+    return frame;
+}
+
+// A VPL cache in whole uniform blocks (vpl_gather.h) holding `vpls`.
+gl::Buffer vplCache(const std::vector<GpuVpl>& vpls)
+{
+    gl::Buffer cache("test.vpls", gl::vplCacheBytes(int(vpls.size())));
+    cache.update(0, vpls.size() * sizeof(GpuVpl), vpls.data());
+    return cache;
+}
+
 class IsrMultiresTest : public GlTest {};
 
 // ---------------------------------------------------------------------------------------------------
@@ -149,20 +175,13 @@ TEST(IsrMultiresLayout, AutoCoarsestLevelKeepsSixtyFourPatchesAcross)
 void checkCoverage(int w, int h, const gl::MultiresSettings& settings, std::vector<int>* perLevelOut = nullptr)
 {
     const core::Scene scene = core::makeCornell("cornell-spot");
-    gl::FrameSettings fs;
-    fs.width = w;
-    fs.height = h;
-    fs.shadowMapSize = 256;
-    gl::Frame frame(scene, fs);
     gl::PassTimers timers;
-    frame.beginFrame();
-    frame.renderGBuffer(timers);
+    const auto framePtr = testFrame(scene, w, h, timers);
+    gl::Frame& frame = *framePtr;
     frame.clearIndirect();
-    struct GpuVpl { glm::vec4 positionArea, normal, flux; };
     const std::vector<GpuVpl> vpls = {{{0.3f, 0.0f, 0.3f, 1e-3f}, {0, 1, 0, 0}, {0.01f, 0.01f, 0.01f, 0}},
                                       {{0.55f, 0.3f, 0.3f, 1e-3f}, {-1, 0, 0, 0}, {0.02f, 0.0f, 0.0f, 0}}};
-    gl::Buffer cache("test.vpls", gl::vplCacheBytes(int(vpls.size())));
-    cache.update(0, vpls.size() * sizeof(GpuVpl), vpls.data());
+    const gl::Buffer cache = vplCache(vpls);
     gl::MultiresGather gather(frame, settings);
     gather.run(frame, cache, int(vpls.size()), timers);
     timers.endFrame(false);
@@ -252,11 +271,9 @@ TEST_F(IsrMultiresTest, ZeroThresholdsEqualCpuGather)
     constexpr double kPi = 3.14159265358979323846;
     const core::Scene scene = core::makeCornell("cornell-spot");
     for (const auto& [w, h] : {std::pair{64, 64}, std::pair{333, 200}}) {
-        gl::FrameSettings fs;
-        fs.width = w;
-        fs.height = h;
-        fs.shadowMapSize = 256;
-        gl::Frame frame(scene, fs);
+        gl::PassTimers timers;
+        const auto framePtr = testFrame(scene, w, h, timers);
+        gl::Frame& frame = *framePtr;
         gl::RsmSettings rs;
         rs.size = 32;
         gl::RsmPass rsm(rs);
@@ -266,9 +283,6 @@ TEST_F(IsrMultiresTest, ZeroThresholdsEqualCpuGather)
         ms.depthThreshold = 0.0f;
         ms.normalThreshold = 0.0f;
         gl::MultiresGather gather(frame, ms);
-        gl::PassTimers timers;
-        frame.beginFrame();
-        frame.renderGBuffer(timers);
         frame.clearIndirect();
         rsm.render(frame, timers);
         const int count = sampler.sample(rsm, cache, 8, timers);
@@ -276,7 +290,6 @@ TEST_F(IsrMultiresTest, ZeroThresholdsEqualCpuGather)
         timers.endFrame(false);
         ASSERT_EQ(count, 64);
 
-        struct GpuVpl { glm::vec4 positionArea, normal, flux; };
         const std::vector<GpuVpl> vpls = cache.download<GpuVpl>();
         const std::vector<float> P = frame.position().readFloats(0, 4), N = frame.normal().readFloats(0, 4),
                                  D = frame.diffuse().readFloats(0, 4);
@@ -367,22 +380,16 @@ TEST_F(IsrMultiresTest, HisrTraversalMatchesCpuTraversal)
                                 kSize, kSize);
 
     // The same RSM and tree, built again (both are deterministic), and the frame's G-buffer.
-    gl::FrameSettings fs;
-    fs.width = kSize;
-    fs.height = kSize;
-    fs.shadowMapSize = 256;
-    gl::Frame frame(scene, fs);
+    gl::PassTimers timers;
+    const auto framePtr = testFrame(scene, kSize, kSize, timers);
+    gl::Frame& frame = *framePtr;
     gl::RsmSettings rs;
     rs.size = kRsm;
     gl::RsmPass rsm(rs);
     gl::VplTree tree(4); // as topGrid=4 and hisr's default light thresholds
-    gl::PassTimers timers;
-    frame.beginFrame();
-    frame.renderGBuffer(timers);
     rsm.render(frame, timers);
     tree.build(rsm, timers);
     timers.endFrame(false);
-    struct Node { glm::vec4 positionArea, normal, flux, range; };
     const std::vector<Node> nodes = tree.nodes().download<Node>();
     const float T = float(gl::hisrRefineConstant(gl::hisrPeakIntensity(frame.gpuScene().lights()), tau, kRsm));
     ASSERT_GT(T, 0.0f);
@@ -457,23 +464,16 @@ TEST_F(IsrMultiresTest, FragmentsDropAsThresholdsGrow)
 TEST_F(IsrMultiresTest, RefineAndSplatEqualStencilAndGather)
 {
     const core::Scene scene = core::makeCornell("cornell-spot");
-    struct GpuVpl { glm::vec4 positionArea, normal, flux; };
     std::vector<GpuVpl> vpls;
     for (int i = 0; i < 40; ++i) // a spread of VPLs on the floor, the walls and the ceiling
         vpls.push_back({{0.05f + 0.0113f * i, i % 3 == 0 ? 0.0f : 0.02f * i, 0.1f + 0.009f * i, 1e-3f},
                         {0.0f, i % 2 ? 1.0f : -1.0f, 0.0f, 0.0f}, {0.01f, 0.005f * (i % 4), 0.002f, 0.0f}});
     for (const auto& [w, h, coarsest] : {std::tuple{64, 64, 4}, std::tuple{333, 200, -1}, std::tuple{1, 1, -1}}) {
         const std::string size = std::to_string(w) + "x" + std::to_string(h);
-        gl::FrameSettings fs;
-        fs.width = w;
-        fs.height = h;
-        fs.shadowMapSize = 256;
-        gl::Frame frame(scene, fs);
         gl::PassTimers timers;
-        frame.beginFrame();
-        frame.renderGBuffer(timers);
-        gl::Buffer cache("test.vpls", gl::vplCacheBytes(int(vpls.size())));
-        cache.update(0, vpls.size() * sizeof(GpuVpl), vpls.data());
+        const auto framePtr = testFrame(scene, w, h, timers);
+        gl::Frame& frame = *framePtr;
+        const gl::Buffer cache = vplCache(vpls);
         gl::MultiresSettings ms;
         ms.coarsestLevel = coarsest;
         gl::MultiresGather gather(frame, ms);
@@ -521,17 +521,13 @@ TEST_F(IsrMultiresTest, RefineAndSplatEqualStencilAndGather)
 TEST_F(IsrMultiresTest, VplTreeMatchesCpuClusters)
 {
     const core::Scene scene = core::makeCornell("cornell-spot");
-    gl::FrameSettings fs;
-    fs.width = 8;
-    fs.height = 8;
-    fs.shadowMapSize = 256;
-    gl::Frame frame(scene, fs);
+    gl::PassTimers timers;
+    const auto framePtr = testFrame(scene, 8, 8, timers, false);
+    gl::Frame& frame = *framePtr;
     gl::RsmSettings rs;
     rs.size = 32;
     gl::RsmPass rsm(rs);
     gl::VplTree tree(4); // 4 x 4 top patches of 8 x 8 texels: depth 3
-    gl::PassTimers timers;
-    frame.beginFrame();
     rsm.render(frame, timers);
     tree.build(rsm, timers);
     timers.endFrame(false);
@@ -543,7 +539,6 @@ TEST_F(IsrMultiresTest, VplTreeMatchesCpuClusters)
     const std::vector<float> P = rsm.position().readFloats(0, 4), N = rsm.normal().readFloats(0, 4),
                              F = rsm.flux().readFloats(0, 4);
     const glm::vec3 origin = rsm.views()[0].origin;
-    struct Node { glm::vec4 positionArea, normal, flux, range; };
     static_assert(sizeof(Node) == gl::VplTree::kNodeBytes);
     const std::vector<Node> got = tree.nodes().download<Node>();
     ASSERT_EQ(got.size(), std::size_t(tree.nodeCount()));
