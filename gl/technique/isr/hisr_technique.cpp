@@ -65,8 +65,8 @@ public:
         program_.set("alwaysRefine", std::isinf(T) ? 1 : 0);
         program_.set("discontinuityLevel", discontinuityLevel_);
         program_.set("refineT", std::isinf(T) ? 0.0f : float(T));
-        // Per root a fragment runs at most one loop step, one per node of the subtree and up to four per
-        // refined node to push its children: fewer than 2 (nodes + 1).
+        // Per root a fragment's walk runs at most one step per node of the subtree and one climb per node
+        // it leaves as the last of four: fewer than 2 (nodes + 1) loop iterations (llvmpipe's budget).
         const int roots = tree_.rootCount();
         const long long perRoot = 2LL * (tree_.subtreeNodes() + 1);
         const int perDraw = int(std::clamp<long long>(MultiresGather::loopBudget() / perRoot, 1, std::max(roots, 1)));
