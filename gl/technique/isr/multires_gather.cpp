@@ -236,17 +236,18 @@ int MultiresGather::refine(Frame& frame, PassTimers& timers)
 {
     auto t = timers.scope("refine");
     const std::size_t pixels = std::size_t(width_) * std::size_t(height_);
-    if (!splatVertices_ || splatVertices_.bytes() < pixels * 32) {
-        // Work lists and vertices for the worst case, every pixel a fragment (32-byte vertices).
+    constexpr std::size_t kVertexBytes = 32; // glsl/technique/isr/multires_refine.comp: SplatVertex
+    if (!splatVertices_ || splatVertices_.bytes() < pixels * kVertexBytes) {
+        // Work lists and vertices for the worst case, every pixel a fragment.
         refine_ = Program::compute("multires.refine", "technique/isr/multires_refine.comp");
         splat_ = Program::graphics("multires.splat", "technique/isr/multires_splat.vert", "technique/isr/multires_splat.frag",
                                    vplBlockDefines());
         workLists_[0] = Buffer("multires.refine.work0", pixels * sizeof(unsigned));
         workLists_[1] = Buffer("multires.refine.work1", pixels * sizeof(unsigned));
         refineCounts_ = Buffer("multires.refine.counts", 2 * sizeof(unsigned));
-        splatVertices_ = Buffer("multires.splat.vertices", pixels * 32);
+        splatVertices_ = Buffer("multires.splat.vertices", pixels * kVertexBytes);
         splatVao_ = VertexArray("multires.splat");
-        glVertexArrayVertexBuffer(splatVao_.id(), 0, splatVertices_.id(), 0, 32);
+        glVertexArrayVertexBuffer(splatVao_.id(), 0, splatVertices_.id(), 0, GLsizei(kVertexBytes));
         for (unsigned a = 0; a < 2; ++a) {
             glEnableVertexArrayAttrib(splatVao_.id(), a);
             glVertexArrayAttribFormat(splatVao_.id(), a, 4, GL_FLOAT, GL_FALSE, 16 * a);
