@@ -283,7 +283,7 @@ int cmdBench(const Args& args)
                 passText += buf;
             }
             double relOwn = NAN, relFull = NAN, rmseOwn = NAN, ssimOwn = NAN;
-            std::vector<std::string> against = {info.lightPaths, "full"};
+            std::vector<std::string> against = {core::lightPathsName(info.lightPaths), "full"};
             against.insert(against.end(), compareTo.begin(), compareTo.end());
             // References at their own size (when the config gives one): the image is box-downsampled to it.
             const int rw = refSpec.width > 0 ? refSpec.width : w, rh = refSpec.height > 0 ? refSpec.height : h;
@@ -301,7 +301,7 @@ int cmdBench(const Args& args)
                 const core::ImageMetrics m = core::compareImages(compared, blanked(refs[key], emitters));
                 rec["error"][paths] = {{"rmse", m.rmse}, {"relativeRmse", m.relativeRmse}, {"relativeMse", m.relativeMse},
                                        {"mae", m.mae}, {"ssim", m.ssim}, {"maxError", m.maxError}};
-                if (paths == info.lightPaths) { relOwn = m.relativeRmse; rmseOwn = m.rmse; ssimOwn = m.ssim; }
+                if (paths == core::lightPathsName(info.lightPaths)) { relOwn = m.relativeRmse; rmseOwn = m.rmse; ssimOwn = m.ssim; }
                 if (paths == "full") relFull = m.relativeRmse;
             }
             double relBaseline = NAN, flicker = NAN;
@@ -327,7 +327,7 @@ int cmdBench(const Args& args)
             rec["size"] = sizeText;
             results.push_back(rec);
             csv << csvField(sceneNames[si]) << "," << s.technique << "," << csvField(joined(s.sets, " ")) << ","
-                << sizeText << "," << info.lightPaths << "," << rec["totalMs"].get<double>() << "," << relOwn << "," << relFull << ","
+                << sizeText << "," << core::lightPathsName(info.lightPaths) << "," << rec["totalMs"].get<double>() << "," << relOwn << "," << relFull << ","
                 << rmseOwn << "," << ssimOwn << "," << csvField(s.baseline.empty() ? "" : s.baseline + " " + joined(s.baselineSets, " "))
                 << "," << relBaseline << "," << flicker << "," << csvField(passText);
             for (const std::string& p : compareTo) csv << "," << rec["error"][p]["relativeRmse"].get<double>();

@@ -67,9 +67,9 @@ nlohmann::json runRecord(const gl::ContextInfo& ctx, const std::string& scene, g
     j["width"] = r.frame().width();
     j["height"] = r.frame().height();
     j["technique"] = r.technique().name;
-    j["lightPaths"] = r.technique().lightPaths;
-    j["parameters"] = r.techniqueValues().values();
-    j["frameParameters"] = r.frameValues().values();
+    j["lightPaths"] = core::lightPathsName(r.technique().lightPaths);
+    j["parameters"] = r.techniqueValues().toJson(r.technique().params);
+    j["frameParameters"] = r.frameValues().toJson(gl::frameParams());
     double total = 0.0;
     nlohmann::json passes = nlohmann::json::array();
     for (const gl::PassStat& p : r.timers().stats()) {

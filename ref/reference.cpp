@@ -20,20 +20,6 @@ namespace {
 // entries then miss. 2: the diffuse part weighted by the transmission in and out.
 constexpr int kEstimatorVersion = 2;
 
-struct NamedPaths {
-    const char* name;
-    LightPaths paths;
-};
-
-constexpr NamedPaths kPathNames[] = {
-    {"direct", LightPaths::Direct},
-    {"onebounce", LightPaths::OneBounce},
-    {"onebounce-novis", LightPaths::OneBounceNoVis},
-    {"onebounce-indirect", LightPaths::OneBounceIndirect},
-    {"onebounce-novis-indirect", LightPaths::OneBounceNoVisIndirect},
-    {"full", LightPaths::Full},
-};
-
 struct Fnv1a {
     std::uint64_t h = 1469598103934665603ull;
     void bytes(const void* p, std::size_t n)
@@ -54,29 +40,6 @@ struct Fnv1a {
 };
 
 } // namespace
-
-LightPaths parseLightPaths(const std::string& name)
-{
-    for (const NamedPaths& p : kPathNames)
-        if (name == p.name) return p.paths;
-    std::string allowed;
-    for (const NamedPaths& p : kPathNames) allowed += std::string(allowed.empty() ? "" : ", ") + p.name;
-    throw std::invalid_argument("unknown light paths '" + name + "' (allowed: " + allowed + ")");
-}
-
-std::string lightPathsName(LightPaths paths)
-{
-    for (const NamedPaths& p : kPathNames)
-        if (paths == p.paths) return p.name;
-    return "unknown";
-}
-
-std::vector<std::string> lightPathsNames()
-{
-    std::vector<std::string> names;
-    for (const NamedPaths& p : kPathNames) names.emplace_back(p.name);
-    return names;
-}
 
 nlohmann::json runRecord(const RenderSettings& settings, const RenderResult& r)
 {

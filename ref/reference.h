@@ -14,26 +14,16 @@
 #include <nlohmann/json.hpp>
 
 #include "core/image.h"
+#include "core/light_paths.h"
 #include "core/scene.h"
 
 namespace bounce::ref {
 
-// Light paths, in Heckbert's notation with D|G any reflection (the BRDF of core/brdf.h); see
-// shared/scenes/cornell-box.md and ref/README.md.
-enum class LightPaths {
-    Direct,                 // LE + L(D|G)E: emission seen by the camera and one reflection of the light
-    OneBounce,              // Direct + L(D|G){2}E, with full visibility
-    OneBounceNoVis,         // Direct + L(D|G){2}E without the visibility between x1 and x2
-    OneBounceIndirect,      // L(D|G){2}E only: OneBounce - Direct
-    OneBounceNoVisIndirect, // the L(D|G){2}E term of OneBounceNoVis only
-    Full,                   // every path length (unbiased Russian roulette)
-};
-
-// "direct", "onebounce", "onebounce-novis", "onebounce-indirect", "onebounce-novis-indirect", "full".
-// Throws std::invalid_argument naming the allowed values for anything else.
-LightPaths parseLightPaths(const std::string& name);
-std::string lightPathsName(LightPaths paths);
-std::vector<std::string> lightPathsNames();
+// The light-path sets live in core/ (core/light_paths.h), shared with the techniques that claim them.
+using core::LightPaths;
+using core::lightPathsName;
+using core::lightPathsNames;
+using core::parseLightPaths;
 
 struct RenderSettings {
     LightPaths paths = LightPaths::Full;

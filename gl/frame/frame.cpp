@@ -59,13 +59,23 @@ void Frame::allocateTargets()
     clearIndirect();
 }
 
-void Frame::setCamera(const core::Camera& camera) { camera_ = camera; }
+void Frame::setCamera(const core::Camera& camera)
+{
+    const auto same = [](const core::Camera& a, const core::Camera& b) {
+        return a.position == b.position && a.forward == b.forward && a.up == b.up && a.yfovRad == b.yfovRad &&
+               a.znear == b.znear && a.zfar == b.zfar;
+    };
+    if (same(camera, camera_)) return;
+    camera_ = camera;
+    ++version_.camera;
+}
 
 void Frame::setLights(const std::vector<core::Light>& lights)
 {
     const int punctualBefore = gpu_.punctualLightCount();
     gpu_.setLights(lights);
     shadows_.update(gpu_);
+    ++version_.lights;
     if ((punctualBefore > 0) != (gpu_.punctualLightCount() > 0)) directProgram_ = directProgram(gpu_);
 }
 
@@ -75,6 +85,7 @@ void Frame::resize(int width, int height)
     settings_.width = width;
     settings_.height = height;
     allocateTargets();
+    ++version_.camera;
 }
 
 void Frame::beginFrame() { ++frameIndex_; }
@@ -117,6 +128,7 @@ void Frame::bindGBuffer() const
 void Frame::bindSceneData() const
 {
     gpu_.materials().bindBase(GL_SHADER_STORAGE_BUFFER, 0);
+    gpu_.bindGeometry();
     shadows_.bind();
 }
 

@@ -3,6 +3,7 @@
 // indirect. Passes are timed through PassTimers under stable names ("shadow", "gbuffer", "direct"...).
 #pragma once
 
+#include <cstdint>
 #include <memory>
 
 #include <glm/glm.hpp>
@@ -27,6 +28,15 @@ struct FrameSettings {
     int textureSize = 512;   // base-colour textures are resampled to this size
 };
 
+// Counters that change when the scene, a light or the camera moves (and only then): progressive
+// techniques compare them with what they accumulated for and start over.
+struct FrameVersion {
+    std::uint64_t scene = 0;  // geometry and materials (a Frame holds one scene: changes once scenes move)
+    std::uint64_t lights = 0; // setLights()
+    std::uint64_t camera = 0; // setCamera() with a different camera, resize()
+    bool operator==(const FrameVersion&) const = default;
+};
+
 class Frame {
 public:
     Frame(const core::Scene& scene, const FrameSettings& settings);
@@ -46,7 +56,9 @@ public:
 
     // Binds the G-buffer at texture units 0..4 (glsl/common/gbuffer.glsl).
     void bindGBuffer() const;
-    // Binds materials (SSBO 0), lights (1), shadow views (2), area polygons (3), shadow depth (unit 5).
+    // Binds materials (SSBO 0), lights (1), shadow views (2), area polygons (3), the scene's geometry
+    // (vertices 4, indices 5, emissive triangles 6: glsl/common/scene.glsl with SCENE_GEOMETRY), shadow
+    // depth (unit 5) and the base-colour textures (unit 6).
     void bindSceneData() const;
     void drawFullscreen() const;
 
@@ -60,6 +72,7 @@ public:
     int width() const { return settings_.width; }
     int height() const { return settings_.height; }
     int frameIndex() const { return frameIndex_; }
+    const FrameVersion& version() const { return version_; }
 
     const Texture& position() const { return position_; }
     const Texture& normal() const { return normal_; }
@@ -85,6 +98,7 @@ private:
     VertexArray emptyVao_;
     Program gbufferProgram_, directProgram_, compositeProgram_;
     int frameIndex_ = -1;
+    FrameVersion version_;
     void allocateTargets();
 };
 

@@ -108,6 +108,31 @@ GpuScene::GpuScene(const core::Scene& scene, int textureSize) : vao_("scene"), b
     textures_.setFilter(GL_LINEAR, GL_LINEAR);
     textures_.setWrap(GL_REPEAT);
 
+    // Emissive triangles with a power CDF (luminance of pi L A), for sampling emission by power.
+    std::vector<GpuEmissiveTriangle> emissive;
+    double totalPower = 0.0;
+    std::uint32_t triangle = 0;
+    for (const core::Mesh& m : scene.meshes) {
+        const core::Material& mat = scene.materials[m.material];
+        const double luminance = 0.2126 * mat.emission.x + 0.7152 * mat.emission.y + 0.0722 * mat.emission.z;
+        for (std::size_t t = 0; t + 2 < m.indices.size(); t += 3, ++triangle) {
+            if (!mat.isEmissive()) continue;
+            const glm::vec3 a = m.positions[m.indices[t]], b = m.positions[m.indices[t + 1]],
+                            c = m.positions[m.indices[t + 2]];
+            const float area = 0.5f * glm::length(glm::cross(b - a, c - a));
+            if (!(area > 0.0f)) continue; // degenerate: emits nothing
+            totalPower += core::kPi * luminance * area;
+            emissive.push_back({triangle, m.material, area, float(totalPower)});
+        }
+    }
+    for (GpuEmissiveTriangle& e : emissive) e.powerCdf = totalPower > 0.0 ? float(e.powerCdf / totalPower) : 1.0f;
+    if (!emissive.empty()) emissive.back().powerCdf = 1.0f;
+    emissiveCount_ = int(emissive.size());
+    const GpuEmissiveHeader header{std::uint32_t(emissive.size()), float(totalPower), {0, 0}};
+    emissive_ = Buffer("scene.emissiveTriangles", sizeof header + std::max<std::size_t>(emissive.size(), 1) * sizeof(GpuEmissiveTriangle));
+    emissive_.update(0, sizeof header, &header);
+    if (!emissive.empty()) emissive_.update(sizeof header, emissive.size() * sizeof(GpuEmissiveTriangle), emissive.data());
+
     std::vector<GpuMaterial> mats;
     for (const core::Material& m : scene.materials)
         mats.push_back({glm::vec4(m.baseColor, m.metallic), glm::vec4(m.emission, m.roughness),
@@ -137,6 +162,14 @@ void GpuScene::setLights(const std::vector<core::Light>& punctual)
         lights_.push_back(s);
     }
     lights_.insert(lights_.end(), area_.begin(), area_.end());
+}
+
+void GpuScene::bindGeometry() const
+{
+    vertices_.bindBase(GL_SHADER_STORAGE_BUFFER, kSceneVerticesBinding);
+    indices_.bindBase(GL_SHADER_STORAGE_BUFFER, kSceneIndicesBinding);
+    emissive_.bindBase(GL_SHADER_STORAGE_BUFFER, kSceneEmissiveBinding);
+    textures_.bind(kBaseColorTextureUnit);
 }
 
 void GpuScene::draw() const

@@ -29,6 +29,33 @@ struct GpuLight {
 };
 inline constexpr int kLightPoint = 0, kLightSpot = 1, kLightDirectional = 2, kLightArea = 3;
 
+// The scene's geometry as any shader reads it (glsl/common/scene.glsl, SCENE_GEOMETRY): the vertex buffer
+// the rasteriser draws from, read as std430 floats (9 per vertex), the index buffer (3 per triangle), and
+// the emissive triangles. Triangle t is the t-th triangle of the meshes in order, the order core::Scene,
+// the BVH and the path tracer use.
+struct GpuVertex {
+    glm::vec3 position; // world space, metres
+    glm::vec3 normal;
+    glm::vec2 uv;
+    std::uint32_t material;
+};
+static_assert(sizeof(GpuVertex) == 9 * sizeof(float), "scene.glsl reads 9 floats per vertex");
+struct GpuEmissiveTriangle {
+    std::uint32_t triangle;
+    std::uint32_t material;
+    float areaM2;
+    float powerCdf; // the cumulative share of emitted power pi L A (luminance) up to and including this one
+};
+struct GpuEmissiveHeader {
+    std::uint32_t count;
+    float totalPowerW; // pi L A summed, luminance
+    std::uint32_t pad[2];
+};
+// SSBO binding points of the geometry (scene.glsl: the same numbers).
+inline constexpr unsigned kSceneVerticesBinding = 4, kSceneIndicesBinding = 5, kSceneEmissiveBinding = 6;
+// Texture unit of the base-colour texture array (scene.glsl, gbuffer.frag, rsm.frag).
+inline constexpr unsigned kBaseColorTextureUnit = 6;
+
 // One light as the GPU sees it, before shadow layers are assigned.
 struct LightSource {
     int type = kLightPoint;
@@ -49,6 +76,9 @@ public:
     GpuScene(const core::Scene& scene, int textureSize = 512);
 
     void draw() const; // binds the vertex array and draws every triangle
+    // Binds vertices, indices and emissive triangles at kScene*Binding and the textures at their unit.
+    void bindGeometry() const;
+    int emissiveTriangleCount() const { return emissiveCount_; }
     void drawPositionsOnly() const { draw(); }
     const Buffer& materials() const { return materials_; }
     const Texture& baseColorTextures() const { return textures_; }
@@ -64,14 +94,10 @@ public:
     const std::vector<core::Light>& punctualLights() const { return punctual_; }
 
 private:
-    struct Vertex {
-        glm::vec3 position;
-        glm::vec3 normal;
-        glm::vec2 uv;
-        std::uint32_t material;
-    };
+    using Vertex = GpuVertex;
     VertexArray vao_;
-    Buffer vertices_, indices_, materials_;
+    Buffer vertices_, indices_, materials_, emissive_;
+    int emissiveCount_ = 0;
     Texture textures_;
     bool hasTextures_ = false;
     std::size_t indexCount_ = 0;

@@ -14,7 +14,7 @@ TechniqueInfo directTechniqueInfo()
     TechniqueInfo info;
     info.name = "direct";
     info.paper = "-";
-    info.lightPaths = "direct";
+    info.lightPaths = core::LightPaths::Direct;
     info.summary = "emission + direct light with shadow maps; the base every technique adds to";
     info.create = [](Frame&, const ParamValues&) { return std::make_unique<Direct>(); };
     return info;

@@ -1,5 +1,6 @@
 #include "gl/technique/technique.h"
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <sstream>
@@ -19,15 +20,108 @@ double ParamValues::get(const std::string& name) const
     return it->second;
 }
 
+std::string ParamDecl::typeName() const
+{
+    switch (type) {
+    case ParamType::Int: return "int";
+    case ParamType::Bool: return "bool";
+    case ParamType::Choice: return "choice";
+    default: return "float";
+    }
+}
+
+std::string ParamDecl::text(double value) const
+{
+    if (allowAuto && value == kAutoValue) return "auto";
+    if (type == ParamType::Bool) return value != 0.0 ? "on" : "off";
+    if (type == ParamType::Choice) {
+        const auto i = std::size_t(value);
+        return value >= 0.0 && i < choices.size() ? choices[i] : "?";
+    }
+    std::ostringstream s;
+    s << value;
+    return s.str();
+}
+
+nlohmann::json ParamDecl::toJson() const
+{
+    nlohmann::json j = {{"name", name}, {"type", typeName()}, {"default", text(defaultValue)}, {"meaning", meaning},
+                        {"update", update == ParamUpdate::Uniform ? "uniform" : "rebuild"}};
+    if (type == ParamType::Int || type == ParamType::Float) {
+        j["min"] = min;
+        j["max"] = max;
+        if (powerOfTwo) j["powerOfTwo"] = true;
+        if (allowAuto) j["allowAuto"] = true;
+    }
+    if (type == ParamType::Choice) j["choices"] = choices;
+    return j;
+}
+
+ParamDecl choiceParam(std::string name, std::vector<std::string> choices, int defaultIndex, std::string meaning,
+                      ParamUpdate update)
+{
+    ParamDecl d;
+    d.name = std::move(name);
+    d.type = ParamType::Choice;
+    d.defaultValue = defaultIndex;
+    d.min = 0;
+    d.max = double(choices.size()) - 1.0;
+    d.meaning = std::move(meaning);
+    d.update = update;
+    d.choices = std::move(choices);
+    return d;
+}
+
+const std::string& ParamValues::getChoice(const std::vector<ParamDecl>& decls, const std::string& name) const
+{
+    const double v = get(name);
+    for (const ParamDecl& d : decls)
+        if (d.name == name && d.type == ParamType::Choice && v >= 0.0 && std::size_t(v) < d.choices.size())
+            return d.choices[std::size_t(v)];
+    throw std::invalid_argument("parameter '" + name + "' is not a choice");
+}
+
+nlohmann::json ParamValues::toJson(const std::vector<ParamDecl>& decls) const
+{
+    nlohmann::json j = nlohmann::json::object();
+    for (const auto& [name, v] : values_) {
+        const ParamDecl* decl = nullptr;
+        for (const ParamDecl& d : decls)
+            if (d.name == name) decl = &d;
+        if (!decl) j[name] = v;
+        else if (decl->type == ParamType::Choice || (decl->allowAuto && v == kAutoValue)) j[name] = decl->text(v);
+        else if (decl->type == ParamType::Bool) j[name] = v != 0.0;
+        else j[name] = v;
+    }
+    return j;
+}
+
+std::vector<std::string> ParamValues::changed(const ParamValues& other) const
+{
+    std::vector<std::string> names;
+    for (const auto& [name, v] : values_) {
+        const auto it = other.values_.find(name);
+        if (it == other.values_.end() || it->second != v) names.push_back(name);
+    }
+    for (const auto& [name, v] : other.values_)
+        if (!values_.count(name)) names.push_back(name);
+    return names;
+}
+
 namespace {
 std::string describe(const ParamDecl& d)
 {
     std::ostringstream s;
-    const char* type = d.type == ParamType::Int ? "int" : d.type == ParamType::Bool ? "bool" : "float";
-    s << d.name << " (" << type;
-    if (d.type != ParamType::Bool) s << " in [" << d.min << ", " << d.max << "]";
+    s << d.name << " (" << d.typeName();
+    if (d.type == ParamType::Choice) {
+        s << ":";
+        for (std::size_t i = 0; i < d.choices.size(); ++i) s << (i ? "|" : " ") << d.choices[i];
+    } else if (d.type != ParamType::Bool) {
+        s << " in [" << d.min << ", " << d.max << "]";
+    }
+    if (d.allowAuto) s << " or auto";
     if (d.powerOfTwo) s << ", a power of two";
-    s << ", default " << d.defaultValue << ")";
+    s << ", default " << d.text(d.defaultValue) << ")";
     return s.str();
 }
 } // namespace
@@ -43,7 +137,14 @@ void ParamValues::set(const std::vector<ParamDecl>& decls, const std::string& na
         throw std::invalid_argument("unknown parameter '" + name + "'; allowed:" + (allowed.empty() ? " none" : allowed));
     }
     double v = 0.0;
-    if (decl->type == ParamType::Bool) {
+    if (decl->allowAuto && text == "auto") {
+        v = kAutoValue;
+    } else if (decl->type == ParamType::Choice) {
+        const auto it = std::find(decl->choices.begin(), decl->choices.end(), text);
+        if (it == decl->choices.end())
+            throw std::invalid_argument("parameter " + describe(*decl) + ": '" + text + "' is not one of the choices");
+        v = double(it - decl->choices.begin());
+    } else if (decl->type == ParamType::Bool) {
         if (text == "1" || text == "true" || text == "on") v = 1.0;
         else if (text == "0" || text == "false" || text == "off") v = 0.0;
         else throw std::invalid_argument("parameter '" + name + "' is a bool: give 0/1, true/false or on/off, not '" + text + "'");
@@ -69,6 +170,48 @@ const TechniqueInfo& findTechnique(const std::string& name)
     std::string known;
     for (const TechniqueInfo& t : techniques()) known += (known.empty() ? "" : ", ") + t.name;
     throw std::invalid_argument("unknown technique '" + name + "'; known: " + known);
+}
+
+std::string gbufferChannelName(GBufferChannel c)
+{
+    switch (c) {
+    case GBufferChannel::Position: return "position";
+    case GBufferChannel::Normal: return "normal";
+    case GBufferChannel::Diffuse: return "diffuse";
+    case GBufferChannel::Specular: return "specular";
+    case GBufferChannel::Emission: return "emission";
+    case GBufferChannel::Depth: return "depth";
+    case GBufferChannel::Direct: return "direct";
+    }
+    return "unknown";
+}
+
+nlohmann::json TechniqueInfo::toJson() const
+{
+    nlohmann::json j = {{"name", name},         {"paper", paper},           {"lightPaths", core::lightPathsName(lightPaths)},
+                        {"summary", summary},   {"progressive", progressive}};
+    j["parameters"] = nlohmann::json::array();
+    for (const ParamDecl& p : params) j["parameters"].push_back(p.toJson());
+    j["passes"] = nlohmann::json::array();
+    for (const PassDecl& p : passes) {
+        nlohmann::json pj = {{"name", p.name}, {"meaning", p.meaning}};
+        if (!p.when.empty()) pj["when"] = p.when;
+        j["passes"].push_back(pj);
+    }
+    j["reads"] = nlohmann::json::array();
+    for (GBufferChannel c : reads) j["reads"].push_back(gbufferChannelName(c));
+    return j;
+}
+
+const std::vector<PassDecl>& framePasses()
+{
+    static const std::vector<PassDecl> p = {
+        {"shadow", "shadow maps of every light (gl/frame/shadow_maps.cpp)", ""},
+        {"gbuffer", "the G-buffer: position, normal, diffuse, specular, emission, depth", ""},
+        {"direct", "emission and direct light with shadow maps", ""},
+        {"composite", "direct + the technique's indirect light", ""},
+    };
+    return p;
 }
 
 const std::vector<ParamDecl>& frameParams()

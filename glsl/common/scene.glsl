@@ -34,6 +34,68 @@ layout(std430, binding = 2) readonly buffer ShadowViews { ShadowView shadowViews
 layout(std430, binding = 3) readonly buffer LightPolygons { vec4 lightPolygons[]; };
 #endif
 
+// The scene's geometry, for shaders that define SCENE_GEOMETRY before including this file (gl/frame/
+// gpu_scene.h, GpuVertex and GpuEmissiveTriangle, writes them): the rasteriser's own vertex and index
+// buffers read as std430 arrays, and the emissive triangles with their power CDF. Triangle t is the t-th
+// triangle of the scene's meshes in order, as in core::Scene, the BVH and the path tracer.
+#ifdef SCENE_GEOMETRY
+#define SCENE_VERTICES_BINDING 4
+#define SCENE_INDICES_BINDING 5
+#define SCENE_EMISSIVE_BINDING 6
+layout(std430, binding = SCENE_VERTICES_BINDING) readonly buffer SceneVertices { float sceneVertexData[]; };
+layout(std430, binding = SCENE_INDICES_BINDING) readonly buffer SceneIndices { uint sceneIndices[]; };
+struct EmissiveTriangle {
+    uint triangle;
+    uint material;
+    float areaM2;
+    float powerCdf;               // cumulative share of emitted power up to and including this triangle
+};
+layout(std430, binding = SCENE_EMISSIVE_BINDING) readonly buffer SceneEmissive {
+    uint emissiveCount;
+    float emissiveTotalPowerW;    // pi L A summed over the emitters (luminance)
+    uint emissivePad0, emissivePad1;
+    EmissiveTriangle emissiveTriangles[];
+};
+
+const int kSceneVertexFloats = 9;  // position xyz, normal xyz, uv, material bits
+
+uint sceneTriangleCount() { return uint(sceneIndices.length()) / 3u; }
+uint sceneVertexIndex(uint triangle, int corner) { return sceneIndices[3u * triangle + uint(corner)]; }
+vec3 sceneVertexPosition(uint v)
+{
+    uint o = v * uint(kSceneVertexFloats);
+    return vec3(sceneVertexData[o], sceneVertexData[o + 1u], sceneVertexData[o + 2u]);
+}
+vec3 sceneVertexNormal(uint v)
+{
+    uint o = v * uint(kSceneVertexFloats) + 3u;
+    return vec3(sceneVertexData[o], sceneVertexData[o + 1u], sceneVertexData[o + 2u]);
+}
+vec2 sceneVertexUv(uint v)
+{
+    uint o = v * uint(kSceneVertexFloats) + 6u;
+    return vec2(sceneVertexData[o], sceneVertexData[o + 1u]);
+}
+// Every vertex of a mesh carries the mesh's material: the triangle's is its first vertex's.
+uint sceneTriangleMaterial(uint triangle)
+{
+    return floatBitsToUint(sceneVertexData[sceneVertexIndex(triangle, 0) * uint(kSceneVertexFloats) + 8u]);
+}
+// The point at barycentrics (b1, b2) of a triangle (b0 = 1 - b1 - b2), and its interpolated unit normal.
+vec3 sceneTrianglePoint(uint triangle, vec2 b)
+{
+    return (1.0 - b.x - b.y) * sceneVertexPosition(sceneVertexIndex(triangle, 0)) +
+           b.x * sceneVertexPosition(sceneVertexIndex(triangle, 1)) + b.y * sceneVertexPosition(sceneVertexIndex(triangle, 2));
+}
+vec3 sceneTriangleNormal(uint triangle, vec2 b)
+{
+    vec3 n = (1.0 - b.x - b.y) * sceneVertexNormal(sceneVertexIndex(triangle, 0)) +
+             b.x * sceneVertexNormal(sceneVertexIndex(triangle, 1)) + b.y * sceneVertexNormal(sceneVertexIndex(triangle, 2));
+    float len = length(n);
+    return len > 0.0 ? n / len : vec3(0.0, 0.0, 1.0);
+}
+#endif
+
 // Cube face of a direction, in the order +x, -x, +y, -y, +z, -z (the order of shadow layers).
 int cubeFace(vec3 d)
 {

@@ -109,7 +109,16 @@ TechniqueInfo hisrTechniqueInfo()
     TechniqueInfo info;
     info.name = "hisr";
     info.paper = "Nichols, Shopf & Wyman 2009";
-    info.lightPaths = "onebounce-novis";
+    info.lightPaths = core::LightPaths::OneBounceNoVis;
+    info.passes = {
+        {"rsm", "reflective shadow map of every light", ""},
+        {"vpl-tree", "the VPL tree over the full RSM", ""},
+        {"minmax-mipmap", "eye-space min-max pyramid of depth and normals", ""},
+        {"stencil-setup", "one-pass multiresolution stencil", ""},
+        {"gather", "per-fragment walk of the VPL tree", ""},
+        {"upsample", "joint bilateral upsampling of the levels to full resolution", ""},
+    };
+    info.reads = {GBufferChannel::Position, GBufferChannel::Normal, GBufferChannel::Diffuse};
     info.summary = "hierarchical image-space radiosity: per-fragment VPL clusters from a VPL tree of the full RSM";
     info.params = {
         {"rsmSize", ParamType::Int, 256, 1, 1024,

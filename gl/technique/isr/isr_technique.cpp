@@ -63,7 +63,17 @@ TechniqueInfo isrTechniqueInfo()
     TechniqueInfo info;
     info.name = "isr";
     info.paper = "Nichols, Shopf & Wyman 2009";
-    info.lightPaths = "onebounce-novis";
+    info.lightPaths = core::LightPaths::OneBounceNoVis;
+    info.passes = {
+        {"rsm", "reflective shadow map of every light", ""},
+        {"rsm-mipmap", "light-space min-max pyramid of the RSM", ""},
+        {"vpl-cluster", "per-frame VPL clusters from the light-space pyramid", ""},
+        {"minmax-mipmap", "eye-space min-max pyramid of depth and normals", ""},
+        {"stencil-setup", "one-pass multiresolution stencil", ""},
+        {"gather", "VPL clusters gathered at the marked patches", ""},
+        {"upsample", "joint bilateral upsampling of the levels to full resolution", ""},
+    };
+    info.reads = {GBufferChannel::Position, GBufferChannel::Normal, GBufferChannel::Diffuse};
     info.summary = "image-space radiosity: per-frame multiresolution VPL clusters from light-space min-max mipmaps, "
                    "gathered at multiresolution eye-space patches";
     info.params = {

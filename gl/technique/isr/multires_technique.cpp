@@ -102,7 +102,16 @@ TechniqueInfo multiresGatherTechniqueInfo()
     TechniqueInfo info;
     info.name = "multires-gather";
     info.paper = "Nichols, Shopf & Wyman 2009";
-    info.lightPaths = "onebounce-novis";
+    info.lightPaths = core::LightPaths::OneBounceNoVis;
+    info.passes = {
+        {"rsm", "reflective shadow map of every light", ""},
+        {"vpl-sample", "VPLs on a regular grid of the RSM", ""},
+        {"minmax-mipmap", "eye-space min-max pyramid of depth and normals", ""},
+        {"stencil-setup", "one-pass multiresolution stencil: each patch marked at its level", ""},
+        {"gather", "VPLs gathered at the marked patches of every level", ""},
+        {"upsample", "joint bilateral upsampling of the levels to full resolution", ""},
+    };
+    info.reads = {GBufferChannel::Position, GBufferChannel::Normal, GBufferChannel::Diffuse};
     info.summary = "rsm's regular-grid VPLs gathered at multiresolution eye-space patches chosen by a one-pass stencil";
     info.params = multiresTechniqueParams();
     info.create = [](Frame& frame, const ParamValues& v) { return createMultires(frame, v, false); };
@@ -114,7 +123,16 @@ TechniqueInfo multiresSplatTechniqueInfo()
     TechniqueInfo info;
     info.name = "multires-splat";
     info.paper = "Nichols & Wyman 2009 (the baseline of Nichols, Shopf & Wyman 2009, Table 1)";
-    info.lightPaths = "onebounce-novis";
+    info.lightPaths = core::LightPaths::OneBounceNoVis;
+    info.passes = {
+        {"rsm", "reflective shadow map of every light", ""},
+        {"vpl-sample", "VPLs on a regular grid of the RSM", ""},
+        {"minmax-mipmap", "eye-space min-max pyramid of depth and normals", ""},
+        {"refine", "iterative patch refinement, one compute pass per level", ""},
+        {"splat", "every VPL splatted into every patch", ""},
+        {"upsample", "joint bilateral upsampling of the levels to full resolution", ""},
+    };
+    info.reads = {GBufferChannel::Position, GBufferChannel::Normal, GBufferChannel::Diffuse};
     info.summary = "multiresolution splatting: the same patches found by iterative refinement, every VPL splatted "
                    "to them as points (what the stencil and the gather replace)";
     info.params = multiresTechniqueParams();

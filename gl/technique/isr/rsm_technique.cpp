@@ -53,7 +53,13 @@ TechniqueInfo rsmTechniqueInfo()
     TechniqueInfo info;
     info.name = "rsm";
     info.paper = "Nichols, Shopf & Wyman 2009 (baseline: Dachsbacher & Stamminger 2005)";
-    info.lightPaths = "onebounce-novis";
+    info.lightPaths = core::LightPaths::OneBounceNoVis;
+    info.passes = {
+        {"rsm", "reflective shadow map of every light", ""},
+        {"vpl-sample", "VPLs on a regular grid of the RSM", ""},
+        {"gather", "every VPL gathered at every pixel", ""},
+    };
+    info.reads = {GBufferChannel::Position, GBufferChannel::Normal, GBufferChannel::Diffuse};
     info.summary = "reflective shadow map, N VPLs on a regular grid, full-screen gather at every pixel";
     info.params = {
         {"vpls", ParamType::Int, 256, 1, 6 * 1024 * 1024,
@@ -75,7 +81,13 @@ TechniqueInfo rsmFullTechniqueInfo()
     TechniqueInfo info;
     info.name = "rsm-full";
     info.paper = "Nichols, Shopf & Wyman 2009 (baseline: Dachsbacher & Stamminger 2005)";
-    info.lightPaths = "onebounce-novis";
+    info.lightPaths = core::LightPaths::OneBounceNoVis;
+    info.passes = {
+        {"rsm", "reflective shadow map of every light", ""},
+        {"vpl-sample", "VPLs on a regular grid of the RSM", ""},
+        {"gather", "every VPL gathered at every pixel", ""},
+    };
+    info.reads = {GBufferChannel::Position, GBufferChannel::Normal, GBufferChannel::Diffuse};
     info.summary = "every RSM texel a VPL (1024^2: the paper's one-million-VPL baseline), full-screen gather; slow";
     info.params = {rsmSizeParam(1024), exactSolidAngleParam()};
     info.create = [](Frame&, const ParamValues& v) -> std::unique_ptr<Technique> {

@@ -1,0 +1,168 @@
+// One conformance test for every registered technique (DESIGN.md, "What lives where when a family is
+// added"): a new technique gets it without a line of test code. `ctest -R Conformance` runs one case per
+// technique; each renders cornell-spot, cornell-area, cornell-point-ceiling (the light 1 mm under the
+// ceiling) and a closed furnace box at 32x32, 1x1 and 3x5 with the technique's defaults, and checks:
+//   - it builds (every shader compiles) and renders two frames without a GL error or a high-severity
+//     debug message (the fixture fails the test on either);
+//   - its indirect light is finite and non-negative at every pixel;
+//   - it times the frame's passes and every pass it declares that runs with the defaults, and no pass it
+//     does not declare (TechniqueInfo::passes);
+//   - its counters are finite and non-negative, and a technique with passes of its own reports some;
+//   - in the furnace (every surface albedo rho, emission L_e, Lambertian) its indirect light stays under
+//     the closed form of its light paths: one bounce of indirect light at most rho L_e (the second
+//     reflection of the furnace's light is rho^2 L_e), all bounces at most L_e rho / (1 - rho).
+#include <cmath>
+#include <cstdio>
+#include <set>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "core/cornell.h"
+#include "gl/renderer.h"
+#include "gl/technique/technique.h"
+#include "tests/gl/gl_test_fixture.h"
+
+namespace bounce {
+namespace {
+
+constexpr float kFurnaceAlbedo = 0.5f;
+constexpr float kFurnaceEmission = 1.0f; // W/(m^2 sr)
+
+// A closed box, 1 m on a side, inward-facing, every surface Lambertian albedo rho and emitting L_e, in one
+// mesh (so that its emitters share one shadow cube); the camera inside, looking at a corner.
+core::Scene furnaceBox(float rho, float emission)
+{
+    core::Scene s;
+    s.name = "furnace";
+    core::Material m;
+    m.name = "furnace";
+    m.baseColor = glm::vec3(rho);
+    m.metallic = 0.0f;
+    m.specular = 0.0f;
+    m.emission = glm::vec3(emission);
+    s.materials.push_back(m);
+    core::Mesh mesh;
+    mesh.name = "box";
+    const auto quad = [&](glm::vec3 a, glm::vec3 b, glm::vec3 c, glm::vec3 d) {
+        const glm::vec3 n = glm::normalize(glm::cross(b - a, c - a));
+        const auto base = std::uint32_t(mesh.positions.size());
+        for (const glm::vec3& p : {a, b, c, d}) {
+            mesh.positions.push_back(p);
+            mesh.normals.push_back(n);
+        }
+        for (std::uint32_t i : {0u, 1u, 2u, 0u, 2u, 3u}) mesh.indices.push_back(base + i);
+    };
+    // Counter-clockwise seen from inside: normals point into the box.
+    quad({0, 0, 0}, {0, 0, 1}, {1, 0, 1}, {1, 0, 0}); // floor, +y
+    quad({0, 1, 0}, {1, 1, 0}, {1, 1, 1}, {0, 1, 1}); // ceiling, -y
+    quad({0, 0, 0}, {0, 1, 0}, {0, 1, 1}, {0, 0, 1}); // x = 0, +x
+    quad({1, 0, 0}, {1, 0, 1}, {1, 1, 1}, {1, 1, 0}); // x = 1, -x
+    quad({0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}); // z = 0, +z
+    quad({0, 0, 1}, {0, 1, 1}, {1, 1, 1}, {1, 0, 1}); // z = 1, -z
+    s.meshes.push_back(mesh);
+    s.camera.position = {0.5f, 0.5f, 0.9f};
+    s.camera.forward = glm::normalize(glm::vec3(-0.3f, -0.2f, -1.0f));
+    s.camera.up = glm::normalize(glm::cross(glm::cross(s.camera.forward, glm::vec3(0, 1, 0)), s.camera.forward));
+    s.camera.yfovRad = 1.2f;
+    EXPECT_EQ(s.validate(), "");
+    return s;
+}
+
+struct Case {
+    std::string scene;
+    int width, height;
+};
+
+std::vector<std::string> techniqueNames()
+{
+    std::vector<std::string> names;
+    for (const gl::TechniqueInfo& t : gl::techniques()) names.push_back(t.name);
+    return names;
+}
+
+// The furnace's bound on indirect light for a technique's light paths (see the file comment).
+double furnaceBound(core::LightPaths paths)
+{
+    const double rho = kFurnaceAlbedo, le = kFurnaceEmission;
+    switch (core::indirectBounces(paths)) {
+    case 0: return 0.0;
+    case 1: return rho * le;
+    default: return le * rho / (1.0 - rho);
+    }
+}
+
+class Conformance : public GlTest, public ::testing::WithParamInterface<std::string> {};
+
+TEST_P(Conformance, Technique)
+{
+    const gl::TechniqueInfo& info = gl::findTechnique(GetParam());
+    std::set<std::string> declared, required;
+    for (const gl::PassDecl& p : gl::framePasses()) declared.insert(p.name), required.insert(p.name);
+    for (const gl::PassDecl& p : info.passes) {
+        EXPECT_TRUE(declared.insert(p.name).second) << "pass '" << p.name << "' declared twice";
+        if (p.when.empty()) required.insert(p.name);
+    }
+
+    const std::vector<std::string> scenes = {"cornell-spot", "cornell-area", "cornell-point-ceiling", "furnace"};
+    const std::vector<std::pair<int, int>> sizes = {{32, 32}, {1, 1}, {3, 5}};
+    gl::ParamValues frameValues(gl::frameParams());
+    frameValues.setValue("shadow.size", 256); // small: the test checks behaviour, not shadow quality
+    for (const std::string& sceneName : scenes) {
+        const core::Scene scene = sceneName == "furnace" ? furnaceBox(kFurnaceAlbedo, kFurnaceEmission)
+                                                         : core::makeCornell(sceneName);
+        for (const auto& [w, h] : sizes) {
+            SCOPED_TRACE(info.name + " on " + sceneName + " at " + std::to_string(w) + "x" + std::to_string(h));
+            std::unique_ptr<gl::Renderer> r;
+            ASSERT_NO_THROW(r = std::make_unique<gl::Renderer>(scene, info.name, frameValues,
+                                                               gl::ParamValues(info.params), w, h));
+            r->renderFrame(false);
+            r->renderFrame(true);
+            bounce::gl::checkGlError("the conformance frame");
+
+            const core::Image indirect = r->frame().read(r->frame().indirect());
+            double maxIndirect = 0.0;
+            int bad = 0;
+            for (int y = 0; y < h; ++y)
+                for (int x = 0; x < w; ++x)
+                    for (int c = 0; c < 3; ++c) {
+                        const float v = indirect.at(x, y)[c];
+                        if (!std::isfinite(v) || v < 0.0f) ++bad;
+                        else maxIndirect = std::max(maxIndirect, double(v));
+                    }
+            EXPECT_EQ(bad, 0) << "pixel channels of the indirect light that are NaN, infinite or negative";
+
+            std::set<std::string> timed;
+            for (const gl::PassStat& p : r->timers().stats()) timed.insert(p.pass);
+            for (const std::string& p : timed) EXPECT_TRUE(declared.count(p)) << "pass '" << p << "' is timed but not declared";
+            for (const std::string& p : required) EXPECT_TRUE(timed.count(p)) << "declared pass '" << p << "' was not timed";
+
+            const std::vector<gl::Counter> counters = r->counters();
+            for (const gl::Counter& c : counters)
+                EXPECT_TRUE(std::isfinite(c.value) && c.value >= 0.0) << "counter " << c.name << " = " << c.value;
+            if (!info.passes.empty()) EXPECT_FALSE(counters.empty()) << "a technique with passes reports no counter";
+
+            if (sceneName == "furnace") {
+                // 2% over the closed form: half-float G-buffer albedo and the exact/Eq. 4 texel solid
+                // angles of VPL techniques; a technique that doubles a bounce exceeds it by far.
+                const double bound = furnaceBound(info.lightPaths);
+                std::printf("[ furnace  ] %s %dx%d: max indirect %.4f, bound %.4f\n", info.name.c_str(), w, h,
+                            maxIndirect, bound);
+                EXPECT_LE(maxIndirect, 1.02 * bound + 1e-6)
+                    << "indirect light above the furnace's closed form for " << core::lightPathsName(info.lightPaths);
+            }
+        }
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(Every, Conformance, ::testing::ValuesIn(techniqueNames()),
+                         [](const ::testing::TestParamInfo<std::string>& p) {
+                             std::string n = p.param;
+                             for (char& c : n)
+                                 if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+                             return n;
+                         });
+
+} // namespace
+} // namespace bounce
