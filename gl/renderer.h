@@ -17,8 +17,19 @@ public:
     Renderer(const core::Scene& scene, const std::string& technique, const ParamValues& frameValues,
              const ParamValues& techniqueValues, int width, int height);
 
+    // A technique that is not in the registry (tests): `info` must outlive the renderer.
+    Renderer(const core::Scene& scene, const TechniqueInfo& info, const ParamValues& frameValues,
+             const ParamValues& techniqueValues, int width, int height);
+
     void renderFrame(bool keepTimings = true);
     void setTechnique(const std::string& technique, const ParamValues& techniqueValues);
+    // New values for the running technique: when only ParamUpdate::Uniform parameters changed they go to
+    // Technique::setUniforms() (no shader is recompiled), else the technique is made anew. Returns true
+    // when it was made anew.
+    bool setTechniqueValues(const ParamValues& techniqueValues);
+    // Progressive techniques: start accumulating again (warm-up frames are not accumulation steps).
+    void restartAccumulation() { technique_->restart(); }
+    int accumulatedSteps() const { return technique_->accumulatedSteps(); }
 
     Frame& frame() { return *frame_; }
     const TechniqueInfo& technique() const { return *info_; }
@@ -29,6 +40,7 @@ public:
     core::Image image() const { return frame_->read(frame_->result()); }
 
 private:
+    void make(const TechniqueInfo& info, const ParamValues& techniqueValues);
     std::unique_ptr<Frame> frame_;
     const TechniqueInfo* info_ = nullptr;
     std::unique_ptr<Technique> technique_;
