@@ -28,7 +28,7 @@ void printParams(const std::vector<gl::ParamDecl>& params)
             for (const std::string& c : p.choices) range += (range.empty() ? "" : "|") + c;
         } else if (p.type != gl::ParamType::Bool) {
             char buf[64];
-            std::snprintf(buf, sizeof buf, "[%g, %g]", p.min, p.max);
+            std::snprintf(buf, sizeof buf, "[%.10g, %.10g]", p.min, p.max);
             range = buf;
             if (p.allowAuto) range += " or auto";
         }

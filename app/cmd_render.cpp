@@ -7,6 +7,7 @@
 #include "app/options.h"
 #include "app/render_job.h"
 #include "core/image.h"
+#include "core/metrics.h"
 
 namespace bounce::app {
 
@@ -14,7 +15,7 @@ namespace {
 const char* kUsage =
     "usage: bounce render [--scene NAME|PATH] [--technique NAME] [--size WxH] [--out FILE.exr|FILE.png]\n"
     "                     [--set key=value]... [--frames N] [--warmup N] [--json FILE]\n"
-    "                     [--backend egl|osmesa|glfw] [--exposure STOPS]\n"
+    "                     [--backend egl|osmesa|glfw] [--exposure STOPS] [--reference FILE.exr]\n"
     "\n"
     "Renders the scene with the technique and writes FILE.exr (linear radiance), FILE.png (tone mapped,\n"
     "sRGB) and FILE.json (backend, GL renderer, parameters, per-pass GPU ms: median over the timed\n"
@@ -25,18 +26,22 @@ const char* kUsage =
     "  --size       image size                                                [512x512]\n"
     "  --out        output image; its sibling .exr/.png/.json are written too [out/render.exr]\n"
     "  --set        a technique or frame parameter, e.g. --set shadow.pcf=0 (repeatable)\n"
-    "  --frames     timed frames (median reported)                           [10]\n"
+    "  --frames     timed frames (median reported); for a progressive technique\n"
+    "               (`bounce list`) the accumulation steps, started after warm-up [10]\n"
     "  --warmup     untimed frames before them                               [2]\n"
     "  --json       where the JSON record goes                               [next to --out]\n"
     "  --backend    egl (headless, GPU when present), osmesa, glfw (window)   [egl]\n"
-    "  --exposure   PNG exposure in stops                                    [0]\n";
+    "  --exposure   PNG exposure in stops                                    [0]\n"
+    "  --reference  an EXR (e.g. from `bounce reference`) of the same size or one that divides it: the\n"
+    "               record gets the relative RMSE against it, after every step for a progressive\n"
+    "               technique (error against time, for plotting)\n";
 } // namespace
 
 int cmdRender(const Args& args)
 {
     const Options o(args,
                     {{"scene"}, {"technique"}, {"size"}, {"out"}, {"set", true, true}, {"frames"}, {"warmup"},
-                     {"json"}, {"backend"}, {"exposure"}},
+                     {"json"}, {"backend"}, {"exposure"}, {"reference"}},
                     kUsage);
     if (o.helpRequested()) { std::fputs(kUsage, stdout); return 0; }
     if (!o.positional().empty()) throw UsageError("unexpected argument '" + o.positional()[0] + "'\n\n" + kUsage);
@@ -61,6 +66,22 @@ int cmdRender(const Args& args)
     gl::ParamValues frameValues(gl::frameParams()), techniqueValues(info->params);
     applySets(o.all("set"), *info, frameValues, techniqueValues);
     const core::Scene scene = loadSceneForCli(sceneArg);
+    core::Image reference;
+    if (o.has("reference")) {
+        try {
+            reference = core::readImage(o.get("reference"));
+        } catch (const std::exception& e) {
+            throw UsageError("--reference: " + std::string(e.what()));
+        }
+        if (width % reference.width != 0 || height % reference.height != 0)
+            throw UsageError("--reference is " + std::to_string(reference.width) + "x" + std::to_string(reference.height) +
+                             ": its size must divide the render's " + std::to_string(width) + "x" +
+                             std::to_string(height));
+    }
+    // The error of an image against the reference, box-downsampled to the reference's size.
+    const auto errorOf = [&](const core::Image& image) {
+        return core::relativeRmse(core::boxDownsample(image, reference.width, reference.height), reference);
+    };
 
     auto context = createContextForCli(o.get("backend", "egl"), o.get("backend") == "glfw");
     std::printf("GL renderer: %s (%s, %s)\n", context->info().renderer.c_str(), context->info().platform.c_str(),
@@ -75,7 +96,19 @@ int cmdRender(const Args& args)
     }
     gl::Renderer& renderer = *made;
     for (int i = 0; i < warmup; ++i) renderer.renderFrame(false);
-    for (int i = 0; i < frames; ++i) renderer.renderFrame(true);
+    // A progressive technique's timed frames are its accumulation steps from a fresh start.
+    const bool progressive = renderer.technique().progressive;
+    if (progressive) renderer.restartAccumulation();
+    nlohmann::json progress = nlohmann::json::array();
+    double elapsedMs = 0.0;
+    for (int i = 0; i < frames; ++i) {
+        renderer.renderFrame(true);
+        if (!progressive) continue;
+        for (const gl::PassStat& p : renderer.timers().lastFrame()) elapsedMs += p.medianMs;
+        nlohmann::json step = {{"step", i + 1}, {"accumulated", renderer.accumulatedSteps()}, {"elapsedMs", elapsedMs}};
+        if (!reference.rgb.empty()) step["relativeRmse"] = errorOf(renderer.image());
+        progress.push_back(step);
+    }
     const core::Image image = renderer.image();
 
     std::filesystem::path exr = out, png = out, json = o.get("json", "");
@@ -88,6 +121,12 @@ int cmdRender(const Args& args)
     core::writePng(png.string(), image, exposure);
     nlohmann::json record = runRecord(context->info(), sceneArg, renderer);
     record["outputs"] = {{"exr", exr.string()}, {"png", png.string()}};
+    if (progressive) record["progress"] = progress;
+    if (!reference.rgb.empty()) {
+        record["reference"] = o.get("reference");
+        record["relativeRmse"] = errorOf(image);
+        std::printf("relative RMSE against %s: %.4f\n", o.get("reference").c_str(), record["relativeRmse"].get<double>());
+    }
     core::writeFileAtomic(json.string(), record.dump(2) + "\n");
 
     std::printf("%s on %s, %dx%d, %d timed frames after %d warm-up:\n", techniqueName.c_str(), sceneArg.c_str(), width,

@@ -47,6 +47,7 @@ nlohmann::json ParamDecl::toJson() const
 {
     nlohmann::json j = {{"name", name}, {"type", typeName()}, {"default", text(defaultValue)}, {"meaning", meaning},
                         {"update", update == ParamUpdate::Uniform ? "uniform" : "rebuild"}};
+    if ((type == ParamType::Int || type == ParamType::Float) && defaultValue != kAutoValue) j["default"] = defaultValue;
     if (type == ParamType::Int || type == ParamType::Float) {
         j["min"] = min;
         j["max"] = max;

@@ -1,5 +1,6 @@
 // The `bounce` executable end to end: help, listing, bad input (exit status 2, a message saying what is
 // allowed, nothing written), a render that writes EXR + PNG + JSON, and the demo under Xvfb.
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -12,6 +13,7 @@
 #include <sys/wait.h>
 
 #include "core/image.h"
+#include "core/metrics.h"
 
 namespace {
 
@@ -259,6 +261,70 @@ TEST(Cli, DemoRunsSwitchesTechniqueAndShowsTheCornellBox)
     EXPECT_GT(sum, 0.0) << "black screenshot";
     EXPECT_GT(left.x, 2.0f * left.y) << "the left wall should be red";
     EXPECT_GT(right.y, 2.0f * right.x) << "the right wall should be green";
+}
+
+} // namespace
+
+namespace {
+
+// `bounce list --json` is the whole registry for scripts: every technique with its light paths, passes,
+// G-buffer reads and typed parameters, the frame's passes and parameters.
+TEST(Cli, ListJsonIsTheWholeRegistry)
+{
+    const CliRun r = run("list --json");
+    ASSERT_EQ(r.status, 0) << r.output;
+    const nlohmann::json j = nlohmann::json::parse(r.output);
+    ASSERT_TRUE(j["techniques"].is_array());
+    bool sawRsm = false;
+    for (const auto& t : j["techniques"]) {
+        for (const char* key : {"name", "paper", "lightPaths", "summary", "passes", "reads", "parameters", "progressive"})
+            EXPECT_TRUE(t.contains(key)) << t["name"] << " lacks " << key;
+        EXPECT_NE(std::find(j["lightPaths"].begin(), j["lightPaths"].end(), t["lightPaths"]), j["lightPaths"].end());
+        for (const auto& p : t["parameters"]) {
+            for (const char* key : {"name", "type", "default", "meaning", "update"}) EXPECT_TRUE(p.contains(key));
+            if (p["type"] == "int" || p["type"] == "float") EXPECT_TRUE(p.contains("min") && p.contains("max"));
+        }
+        if (t["name"] == "rsm") {
+            sawRsm = true;
+            EXPECT_EQ(t["lightPaths"], "onebounce-novis");
+            EXPECT_EQ(t["passes"][0]["name"], "rsm");
+        }
+    }
+    EXPECT_TRUE(sawRsm);
+    EXPECT_EQ(j["frame"]["passes"].size(), 4u);
+}
+
+// --reference puts the error against a reference in the record; one whose size does not divide the
+// render's is refused before anything is written.
+TEST(Cli, RenderReferenceGivesTheErrorInTheRecord)
+{
+    const fs::path d = outDir("reference-error");
+    ASSERT_EQ(run("render --backend osmesa --technique direct --size 16x16 --frames 1 --warmup 0 --out " +
+                  (d / "ref.exr").string()).status, 0);
+    const CliRun same = run("render --backend osmesa --technique direct --size 16x16 --frames 1 --warmup 0 --reference " +
+                            (d / "ref.exr").string() + " --out " + (d / "same.exr").string());
+    ASSERT_EQ(same.status, 0) << same.output;
+    EXPECT_EQ(nlohmann::json::parse(std::ifstream(d / "same.json"))["relativeRmse"].get<double>(), 0.0)
+        << "the same deterministic render";
+
+    // Another technique at twice the size: the record's figure is the error of its image, box-downsampled
+    // to the reference's size, as computed here from the written files.
+    const CliRun other = run("render --backend osmesa --technique rsm --size 32x32 --frames 1 --warmup 0 --reference " +
+                             (d / "ref.exr").string() + " --out " + (d / "rsm.exr").string());
+    ASSERT_EQ(other.status, 0) << other.output;
+    const double recorded = nlohmann::json::parse(std::ifstream(d / "rsm.json"))["relativeRmse"].get<double>();
+    const double expected = bounce::core::relativeRmse(
+        bounce::core::boxDownsample(bounce::core::readImage((d / "rsm.exr").string()), 16, 16),
+        bounce::core::readImage((d / "ref.exr").string()));
+    EXPECT_GT(expected, 0.01) << "rsm adds indirect light to direct";
+    EXPECT_NEAR(recorded, expected, 1e-6 * expected);
+
+    const fs::path bad = outDir("reference-error-bad");
+    const CliRun r = run("render --backend osmesa --technique direct --size 30x30 --reference " + (d / "ref.exr").string() +
+                         " --out " + (bad / "x.exr").string());
+    EXPECT_EQ(r.status, 2) << r.output;
+    EXPECT_NE(r.output.find("must divide"), std::string::npos) << r.output;
+    EXPECT_TRUE(emptyDir(bad));
 }
 
 } // namespace
