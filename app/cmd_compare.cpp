@@ -22,8 +22,8 @@ const char* kUsage =
     "Error figures of IMAGE against REFERENCE (.exr or .pfm, same size), over the RGB values of every\n"
     "pixel: RMSE, relative RMSE (RMSE / mean of the reference), relative MSE (mean (a-r)^2 / (r^2 + 0.01)),\n"
     "mean absolute error, max error and SSIM of the luminance (11x11 Gaussian window, sigma 1.5, dynamic\n"
-    "range = the 99th percentile of the reference's luminance). NaN/Inf values are counted and reported,\n"
-    "and left out of the figures.\n"
+    "range = the 99th percentile of the reference's luminance). NaN/Inf values are counted and reported;\n"
+    "any of them makes every error figure infinite, SSIM 0, and the exit status 1.\n"
     "\n"
     "  --heatmap  write the per-pixel relative error as a colour ramp (.png, or .exr/.pfm): black <= 0.01%,\n"
     "             blue 0.1%, cyan, green 3%, yellow, red 100%, white >= 1000%; magenta = NaN/Inf\n"
@@ -36,9 +36,11 @@ std::string fmt(double v)
     return buf;
 }
 
+// JSON has no infinity: +-inf is written as the string "inf" / "-inf" (Python's float() reads it), NaN as null.
 nlohmann::json number(double v)
 {
     if (std::isfinite(v)) return v;
+    if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
     return nullptr;
 }
 
@@ -83,10 +85,8 @@ int cmdCompare(const Args& args)
     std::printf("max error:      %s\n", fmt(m.maxError).c_str());
     std::printf("SSIM:           %s\n", fmt(m.ssim).c_str());
     std::printf("means:          %s (image), %s (reference)\n", fmt(m.meanImage).c_str(), fmt(m.meanReference).c_str());
-    if (!m.allFinite())
-        std::printf("WARNING:        non-finite values (NaN/Inf): %zu in the image, %zu in the reference; "
-                    "the figures leave them out\n",
-                    m.nonFiniteImage, m.nonFiniteReference);
+    std::printf("non-finite:     %zu values in the image, %zu in the reference\n", m.nonFiniteImage,
+                m.nonFiniteReference);
 
     if (o.has("heatmap")) {
         const std::filesystem::path p = o.get("heatmap");
@@ -115,6 +115,11 @@ int cmdCompare(const Args& args)
         if (p.has_parent_path()) std::filesystem::create_directories(p.parent_path());
         core::writeFileAtomic(p.string(), j.dump(2) + "\n");
         std::printf("json:           %s\n", p.string().c_str());
+    }
+    if (!m.allFinite()) {
+        std::fprintf(stderr, "bounce compare: %zu NaN/Inf values in the image, %zu in the reference: the error is "
+                             "infinite\n", m.nonFiniteImage, m.nonFiniteReference);
+        return 1;
     }
     return 0;
 }

@@ -139,6 +139,12 @@ ImageMetrics pointwise(const Image& a, const Image& r, double eps)
         m.relativeRmse = m.rmse / m.meanReference;
     else
         m.relativeRmse = m.rmse == 0.0 ? 0.0 : std::numeric_limits<double>::infinity();
+    if (m.valuesCompared == 0) m.meanImage = m.meanReference = std::numeric_limits<double>::quiet_NaN();
+    if (!m.allFinite()) {
+        // A renderer that writes NaN must never look flawless: every error figure is infinite.
+        const double inf = std::numeric_limits<double>::infinity();
+        m.rmse = m.relativeRmse = m.relativeMse = m.mae = m.maxError = inf;
+    }
     return m;
 }
 
@@ -171,7 +177,7 @@ ImageMetrics compareImages(const Image& a, const Image& reference, double relati
 {
     checkSizes(a, reference);
     ImageMetrics m = pointwise(a, reference, relativeMseEpsilon);
-    m.ssim = ssimChecked(a, reference);
+    m.ssim = m.allFinite() ? ssimChecked(a, reference) : 0.0;
     return m;
 }
 

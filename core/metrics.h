@@ -16,10 +16,10 @@
 //                 image border and their weights renormalised, so every pixel has a value and images
 //                 smaller than the window are still measured.
 //
-// Different sizes throw MetricsError. Non-finite values (NaN, +-Inf) are never averaged in: a value pair
-// with a non-finite member is left out of every sum (and a pixel with a non-finite channel enters SSIM
-// as luminance 0 in both images), and the counts are reported in ImageMetrics so a broken renderer is
-// seen, not hidden. The single-figure functions apply the same rule; use compareImages to see counts.
+// Different sizes throw MetricsError. Non-finite values (NaN, +-Inf) in either image make every error
+// figure +inf and SSIM 0: a technique that writes NaN must never look perfect. They are counted
+// (ImageMetrics::nonFiniteImage/Reference), and the means are taken over the finite value pairs (NaN when
+// there are none). The single-figure functions apply the same rule; use compareImages to see counts.
 #pragma once
 
 #include <cstddef>

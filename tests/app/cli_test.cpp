@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <limits>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -325,6 +326,30 @@ TEST(Cli, RenderReferenceGivesTheErrorInTheRecord)
     EXPECT_EQ(r.status, 2) << r.output;
     EXPECT_NE(r.output.find("must divide"), std::string::npos) << r.output;
     EXPECT_TRUE(emptyDir(bad));
+}
+
+} // namespace
+
+namespace {
+
+// A NaN image compares as infinitely wrong, never as perfect, and `compare` exits with status 1 after
+// writing its figures.
+TEST(Cli, CompareOfANanImageFails)
+{
+    const fs::path d = outDir("compare-nan");
+    bounce::core::Image ref(4, 4), nan(4, 4);
+    for (float& v : ref.rgb) v = 0.5f;
+    for (float& v : nan.rgb) v = std::numeric_limits<float>::quiet_NaN();
+    bounce::core::writeImage((d / "ref.exr").string(), ref);
+    bounce::core::writeImage((d / "nan.exr").string(), nan);
+    const CliRun r = run("compare " + (d / "nan.exr").string() + " " + (d / "ref.exr").string() + " --json " +
+                         (d / "c.json").string());
+    EXPECT_EQ(r.status, 1) << r.output;
+    EXPECT_NE(r.output.find("NaN/Inf"), std::string::npos) << r.output;
+    const nlohmann::json j = nlohmann::json::parse(std::ifstream(d / "c.json"));
+    EXPECT_EQ(j["rmse"], "inf");
+    EXPECT_EQ(j["ssim"], 0.0);
+    EXPECT_EQ(j["nonFiniteImage"], 48);
 }
 
 } // namespace

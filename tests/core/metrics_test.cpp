@@ -141,7 +141,7 @@ TEST(Metrics, DifferentSizesThrow)
     }
 }
 
-TEST(Metrics, NonFiniteValuesAreCountedNotAveraged)
+TEST(Metrics, NonFiniteValuesAreCountedAndMakeEveryErrorInfinite)
 {
     const Image r = pattern(8, 8);
     Image a = r;
@@ -154,12 +154,26 @@ TEST(Metrics, NonFiniteValuesAreCountedNotAveraged)
     EXPECT_EQ(m.nonFiniteReference, 1u);
     EXPECT_FALSE(m.allFinite());
     EXPECT_EQ(m.valuesCompared, 8u * 8u * 3u - 3u);
-    // Every other value is identical: no error, and nothing NaN.
-    EXPECT_EQ(m.rmse, 0.0);
-    EXPECT_EQ(m.maxError, 0.0);
-    EXPECT_TRUE(std::isfinite(m.ssim));
-    EXPECT_TRUE(std::isfinite(m.relativeRmse));
-    EXPECT_EQ(rmse(a, r2), 0.0);
+    // Every other value is identical, yet no figure may call the image perfect.
+    for (double e : {m.rmse, m.relativeRmse, m.relativeMse, m.mae, m.maxError}) EXPECT_EQ(e, std::numeric_limits<double>::infinity());
+    EXPECT_EQ(m.ssim, 0.0);
+    EXPECT_EQ(rmse(a, r2), std::numeric_limits<double>::infinity());
+    EXPECT_EQ(relativeRmse(a, r), std::numeric_limits<double>::infinity()) << "a NaN in the image alone";
+}
+
+// The finding that this guards: an all-NaN image against a valid reference read as RMSE 0, SSIM 1 and a
+// reference mean of 0.
+TEST(Metrics, AllNanImageIsNeverPerfect)
+{
+    const Image r = pattern(8, 8);
+    Image a = r;
+    for (float& v : a.rgb) v = std::numeric_limits<float>::quiet_NaN();
+    const ImageMetrics m = compareImages(a, r);
+    EXPECT_EQ(m.nonFiniteImage, a.rgb.size());
+    EXPECT_EQ(m.rmse, std::numeric_limits<double>::infinity());
+    EXPECT_EQ(m.relativeRmse, std::numeric_limits<double>::infinity());
+    EXPECT_EQ(m.ssim, 0.0);
+    EXPECT_TRUE(std::isnan(m.meanReference)) << "no finite pair: no mean to report";
 }
 
 TEST(Metrics, HeatmapColours)
