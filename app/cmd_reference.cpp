@@ -94,6 +94,22 @@ int cmdReference(const Args& args)
     if (ext != ".exr" && ext != ".png" && ext != ".pfm")
         throw UsageError("--out must end in .exr, .png or .pfm, not '" + out.string() + "'");
 
+    const bool useCache = !o.has("no-cache");
+    const std::string cacheDir = o.get("cache-dir", ref::defaultCacheDir());
+    // Outputs and the cache folder are checked before the (long) render starts.
+    try {
+        core::checkOutputPath(out.string());
+        if (o.has("json")) core::checkOutputPath(o.get("json"));
+    } catch (const core::ImageError& e) {
+        throw UsageError(e.what());
+    }
+    try {
+        if (useCache) core::checkOutputPath((std::filesystem::path(cacheDir) / "write-check").string());
+    } catch (const core::ImageError& e) {
+        throw UsageError("the reference cache folder " + cacheDir + " is not writable: " + e.what() +
+                         " (set it with --cache-dir, or skip it with --no-cache)");
+    }
+
     core::Scene scene;
     try {
         scene = core::loadScene(o.get("scene"));
@@ -103,8 +119,6 @@ int cmdReference(const Args& args)
     if (const std::string err = scene.validate(); !err.empty())
         throw UsageError(o.get("scene") + ": invalid scene:\n" + err);
 
-    const bool useCache = !o.has("no-cache");
-    const std::string cacheDir = o.get("cache-dir", ref::defaultCacheDir());
     std::printf("reference: %s, paths %s, %dx%d, %s\n", o.get("scene").c_str(),
                 ref::lightPathsName(settings.paths).c_str(), settings.width, settings.height,
                 (settings.spp > 0 && settings.targetNoise > 0.0
@@ -116,8 +130,8 @@ int cmdReference(const Args& args)
     const ref::RenderResult r = useCache ? ref::cachedReference(scene, scene.camera, settings, cacheDir)
                                          : ref::render(scene, scene.camera, settings);
 
-    if (out.has_parent_path()) std::filesystem::create_directories(out.parent_path());
-    core::writeImage(out.string(), r.image);
+    core::FileSet files; // the image and its record appear together or not at all
+    files.addImage(out.string(), r.image);
 
     if (r.fromCache)
         std::printf("from cache:   %s/%s.exr (rendered earlier; figures below are that run's)\n", cacheDir.c_str(),
@@ -133,17 +147,19 @@ int cmdReference(const Args& args)
     if (r.nonFiniteSamples > 0)
         std::printf("WARNING:      %llu samples were NaN/Inf and counted as black\n",
                     static_cast<unsigned long long>(r.nonFiniteSamples));
-    std::printf("written:      %s\n", out.string().c_str());
-
     if (o.has("json")) {
         nlohmann::json j = ref::runRecord(settings, r);
         j["scene"] = o.get("scene");
         j["fromCache"] = r.fromCache;
         j["image"] = out.string();
-        const std::filesystem::path json = o.get("json");
-        if (json.has_parent_path()) std::filesystem::create_directories(json.parent_path());
-        core::writeFileAtomic(json.string(), j.dump(2) + "\n");
+        files.add(o.get("json"), j.dump(2) + "\n");
     }
+    try {
+        files.commit();
+    } catch (const core::ImageError& e) {
+        throw UsageError(e.what());
+    }
+    std::printf("written:      %s\n", out.string().c_str());
     return 0;
 }
 

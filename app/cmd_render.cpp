@@ -65,6 +65,16 @@ int cmdRender(const Args& args)
     }
     gl::ParamValues frameValues(gl::frameParams()), techniqueValues(info->params);
     applySets(o.all("set"), *info, frameValues, techniqueValues);
+    // Where the files go, checked before any work: a run that cannot write its results does not start.
+    std::filesystem::path exr = out, png = out, json = o.get("json", "");
+    exr.replace_extension(".exr");
+    png.replace_extension(".png");
+    if (json.empty()) json = std::filesystem::path(out).replace_extension(".json");
+    try {
+        for (const auto& p : {exr, png, json}) core::checkOutputPath(p.string());
+    } catch (const core::ImageError& e) {
+        throw UsageError(e.what());
+    }
     const core::Scene scene = loadSceneForCli(sceneArg);
     core::Image reference;
     if (o.has("reference")) {
@@ -111,14 +121,6 @@ int cmdRender(const Args& args)
     }
     const core::Image image = renderer.image();
 
-    std::filesystem::path exr = out, png = out, json = o.get("json", "");
-    exr.replace_extension(".exr");
-    png.replace_extension(".png");
-    if (json.empty()) json = std::filesystem::path(out).replace_extension(".json");
-    for (const auto& p : {exr, png, json})
-        if (p.has_parent_path()) std::filesystem::create_directories(p.parent_path());
-    core::writeExr(exr.string(), image);
-    core::writePng(png.string(), image, exposure);
     nlohmann::json record = runRecord(context->info(), sceneArg, renderer);
     record["outputs"] = {{"exr", exr.string()}, {"png", png.string()}};
     if (progressive) record["progress"] = progress;
@@ -127,7 +129,16 @@ int cmdRender(const Args& args)
         record["relativeRmse"] = errorOf(image);
         std::printf("relative RMSE against %s: %.4f\n", o.get("reference").c_str(), record["relativeRmse"].get<double>());
     }
-    core::writeFileAtomic(json.string(), record.dump(2) + "\n");
+    // The three files appear together or not at all.
+    core::FileSet files;
+    files.addImage(exr.string(), image);
+    files.addImage(png.string(), image, exposure);
+    files.add(json.string(), record.dump(2) + "\n");
+    try {
+        files.commit();
+    } catch (const core::ImageError& e) {
+        throw UsageError(e.what());
+    }
 
     std::printf("%s on %s, %dx%d, %d timed frames after %d warm-up:\n", techniqueName.c_str(), sceneArg.c_str(), width,
                 height, frames, warmup);

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -125,7 +126,7 @@ Image readPfm(const std::string& path)
     return image;
 }
 
-void writePfm(const std::string& path, const Image& image)
+std::string encodePfm(const std::string& path, const Image& image)
 {
     checkWritable(path, image);
     // Scale -1: little-endian floats, which is what this machine stores.
@@ -137,7 +138,7 @@ void writePfm(const std::string& path, const Image& image)
         const float* src = &image.rgb[std::size_t(image.height - 1 - y) * std::size_t(image.width) * 3];
         std::memcpy(bytes.data() + headerSize + std::size_t(y) * rowBytes, src, rowBytes);
     }
-    writeFileAtomic(path, bytes);
+    return bytes;
 }
 
 std::uint8_t encodeSrgb8(float linear)
@@ -163,7 +164,7 @@ Image readImage(const std::string& path)
     fail(path, "unknown image extension '" + ext + "' (readable: .exr, .pfm)");
 }
 
-void writeExr(const std::string& path, const Image& image)
+std::string encodeExr(const std::string& path, const Image& image)
 {
     checkWritable(path, image);
     const std::size_t n = std::size_t(image.width) * std::size_t(image.height);
@@ -206,10 +207,10 @@ void writeExr(const std::string& path, const Image& image)
     }
     std::string bytes(reinterpret_cast<const char*>(memory), size);
     std::free(memory);
-    writeFileAtomic(path, bytes);
+    return bytes;
 }
 
-void writePng(const std::string& path, const Image& image, float exposureStops)
+std::string encodePng(const std::string& path, const Image& image, float exposureStops)
 {
     checkWritable(path, image);
     const float scale = std::exp2(exposureStops);
@@ -219,31 +220,96 @@ void writePng(const std::string& path, const Image& image, float exposureStops)
     std::string bytes;
     if (!stbi_write_png_to_func(appendToString, &bytes, image.width, image.height, 3, pixels.data(), image.width * 3))
         fail(path, "PNG encoding failed");
-    writeFileAtomic(path, bytes);
+    return bytes;
+}
+
+std::string encodeImage(const std::string& path, const Image& image, float exposureStops)
+{
+    const std::string ext = lowerExtension(path);
+    if (ext == ".exr") return encodeExr(path, image);
+    if (ext == ".png") return encodePng(path, image, exposureStops);
+    if (ext == ".pfm") return encodePfm(path, image);
+    fail(path, "unknown image extension '" + ext + "' (writable: .exr, .png, .pfm)");
+}
+
+void writeExr(const std::string& path, const Image& image) { writeFileAtomic(path, encodeExr(path, image)); }
+
+void writePng(const std::string& path, const Image& image, float exposureStops)
+{
+    writeFileAtomic(path, encodePng(path, image, exposureStops));
 }
 
 void writeImage(const std::string& path, const Image& image, float exposureStops)
 {
-    const std::string ext = lowerExtension(path);
-    if (ext == ".exr") return writeExr(path, image);
-    if (ext == ".png") return writePng(path, image, exposureStops);
-    if (ext == ".pfm") return writePfm(path, image);
-    fail(path, "unknown image extension '" + ext + "' (writable: .exr, .png, .pfm)");
+    writeFileAtomic(path, encodeImage(path, image, exposureStops));
+}
+
+namespace {
+std::string temporaryName(const std::string& path) { return path + ".tmp-" + std::to_string(::getpid()); }
+
+// Writes bytes to temporaryName(path); on failure removes it and throws.
+void writeTemporary(const std::string& path, const std::string& bytes)
+{
+    const std::string temp = temporaryName(path);
+    std::ofstream out(temp, std::ios::binary | std::ios::trunc);
+    if (!out) fail(path, "cannot create " + temp + ": " + std::strerror(errno));
+    out.write(bytes.data(), std::streamsize(bytes.size()));
+    out.close();
+    if (!out) {
+        std::remove(temp.c_str());
+        fail(path, "write error (disk full?) on " + temp);
+    }
+}
+} // namespace
+
+void checkOutputPath(const std::string& path)
+{
+    const std::filesystem::path p(path);
+    if (p.filename().empty()) fail(path, "names a folder, not a file");
+    std::error_code ec;
+    if (std::filesystem::is_directory(p, ec)) fail(path, "is a folder");
+    if (p.has_parent_path()) {
+        std::filesystem::create_directories(p.parent_path(), ec);
+        if (!std::filesystem::is_directory(p.parent_path()))
+            fail(path, "its folder " + p.parent_path().string() + " cannot be created" +
+                           (ec ? ": " + ec.message() : std::string()));
+    }
+    writeTemporary(path, {});
+    std::remove(temporaryName(path).c_str());
+}
+
+void FileSet::add(const std::string& path, std::string bytes) { files_.emplace_back(path, std::move(bytes)); }
+
+void FileSet::addImage(const std::string& path, const Image& image, float exposureStops)
+{
+    add(path, encodeImage(path, image, exposureStops));
+}
+
+void FileSet::commit()
+{
+    std::size_t written = 0;
+    try {
+        for (; written < files_.size(); ++written) writeTemporary(files_[written].first, files_[written].second);
+    } catch (...) {
+        for (std::size_t i = 0; i < written; ++i) std::remove(temporaryName(files_[i].first).c_str());
+        throw;
+    }
+    for (std::size_t i = 0; i < files_.size(); ++i) {
+        const std::string& path = files_[i].first;
+        if (std::rename(temporaryName(path).c_str(), path.c_str()) != 0) {
+            const std::string why = std::strerror(errno);
+            for (std::size_t j = i; j < files_.size(); ++j) std::remove(temporaryName(files_[j].first).c_str());
+            for (std::size_t j = 0; j < i; ++j) std::remove(files_[j].first.c_str());
+            fail(path, "cannot rename its temporary into place: " + why + "; no file of the set was kept");
+        }
+    }
+    files_.clear();
 }
 
 void writeFileAtomic(const std::string& path, const std::string& bytes)
 {
-    const std::string temp = path + ".tmp-" + std::to_string(::getpid());
-    {
-        std::ofstream out(temp, std::ios::binary | std::ios::trunc);
-        if (!out) fail(path, "cannot create " + temp + ": " + std::strerror(errno));
-        out.write(bytes.data(), std::streamsize(bytes.size()));
-        out.close();
-        if (!out) {
-            std::remove(temp.c_str());
-            fail(path, "write error (disk full?) on " + temp);
-        }
-    }
+    writeTemporary(path, bytes);
+    const std::string temp = temporaryName(path);
     if (std::rename(temp.c_str(), path.c_str()) != 0) {
         const std::string why = std::strerror(errno);
         std::remove(temp.c_str());

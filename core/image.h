@@ -5,6 +5,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -42,7 +43,27 @@ void writePng(const std::string& path, const Image& image, float exposureStops =
 // Writes by extension: .exr, .png (tone mapped), .pfm. Throws ImageError for any other.
 void writeImage(const std::string& path, const Image& image, float exposureStops = 0.0f);
 
+// The bytes writeImage would write (by extension: .exr, .png tone mapped, .pfm).
+std::string encodeImage(const std::string& path, const Image& image, float exposureStops = 0.0f);
+
 // Writes bytes to path through path + ".tmp-<pid>" and a rename; throws ImageError on failure.
 void writeFileAtomic(const std::string& path, const std::string& bytes);
+
+// Checks, before any work, that path can be written: not a folder, its folder exists or is created, a
+// file can be created there. Throws ImageError saying why not.
+void checkOutputPath(const std::string& path);
+
+// Files that appear together or not at all (a run's EXR, PNG and JSON): commit() writes every file to a
+// temporary name beside it, then renames them all into place. When a write or a rename fails, every
+// temporary and every file of the set already renamed are removed, and ImageError names the file.
+class FileSet {
+public:
+    void add(const std::string& path, std::string bytes);
+    void addImage(const std::string& path, const Image& image, float exposureStops = 0.0f);
+    void commit();
+
+private:
+    std::vector<std::pair<std::string, std::string>> files_;
+};
 
 } // namespace bounce::core

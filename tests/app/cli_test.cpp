@@ -353,3 +353,34 @@ TEST(Cli, CompareOfANanImageFails)
 }
 
 } // namespace
+
+namespace {
+
+// A run writes its EXR, PNG and JSON as a set: when one cannot be written (here the JSON's path is a
+// folder) the run is refused before rendering and nothing of the set is left behind.
+TEST(Cli, RenderWritesItsFilesAsASet)
+{
+    const fs::path d = outDir("file-set");
+    fs::create_directories(d / "record.json"); // a folder where the JSON should go
+    const CliRun r = run("render --backend osmesa --size 8x8 --frames 1 --warmup 0 --out " + (d / "img.exr").string() +
+                         " --json " + (d / "record.json").string());
+    EXPECT_EQ(r.status, 2) << r.output;
+    EXPECT_FALSE(fs::exists(d / "img.exr"));
+    EXPECT_FALSE(fs::exists(d / "img.png"));
+    for (const auto& e : fs::directory_iterator(d)) EXPECT_EQ(e.path().filename(), "record.json") << e.path();
+}
+
+// `reference --cache-dir` pointing at a file is refused before the render starts, and says how to fix it.
+TEST(Cli, ReferenceChecksTheCacheFolderFirst)
+{
+    const fs::path d = outDir("cache-file");
+    std::ofstream(d / "not-a-folder") << "x";
+    const CliRun r = run("reference --scene cornell-spot --paths direct --size 8x8 --spp 100000 --out " +
+                         (d / "ref.exr").string() + " --cache-dir " + (d / "not-a-folder").string());
+    EXPECT_EQ(r.status, 2) << r.output;
+    EXPECT_NE(r.output.find("--no-cache"), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("samples:"), std::string::npos) << "it rendered first";
+    EXPECT_FALSE(fs::exists(d / "ref.exr"));
+}
+
+} // namespace

@@ -174,6 +174,43 @@ TEST(ImageIo, FailedWriteThrowsAndLeavesNothing)
     EXPECT_FALSE(hasTempFiles(dir));
 }
 
+// A set of files appears together or not at all: a set whose last file cannot be written leaves neither
+// the files before it nor any temporary behind.
+TEST(ImageIo, FileSetIsAllOrNothing)
+{
+    const path dir = test::scratchDir();
+    FileSet ok;
+    ok.addImage((dir / "a.exr").string(), testPattern(2, 2));
+    ok.add((dir / "a.json").string(), "{}");
+    ok.commit();
+    EXPECT_TRUE(std::filesystem::exists(dir / "a.exr"));
+    EXPECT_EQ(test::readFile(dir / "a.json"), "{}");
+
+    FileSet broken;
+    broken.addImage((dir / "b.exr").string(), testPattern(2, 2));
+    broken.addImage((dir / "b.png").string(), testPattern(2, 2));
+    broken.add((dir / "no-such-folder" / "b.json").string(), "{}");
+    EXPECT_THROW(broken.commit(), ImageError);
+    EXPECT_FALSE(std::filesystem::exists(dir / "b.exr"));
+    EXPECT_FALSE(std::filesystem::exists(dir / "b.png"));
+    EXPECT_FALSE(hasTempFiles(dir));
+}
+
+// An output that cannot be written is found before any work: a folder in its place, or a folder that
+// cannot be made because a file has its name.
+TEST(ImageIo, CheckOutputPathRefusesWhatCannotBeWritten)
+{
+    const path dir = test::scratchDir();
+    std::filesystem::create_directories(dir / "folder.exr");
+    EXPECT_THROW(checkOutputPath((dir / "folder.exr").string()), ImageError);
+    test::writeFile(dir / "file", "x");
+    EXPECT_THROW(checkOutputPath((dir / "file" / "a.exr").string()), ImageError);
+    EXPECT_NO_THROW(checkOutputPath((dir / "new" / "a.exr").string()));
+    EXPECT_TRUE(std::filesystem::is_directory(dir / "new"));
+    EXPECT_FALSE(std::filesystem::exists(dir / "new" / "a.exr")) << "the check writes nothing";
+    EXPECT_FALSE(hasTempFiles(dir / "new"));
+}
+
 TEST(ImageIo, UnknownExtensionThrows)
 {
     const path dir = test::scratchDir();
