@@ -4,6 +4,7 @@
 #include <string>
 
 #include "app/commands.h"
+#include "gl/resource/resource_error.h"
 
 namespace {
 
@@ -19,6 +20,16 @@ const char* kUsage =
     "  reference  render the ground truth with the CPU path tracer (cached)\n"
     "  compare    error metrics between two images (RMSE, relative RMSE, SSIM...)\n"
     "  bench      sweep scenes x techniques x parameters, report speed against error\n";
+
+// The parameter that lowers a GL resource that could not be had, by the resource's label.
+std::string lowerWith(const std::string& label)
+{
+    const auto starts = [&](const char* p) { return label.rfind(p, 0) == 0; };
+    if (starts("shadow")) return "lower the frame parameter shadow.size (--set shadow.size=512), or use fewer lights";
+    if (starts("rsm")) return "lower the technique's rsmSize (--set rsmSize=128)";
+    if (starts("scene.baseColorTextures")) return "lower the frame parameter textures.size";
+    return "lower --size or the technique's buffer sizes (`bounce list`)";
+}
 
 } // namespace
 
@@ -43,6 +54,9 @@ int main(int argc, char** argv)
         return 2;
     } catch (const UsageError& e) {
         std::fprintf(stderr, "bounce %s: %s\n", cmd.c_str(), e.what());
+        return 2;
+    } catch (const bounce::gl::ResourceError& e) {
+        std::fprintf(stderr, "bounce %s: %s; %s\n", cmd.c_str(), e.what(), lowerWith(e.label).c_str());
         return 2;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "bounce %s: error: %s\n", cmd.c_str(), e.what());

@@ -5,6 +5,7 @@
 
 #include "gl/debug.h"
 #include "gl/gl.h"
+#include "gl/resource/resource_error.h"
 #include "gl/resource/texture.h"
 
 namespace bounce::gl {
@@ -40,7 +41,8 @@ void Framebuffer::checkComplete() const
 {
     const GLenum s = glCheckNamedFramebufferStatus(id(), GL_FRAMEBUFFER);
     if (s != GL_FRAMEBUFFER_COMPLETE)
-        throw std::runtime_error("framebuffer '" + label_ + "' incomplete (status 0x" + std::to_string(s) + ")");
+        throw ResourceError(label_, "framebuffer '" + label_ + "' incomplete (status " + std::to_string(s) +
+                                        "): an attachment could not be allocated or is over the driver's limits");
 }
 
 void Framebuffer::bind() const { glBindFramebuffer(GL_FRAMEBUFFER, id()); }

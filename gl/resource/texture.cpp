@@ -6,6 +6,7 @@
 
 #include "gl/debug.h"
 #include "gl/gl.h"
+#include "gl/resource/resource_error.h"
 
 namespace bounce::gl {
 
@@ -33,9 +34,58 @@ int mipLevelCount(int width, int height)
     return int(std::bit_width(m));
 }
 
+namespace {
+
+int glLimit(unsigned pname)
+{
+    GLint v = 0;
+    glGetIntegerv(pname, &v);
+    return v;
+}
+
+std::string describeSize(int w, int h, int layers, std::size_t bytes)
+{
+    return std::to_string(w) + "x" + std::to_string(h) + (layers > 1 ? " x " + std::to_string(layers) + " layers" : "") +
+           ", " + std::to_string((bytes + (1 << 20) - 1) >> 20) + " MiB";
+}
+
+// Sizes over the driver's limits are refused before GL sees them (GL would answer GL_INVALID_VALUE and
+// leave an unusable texture behind).
+void checkLimits(const std::string& label, unsigned target, int w, int h, int layers, std::size_t bytes)
+{
+    const bool cube = target == GL_TEXTURE_CUBE_MAP || target == GL_TEXTURE_CUBE_MAP_ARRAY;
+    const int maxSize = glLimit(cube ? GL_MAX_CUBE_MAP_TEXTURE_SIZE : GL_MAX_TEXTURE_SIZE);
+    if (w < 1 || h < 1 || w > maxSize || h > maxSize)
+        throw ResourceError(label, "texture '" + label + "' of " + describeSize(w, h, layers, bytes) +
+                                       " exceeds the driver's maximum texture size " + std::to_string(maxSize));
+    if ((target == GL_TEXTURE_2D_ARRAY || target == GL_TEXTURE_CUBE_MAP_ARRAY) &&
+        layers > glLimit(GL_MAX_ARRAY_TEXTURE_LAYERS))
+        throw ResourceError(label, "texture '" + label + "' of " + describeSize(w, h, layers, bytes) +
+                                       " exceeds the driver's maximum of " +
+                                       std::to_string(glLimit(GL_MAX_ARRAY_TEXTURE_LAYERS)) + " array layers");
+}
+
+// After glTextureStorage*: GL_OUT_OF_MEMORY (or any error) means the texture has no storage.
+void checkStorage(const Texture& t, const std::string& label, std::size_t bytes)
+{
+    const GLenum e = glGetError();
+    if (e == GL_NO_ERROR) return;
+    throw ResourceError(label, "texture '" + label + "' of " + describeSize(t.width(), t.height(), t.layers(), bytes) +
+                                   " could not be allocated: " +
+                                   (e == GL_OUT_OF_MEMORY ? std::string("GL_OUT_OF_MEMORY")
+                                                          : "GL error 0x" + std::to_string(e)));
+}
+
+} // namespace
+
 Texture Texture::make(const std::string& label, unsigned target, unsigned format, int w, int h, int levels, int layers,
                       std::size_t texelBytes)
 {
+    std::size_t total = 0;
+    for (int l = 0; l < levels; ++l)
+        total += std::size_t(std::max(1, w >> l)) * std::size_t(std::max(1, h >> l)) * std::size_t(layers) * texelBytes;
+    if (target != GL_TEXTURE_BUFFER) checkLimits(label, target, w, h, layers, total);
+    while (glGetError() != GL_NO_ERROR) {} // what follows reads the storage call's own error
     Texture t;
     unsigned id = 0;
     glCreateTextures(target, 1, &id);
@@ -58,6 +108,7 @@ Texture Texture::create2D(const std::string& label, unsigned f, int w, int h, in
 {
     Texture t = make(label, GL_TEXTURE_2D, f, w, h, levels, 1, bytesPerTexel(f));
     glTextureStorage2D(t.id(), levels, f, w, h);
+    checkStorage(t, label, std::size_t(t.width()) * std::size_t(t.height()) * std::size_t(t.layers()) * bytesPerTexel(f));
     t.setFilter(levels > 1 ? GL_NEAREST_MIPMAP_NEAREST : GL_NEAREST, GL_NEAREST);
     t.setWrap(GL_CLAMP_TO_EDGE);
     return t;
@@ -67,6 +118,7 @@ Texture Texture::create2DArray(const std::string& label, unsigned f, int w, int 
 {
     Texture t = make(label, GL_TEXTURE_2D_ARRAY, f, w, h, 1, layers, bytesPerTexel(f));
     glTextureStorage3D(t.id(), 1, f, w, h, layers);
+    checkStorage(t, label, std::size_t(t.width()) * std::size_t(t.height()) * std::size_t(t.layers()) * bytesPerTexel(f));
     t.setFilter(GL_NEAREST, GL_NEAREST);
     t.setWrap(GL_CLAMP_TO_EDGE);
     return t;
@@ -76,6 +128,7 @@ Texture Texture::createCube(const std::string& label, unsigned f, int size)
 {
     Texture t = make(label, GL_TEXTURE_CUBE_MAP, f, size, size, 1, 6, bytesPerTexel(f));
     glTextureStorage2D(t.id(), 1, f, size, size);
+    checkStorage(t, label, std::size_t(t.width()) * std::size_t(t.height()) * std::size_t(t.layers()) * bytesPerTexel(f));
     t.setFilter(GL_NEAREST, GL_NEAREST);
     t.setWrap(GL_CLAMP_TO_EDGE);
     return t;
@@ -85,6 +138,7 @@ Texture Texture::createCubeArray(const std::string& label, unsigned f, int size,
 {
     Texture t = make(label, GL_TEXTURE_CUBE_MAP_ARRAY, f, size, size, 1, 6 * cubes, bytesPerTexel(f));
     glTextureStorage3D(t.id(), 1, f, size, size, 6 * cubes);
+    checkStorage(t, label, std::size_t(t.width()) * std::size_t(t.height()) * std::size_t(t.layers()) * bytesPerTexel(f));
     t.setFilter(GL_NEAREST, GL_NEAREST);
     t.setWrap(GL_CLAMP_TO_EDGE);
     return t;
@@ -94,6 +148,7 @@ Texture Texture::create2DMultisample(const std::string& label, unsigned f, int w
 {
     Texture t = make(label, GL_TEXTURE_2D_MULTISAMPLE, f, w, h, 1, samples, bytesPerTexel(f));
     glTextureStorage2DMultisample(t.id(), samples, f, w, h, GL_TRUE);
+    checkStorage(t, label, std::size_t(t.width()) * std::size_t(t.height()) * std::size_t(t.layers()) * bytesPerTexel(f));
     return t;
 }
 
