@@ -1,4 +1,5 @@
 #include "core/gltf_io.h"
+#include "core/json_depth.h"
 
 #include <algorithm>
 #include <cctype>
@@ -227,6 +228,9 @@ private:
             jsonSize = chunkLength;
         }
         if (!nlohmann::json::accept(json, json + jsonSize)) fail(path_, "malformed JSON (truncated or not glTF JSON)");
+        if (const std::size_t depth = jsonNestingDepth(json, json + jsonSize); depth > kMaxGltfJsonDepth)
+            fail(path_, "JSON nests " + std::to_string(depth) + " levels deep; more than " +
+                            std::to_string(kMaxGltfJsonDepth) + " is refused (no glTF needs it)");
     }
 
     void parse()
