@@ -1,5 +1,8 @@
 // bounce list: scenes, techniques and their parameters (defaults and ranges), frame parameters.
+#include <algorithm>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
 
 #include "app/commands.h"
 #include "app/options.h"
@@ -38,10 +41,34 @@ void printParams(const std::vector<gl::ParamDecl>& params)
     }
 }
 
+// The setups shipped in assets/setups/, and whether the glTF each names is there.
+std::vector<std::pair<std::string, bool>> sceneSetups()
+{
+    namespace fs = std::filesystem;
+    std::vector<std::pair<std::string, bool>> setups;
+    const fs::path dir = fs::path(BOUNCE_SOURCE_ROOT) / "assets" / "setups";
+    std::error_code ec;
+    for (const auto& e : fs::directory_iterator(dir, ec)) {
+        if (e.path().extension() != ".json") continue;
+        bool present = true;
+        try {
+            const nlohmann::json j = nlohmann::json::parse(std::ifstream(e.path()));
+            if (j.contains("gltf")) present = fs::exists(dir / j["gltf"].get<std::string>());
+        } catch (const std::exception&) {
+            present = false;
+        }
+        setups.emplace_back(fs::relative(e.path(), BOUNCE_SOURCE_ROOT).string(), present);
+    }
+    std::sort(setups.begin(), setups.end());
+    return setups;
+}
+
 nlohmann::json registryJson()
 {
     nlohmann::json j;
     j["scenes"] = core::builtinSceneNames();
+    j["setups"] = nlohmann::json::array();
+    for (const auto& [path, present] : sceneSetups()) j["setups"].push_back({{"path", path}, {"assetPresent", present}});
     j["lightPaths"] = core::lightPathsNames();
     j["techniques"] = nlohmann::json::array();
     for (const gl::TechniqueInfo& t : gl::techniques()) j["techniques"].push_back(t.toJson());
@@ -66,6 +93,9 @@ int cmdList(const Args& args)
     }
     std::printf("scenes (or any .gltf/.glb path):\n");
     for (const std::string& s : core::builtinSceneNames()) std::printf("  %s\n", s.c_str());
+    std::printf("\nscene setups (--scene PATH.json; the benchmark assets live in ../shared/assets):\n");
+    for (const auto& [path, present] : sceneSetups())
+        std::printf("  %-40s %s\n", path.c_str(), present ? "" : "(its asset is not there)");
     std::printf("\ntechniques:\n");
     for (const gl::TechniqueInfo& t : gl::techniques()) {
         std::printf("  %-16s %s\n    paper: %s; light paths: %s\n", t.name.c_str(), t.summary.c_str(), t.paper.c_str(),

@@ -16,12 +16,14 @@ const char* kUsage =
     "usage: bounce render [--scene NAME|PATH] [--technique NAME] [--size WxH] [--out FILE.exr|FILE.png]\n"
     "                     [--set key=value]... [--frames N] [--warmup N] [--json FILE]\n"
     "                     [--backend egl|osmesa|glfw] [--exposure STOPS] [--reference FILE.exr]\n"
+    "                     [--camera POS:TARGET[:FOV]] [--light TYPE:key=value;...]...\n"
     "\n"
     "Renders the scene with the technique and writes FILE.exr (linear radiance), FILE.png (tone mapped,\n"
     "sRGB) and FILE.json (backend, GL renderer, parameters, per-pass GPU ms: median over the timed\n"
     "frames after the warm-up frames, counters, bytes per GL resource). Files are written atomically.\n"
     "\n"
-    "  --scene      built-in name (see `bounce list`) or a .gltf/.glb path   [cornell-spot]\n"
+    "  --scene      built-in name (see `bounce list`), a .gltf/.glb path or a scene setup\n"
+    "               (.json, e.g. assets/setups/sponza-sun.json)              [cornell-spot]\n"
     "  --technique  see `bounce list`                                        [direct]\n"
     "  --size       image size                                                [512x512]\n"
     "  --out        output image; its sibling .exr/.png/.json are written too [out/render.exr]\n"
@@ -39,12 +41,13 @@ const char* kUsage =
 
 int cmdRender(const Args& args)
 {
+    const std::string usage = std::string(kUsage) + kSceneOptionsHelp;
     const Options o(args,
                     {{"scene"}, {"technique"}, {"size"}, {"out"}, {"set", true, true}, {"frames"}, {"warmup"},
-                     {"json"}, {"backend"}, {"exposure"}, {"reference"}},
-                    kUsage);
-    if (o.helpRequested()) { std::fputs(kUsage, stdout); return 0; }
-    if (!o.positional().empty()) throw UsageError("unexpected argument '" + o.positional()[0] + "'\n\n" + kUsage);
+                     {"json"}, {"backend"}, {"exposure"}, {"reference"}, {"camera"}, {"light", true, true}},
+                    usage);
+    if (o.helpRequested()) { std::fputs(usage.c_str(), stdout); return 0; }
+    if (!o.positional().empty()) throw UsageError("unexpected argument '" + o.positional()[0] + "'\n\n" + usage);
 
     // Everything the user gave is checked before anything is created or written.
     int width = 512, height = 512;
@@ -75,7 +78,8 @@ int cmdRender(const Args& args)
     } catch (const core::ImageError& e) {
         throw UsageError(e.what());
     }
-    const core::Scene scene = loadSceneForCli(sceneArg);
+    core::Scene scene = loadSceneForCli(sceneArg);
+    applySceneOptions(scene, o.get("camera"), o.all("light"));
     core::Image reference;
     if (o.has("reference")) {
         try {

@@ -6,6 +6,7 @@
 #include "app/commands.h"
 #include "core/cornell.h"
 #include "core/gltf_io.h"
+#include "core/scene_setup.h"
 #include "gl/resource/allocations.h"
 
 namespace bounce::app {
@@ -17,6 +18,33 @@ core::Scene loadSceneForCli(const std::string& nameOrPath)
     } catch (const core::SceneError& e) {
         throw UsageError(e.what());
     }
+}
+
+const char* const kSceneOptionsHelp =
+    "  --camera     POSITION:TARGET[:FOV_DEGREES] in metres, e.g. --camera 0.278,0.273,-0.8:0.278,0.273,0:39.3\n"
+    "  --light      TYPE:key=value;... (repeatable), the project's units:\n"
+    "                 point:position=X,Y,Z;intensity=W_PER_SR (one value or R,G,B)\n"
+    "                 spot:position=..;direction=..|target=..;intensity=W_PER_SR;outerDeg=45;innerDeg=0\n"
+    "                 directional:direction=X,Y,Z;irradiance=W_PER_M2\n"
+    "                 area:corner=..;edge1=..;edge2=..;radiance=W_PER_M2_SR (emits along edge1 x edge2)\n"
+    "               e.g. --light 'directional:direction=0.3,-1,0.2;irradiance=20'\n";
+
+void applySceneOptions(core::Scene& scene, const std::string& camera, const std::vector<std::string>& lights)
+{
+    try {
+        if (!camera.empty()) {
+            core::setCameraFromJson(scene, core::cameraJsonFromArgument(camera), "--camera");
+            scene.cameraSource = "command line";
+        }
+        for (const std::string& l : lights) core::addLightFromJson(scene, core::lightJsonFromArgument(l), "--light '" + l + "'");
+    } catch (const core::SceneError& e) {
+        throw UsageError(e.what());
+    }
+    if (const std::string err = scene.validate(); !err.empty()) throw UsageError("invalid scene: " + err);
+    if (scene.cameraSource != "built-in") std::printf("camera: %s\n", scene.cameraSource.c_str());
+    if (scene.lights.empty() && !scene.hasEmission())
+        std::fprintf(stderr, "warning: the scene has no light and no emitter: the image will be black. Give --light "
+                             "(see --help) or use a scene setup (assets/setups/)\n");
 }
 
 void applySets(const std::vector<std::string>& sets, const gl::TechniqueInfo& technique, gl::ParamValues& frameValues,
@@ -64,6 +92,7 @@ nlohmann::json runRecord(const gl::ContextInfo& ctx, const std::string& scene, g
     j["vendor"] = ctx.vendor;
     j["glVersion"] = ctx.version;
     j["scene"] = scene;
+    j["cameraSource"] = r.frame().scene().cameraSource;
     j["width"] = r.frame().width();
     j["height"] = r.frame().height();
     j["technique"] = r.technique().name;

@@ -14,8 +14,15 @@
 
 namespace bounce::app {
 
-// Loads a built-in scene by name or a glTF file by path; any failure becomes a UsageError.
+// Loads a built-in scene by name, a glTF file or a scene setup (.json) by path; any failure becomes a
+// UsageError.
 core::Scene loadSceneForCli(const std::string& nameOrPath);
+
+// --camera and --light (repeatable) for render, reference, demo and bench: the help text and their use.
+extern const char* const kSceneOptionsHelp;
+// Applies them to the scene (UsageError on bad input), then says where the camera came from and warns on
+// standard error when the scene has no light at all (a black image otherwise, without a word).
+void applySceneOptions(core::Scene& scene, const std::string& camera, const std::vector<std::string>& lights);
 
 // Applies "key=value" settings to the frame's or the technique's parameters; UsageError on bad input.
 void applySets(const std::vector<std::string>& sets, const gl::TechniqueInfo& technique, gl::ParamValues& frameValues,

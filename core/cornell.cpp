@@ -7,6 +7,7 @@
 #include <functional>
 
 #include "core/gltf_io.h"
+#include "core/scene_setup.h"
 
 namespace bounce::core {
 
@@ -236,9 +237,10 @@ Scene loadScene(const std::string& nameOrPath)
         return lower.size() > ext.size() && lower.compare(lower.size() - ext.size(), ext.size(), ext) == 0;
     };
     if (endsWith(".gltf") || endsWith(".glb")) return loadGltf(nameOrPath);
+    if (endsWith(".json")) return loadSetup(nameOrPath);
     std::string known;
     for (const std::string& n : names) known += (known.empty() ? "" : ", ") + n;
-    throw SceneError(nameOrPath + ": neither a built-in scene (" + known + ") nor a .gltf/.glb file");
+    throw SceneError(nameOrPath + ": neither a built-in scene (" + known + "), a .gltf/.glb file nor a scene setup (.json)");
 }
 
 } // namespace bounce::core

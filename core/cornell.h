@@ -19,7 +19,8 @@ Scene makeCornell(std::string_view variant);
 // The names makeCornell accepts, canonical variants first.
 std::vector<std::string> builtinSceneNames();
 
-// A built-in name gives the generated scene; anything else is read as a .gltf/.glb path (loadGltf).
+// A built-in name gives the generated scene; a .gltf/.glb path is read by loadGltf, a .json path is a
+// scene setup (core/scene_setup.h).
 Scene loadScene(const std::string& nameOrPath);
 
 } // namespace bounce::core

@@ -774,6 +774,7 @@ private:
     {
         const Bounds b = scene_.bounds();
         Camera& cam = scene_.camera;
+        scene_.cameraSource = haveCamera_ ? "glTF" : "framed the bounds (the glTF has no camera)";
         if (!haveCamera_) {
             cam = Camera{};
             if (!b.empty()) {

@@ -97,6 +97,9 @@ struct Scene {
     std::vector<Texture> textures;
     std::vector<Light> lights;
     Camera camera;
+    // Where the camera came from, for logs and run records: "built-in", "glTF", "framed the bounds (the
+    // glTF has no camera)", "setup", "command line".
+    std::string cameraSource = "built-in";
 
     Bounds bounds() const;
     std::size_t triangleCount() const;

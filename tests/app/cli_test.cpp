@@ -1,6 +1,7 @@
 // The `bounce` executable end to end: help, listing, bad input (exit status 2, a message saying what is
 // allowed, nothing written), a render that writes EXR + PNG + JSON, and the demo under Xvfb.
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -13,6 +14,8 @@
 #include <nlohmann/json.hpp>
 #include <sys/wait.h>
 
+#include "core/cornell.h"
+#include "core/gltf_io.h"
 #include "core/image.h"
 #include "core/metrics.h"
 
@@ -381,6 +384,112 @@ TEST(Cli, ReferenceChecksTheCacheFolderFirst)
     EXPECT_NE(r.output.find("--no-cache"), std::string::npos) << r.output;
     EXPECT_EQ(r.output.find("samples:"), std::string::npos) << "it rendered first";
     EXPECT_FALSE(fs::exists(d / "ref.exr"));
+}
+
+} // namespace
+
+namespace {
+
+double imageMean(const bounce::core::Image& im)
+{
+    double sum = 0.0;
+    for (float v : im.rgb) sum += v;
+    return sum / double(im.rgb.size());
+}
+
+// The cornell-spot glTF without its camera and its light, written by the project's writer.
+fs::path cornellWithoutCameraAndLight(const fs::path& dir)
+{
+    bounce::core::Scene s = bounce::core::makeCornell("cornell-spot");
+    s.lights.clear();
+    const fs::path file = dir / "bare.gltf";
+    bounce::core::writeGltf(s, file.string());
+    // The writer always writes the camera: drop it, as most downloaded files have none.
+    nlohmann::json j = nlohmann::json::parse(std::ifstream(file));
+    j.erase("cameras");
+    for (auto& n : j["nodes"]) n.erase("camera");
+    std::ofstream(file) << j.dump();
+    return file;
+}
+
+// A glTF with no camera gets one framing its bounds (the record says so); with no light it warns, and
+// --light gives it one.
+TEST(Cli, GltfWithoutCameraOrLightRendersWithFramingCameraAndCommandLineLight)
+{
+    const fs::path d = outDir("bare-gltf");
+    const fs::path bare = cornellWithoutCameraAndLight(d);
+    const CliRun dark = run("render --backend osmesa --size 16x16 --frames 1 --warmup 0 --scene " + bare.string() +
+                            " --out " + (d / "dark.exr").string());
+    ASSERT_EQ(dark.status, 0) << dark.output;
+    EXPECT_NE(dark.output.find("no light"), std::string::npos) << dark.output;
+    EXPECT_NE(dark.output.find("framed the bounds"), std::string::npos) << dark.output;
+    const CliRun lit = run("render --backend osmesa --size 16x16 --frames 1 --warmup 0 --scene " + bare.string() +
+                           " --light 'point:position=0.278,0.4,0.279;intensity=1' --out " + (d / "lit.exr").string());
+    ASSERT_EQ(lit.status, 0) << lit.output;
+    EXPECT_GT(imageMean(bounce::core::readImage((d / "lit.exr").string())), 0.01);
+    const nlohmann::json rec = nlohmann::json::parse(std::ifstream(d / "lit.json"));
+    EXPECT_EQ(rec["cameraSource"], "framed the bounds (the glTF has no camera)");
+}
+
+// The light given on the command line and the same light in the glTF (KHR_lights_punctual, as the built-in
+// cornell-spot writes it) give the same image.
+TEST(Cli, CommandLineLightEqualsTheSameLightInTheGltf)
+{
+    const fs::path d = outDir("light-equal");
+    const fs::path bare = cornellWithoutCameraAndLight(d);
+    const bounce::core::Scene canonical = bounce::core::makeCornell("cornell-spot");
+    const bounce::core::Light& l = canonical.lights.at(0);
+    char light[512];
+    std::snprintf(light, sizeof light,
+                  "spot:position=%.9g,%.9g,%.9g;direction=%.9g,%.9g,%.9g;intensity=%.9g,%.9g,%.9g;outerDeg=%.9g;innerDeg=%.9g",
+                  l.position.x, l.position.y, l.position.z, l.direction.x, l.direction.y, l.direction.z, l.intensity.x,
+                  l.intensity.y, l.intensity.z, double(l.outerConeRad) * 180.0 / M_PI, double(l.innerConeRad) * 180.0 / M_PI);
+    const bounce::core::Camera& c = canonical.camera;
+    char camera[256];
+    const glm::vec3 target = c.position + c.forward;
+    std::snprintf(camera, sizeof camera, "%.9g,%.9g,%.9g:%.9g,%.9g,%.9g:%.9g", c.position.x, c.position.y, c.position.z,
+                  target.x, target.y, target.z, double(c.yfovRad) * 180.0 / M_PI);
+    const CliRun a = run("render --backend osmesa --size 32x32 --frames 1 --warmup 0 --scene cornell-spot --out " +
+                         (d / "gltf.exr").string());
+    ASSERT_EQ(a.status, 0) << a.output;
+    const CliRun b = run("render --backend osmesa --size 32x32 --frames 1 --warmup 0 --scene " + bare.string() +
+                         " --light '" + light + "' --camera '" + camera + "' --out " + (d / "cli.exr").string());
+    ASSERT_EQ(b.status, 0) << b.output;
+    const auto ia = bounce::core::readImage((d / "gltf.exr").string());
+    const auto ib = bounce::core::readImage((d / "cli.exr").string());
+    // Degrees and decimal text round trip the cone angles to within a float ulp or two: 1e-4 relative.
+    EXPECT_LT(bounce::core::relativeRmse(ib, ia), 1e-4) << light << "\n" << camera;
+    EXPECT_GT(imageMean(ia), 0.01);
+}
+
+// A setup whose asset is missing exits with status 2 and names the file; nothing is written.
+TEST(Cli, SetupWithAMissingAssetExitsTwoNamingTheFile)
+{
+    const fs::path d = outDir("setup-missing");
+    std::ofstream(d / "s.json") << R"({"gltf": "not-here/model.gltf", "lights": []})";
+    const CliRun r = run("render --backend osmesa --size 8x8 --scene " + (d / "s.json").string() + " --out " +
+                         (d / "out" / "a.exr").string());
+    EXPECT_EQ(r.status, 2) << r.output;
+    EXPECT_NE(r.output.find("not-here/model.gltf"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(d / "out" / "a.exr"));
+}
+
+// Every setup the project ships loads and renders lit when its asset is there (CI has ../shared beside
+// the project); a missing asset is reported, not failed, since the assets are not part of the project.
+TEST(Cli, ShippedSetupsRenderLit)
+{
+    const fs::path d = outDir("setups");
+    for (const auto& e : fs::directory_iterator(fs::path(BOUNCE_SOURCE_ROOT) / "assets" / "setups")) {
+        const CliRun r = run("render --backend osmesa --size 16x16 --frames 1 --warmup 0 --scene " + e.path().string() +
+                             " --out " + (d / e.path().stem()).string() + ".exr");
+        if (r.status == 2 && r.output.find("is not there") != std::string::npos) {
+            std::printf("[ skipped  ] %s: its asset is not there\n", e.path().filename().c_str());
+            continue;
+        }
+        ASSERT_EQ(r.status, 0) << e.path() << "\n" << r.output;
+        EXPECT_EQ(r.output.find("no light"), std::string::npos) << e.path();
+        EXPECT_GT(imageMean(bounce::core::readImage((d / e.path().stem()).string() + ".exr")), 1e-3) << e.path();
+    }
 }
 
 } // namespace
