@@ -10,6 +10,7 @@
 
 #include "app/commands.h"
 #include "app/options.h"
+#include "app/render_job.h"
 #include "core/cornell.h"
 #include "core/gltf_io.h"
 #include "core/image.h"
@@ -24,13 +25,15 @@ const char* kUsage =
     "usage: bounce reference --scene NAME|PATH --out FILE.exr (--spp N | --noise FRACTION)\n"
     "                        [--paths P] [--size WxH] [--seed N] [--threads N] [--max-depth N]\n"
     "                        [--no-cache] [--cache-dir DIR] [--json FILE]\n"
+    "                        [--camera POS:TARGET[:FOV]] [--light TYPE:key=value;...]...\n"
     "\n"
     "Renders the ground truth with the CPU path tracer (Embree) over the chosen light paths and writes it\n"
     "to FILE (.exr: linear radiance; .png: tone mapped; .pfm). Prints rays/s, samples per pixel, the\n"
     "relative noise reached and the time. Results are cached by scene content, camera, size, paths,\n"
     "sample count or noise target, seed and max depth.\n"
     "\n"
-    "  --scene      built-in name (cornell-area, cornell-spot, cornell-point, ...) or a .gltf/.glb path\n"
+    "  --scene      built-in name (cornell-area, cornell-spot, cornell-point, ...), a .gltf/.glb path or a\n"
+    "               scene setup (.json, assets/setups/): the same scene `render` sees\n"
     "  --out        output image (.exr, .png or .pfm)\n"
     "  --spp        samples per pixel (with --noise: the most it may take)\n"
     "  --noise      stop when the relative noise reaches this, e.g. 0.01: the mean over pixels of the\n"
@@ -49,6 +52,7 @@ const char* kUsage =
 
 int cmdReference(const Args& args)
 {
+    const std::string usage = std::string(kUsage) + kSceneOptionsHelp;
     const Options o(args,
                     {{"scene"},
                      {"out"},
@@ -61,19 +65,21 @@ int cmdReference(const Args& args)
                      {"max-depth"},
                      {"no-cache", false},
                      {"cache-dir"},
-                     {"json"}},
-                    kUsage);
+                     {"json"},
+                     {"camera"},
+                     {"light", true, true}},
+                    usage);
     if (o.helpRequested()) {
-        std::fputs(kUsage, stdout);
+        std::fputs(usage.c_str(), stdout);
         return 0;
     }
-    if (!o.positional().empty()) throw UsageError("unexpected argument '" + o.positional()[0] + "'\n\n" + kUsage);
+    if (!o.positional().empty()) throw UsageError("unexpected argument '" + o.positional()[0] + "'\n\n" + usage);
 
     // Everything is checked before the scene is built or anything is written.
-    if (!o.has("scene")) throw UsageError(std::string("--scene is required\n\n") + kUsage);
-    if (!o.has("out")) throw UsageError(std::string("--out is required\n\n") + kUsage);
+    if (!o.has("scene")) throw UsageError(std::string("--scene is required\n\n") + usage);
+    if (!o.has("out")) throw UsageError(std::string("--out is required\n\n") + usage);
     if (!o.has("spp") && !o.has("noise"))
-        throw UsageError(std::string("give --spp N, --noise FRACTION or both\n\n") + kUsage);
+        throw UsageError(std::string("give --spp N, --noise FRACTION or both\n\n") + usage);
     ref::RenderSettings settings;
     try {
         settings.paths = ref::parseLightPaths(o.get("paths", "full"));
@@ -118,6 +124,7 @@ int cmdReference(const Args& args)
     }
     if (const std::string err = scene.validate(); !err.empty())
         throw UsageError(o.get("scene") + ": invalid scene:\n" + err);
+    applySceneOptions(scene, o.get("camera"), o.all("light"));
 
     std::printf("reference: %s, paths %s, %dx%d, %s\n", o.get("scene").c_str(),
                 ref::lightPathsName(settings.paths).c_str(), settings.width, settings.height,
