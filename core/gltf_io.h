@@ -27,6 +27,9 @@
 // colour textures), a point light's direction, and the sign of zero components of light and camera
 // directions (read back as +0). A hard spot cone (inner == outer) is written with innerConeAngle one double below
 // outerConeAngle, as glTF requires inner < outer; it reads back as inner == outer.
+//
+// Where it lives: core/gltf_read.cpp (loading), core/gltf_write.cpp (writing), core/gltf_files.* (the
+// folder jail and tinygltf's file callbacks, which decide what a scene may read).
 #pragma once
 
 #include <stdexcept>

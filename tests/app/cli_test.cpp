@@ -28,9 +28,10 @@ struct CliRun {
     std::string output; // stdout and stderr together
 };
 
-CliRun run(const std::string& args)
+// `prefix` runs the binary under another command (e.g. env -u DISPLAY).
+CliRun run(const std::string& args, const std::string& prefix = "")
 {
-    const std::string cmd = std::string(BOUNCE_BINARY) + " " + args + " 2>&1";
+    const std::string cmd = prefix + std::string(BOUNCE_BINARY) + " " + args + " 2>&1";
     CliRun r;
     FILE* p = popen(cmd.c_str(), "r");
     if (!p) return r;
@@ -228,9 +229,32 @@ TEST(Cli, RenderAGltfByPath)
     for (std::size_t i = 0; i < ia.rgb.size(); ++i) EXPECT_NEAR(ia.rgb[i], ib.rgb[i], 1e-5f + 1e-5f * ib.rgb[i]) << i;
 }
 
+// The demo checks its --script before the window opens: with no display at all (so that opening a window
+// would fail with another message), each bad script exits 2 with a message naming the step.
+TEST(Cli, DemoScriptIsCheckedBeforeTheWindowOpens)
+{
+    const struct { std::string script, says; } cases[] = {
+        {"wait:1,technique:nosuch", "unknown technique 'nosuch'"},
+        {"compare:nosuch,quit", "unknown technique 'nosuch'"},
+        {"technique:isr,set:nokey=1", "unknown parameter 'nokey'"},
+        {"set:rsmSize=64", "unknown parameter 'rsmSize'"}, // direct has no rsmSize
+        {"set:shadow.size=3", "out of range"},
+        {"set:shadow.linear=maybe", "bool"},
+        {"wait:soon", "wait"},
+        {"fly:1", "unknown step"},
+    };
+    for (const auto& c : cases) {
+        const CliRun r = run("demo --scene cornell-spot --size 32x32 --script '" + c.script + "'", "env -u DISPLAY -u WAYLAND_DISPLAY ");
+        EXPECT_EQ(r.status, 2) << c.script << "\n" << r.output;
+        EXPECT_NE(r.output.find(c.says), std::string::npos) << c.script << "\n" << r.output;
+        EXPECT_NE(r.output.find("--script"), std::string::npos) << c.script << "\n" << r.output;
+        EXPECT_EQ(r.output.find("GL renderer"), std::string::npos) << "a context was created: " << r.output;
+    }
+}
+
 // The demo in a real window (Xvfb in CI): a few frames, switches through the techniques of the image-space
 // radiosity family (with a parameter set from the script, as a widget would) and a side-by-side
-// comparison, and a screenshot that must be the Cornell box: not black, the red wall on the left, the
+// comparison (with a frame parameter set while comparing), and a screenshot that must be the Cornell box: not black, the red wall on the left, the
 // green wall on the right, and brighter than direct light alone (the indirect light is there).
 TEST(Cli, DemoRunsSwitchesTechniqueAndShowsTheCornellBox)
 {
@@ -240,7 +264,7 @@ TEST(Cli, DemoRunsSwitchesTechniqueAndShowsTheCornellBox)
     const CliRun r = run("demo --scene cornell-area --size 160x120 --script wait:2,screenshot:" + direct.string() +
                          ",technique:multires-gather,set:vpls=64,wait:1,technique:isr,set:rsmSize=64,wait:1,"
                          "technique:hisr,set:rsmSize=64,wait:1,technique:rsm,set:vpls=64,wait:2,screenshot:" +
-                         shot.string() + ",compare:isr,wait:1,quit");
+                         shot.string() + ",compare:isr,wait:1,set:shadow.pcf=2,wait:1,quit");
     ASSERT_EQ(r.status, 0) << r.output;
     ASSERT_TRUE(fs::exists(shot)) << r.output;
     ASSERT_TRUE(fs::exists(d / "shot.png"));
@@ -265,6 +289,39 @@ TEST(Cli, DemoRunsSwitchesTechniqueAndShowsTheCornellBox)
     EXPECT_GT(sum, 0.0) << "black screenshot";
     EXPECT_GT(left.x, 2.0f * left.y) << "the left wall should be red";
     EXPECT_GT(right.y, 2.0f * right.x) << "the right wall should be green";
+}
+
+// A frame parameter set while comparing rebuilds both halves: with the same technique on both sides the
+// two halves are the same image before and after, and the change shows (a 16-texel shadow map against
+// 1024: relative RMSE about 1 on cornell-spot at 64x64). Each screenshot while comparing writes the
+// right half too and prints the relative RMSE of the right against the left, which must be the figure
+// of the two images written.
+TEST(Cli, DemoFrameParameterRebuildsBothSidesOfAComparison)
+{
+    if (!std::getenv("DISPLAY")) GTEST_SKIP() << "no DISPLAY: the suite runs under xvfb-run in CI (test.sh)";
+    const fs::path d = outDir("demo-frame");
+    const auto file = [&](const char* name) { return (d / name).string(); };
+    const CliRun r = run("demo --scene cornell-spot --size 128x64 --script wait:1,compare:direct,wait:1,screenshot:" +
+                         file("before.exr") + ",set:shadow.size=16,wait:1,screenshot:" + file("after.exr") +
+                         ",compare:rsm,wait:1,screenshot:" + file("mixed.exr") + ",quit");
+    ASSERT_EQ(r.status, 0) << r.output;
+    using bounce::core::readImage;
+    using bounce::core::relativeRmse;
+    const auto before = readImage(file("before.exr")), beforeRight = readImage(file("before-right.exr"));
+    const auto after = readImage(file("after.exr")), afterRight = readImage(file("after-right.exr"));
+    ASSERT_EQ(before.width, 64) << "each half is half the window";
+    ASSERT_EQ(beforeRight.width, 64);
+    EXPECT_LT(relativeRmse(beforeRight, before), 1e-5) << "the same technique differs between the halves";
+    EXPECT_GT(relativeRmse(after, before), 0.1) << "shadow.size=16 changed nothing on the left";
+    EXPECT_LT(relativeRmse(afterRight, after), 1e-5) << "the right half was not rebuilt with shadow.size=16";
+    const auto mixed = readImage(file("mixed.exr")), mixedRight = readImage(file("mixed-right.exr"));
+    const std::string says = "relative RMSE of rsm (right) against direct (left): ";
+    const auto at = r.output.find(says);
+    ASSERT_NE(at, std::string::npos) << r.output;
+    const double printed = std::stod(r.output.substr(at + says.size()));
+    const double expected = relativeRmse(mixedRight, mixed);
+    EXPECT_GT(expected, 0.01) << "rsm adds indirect light that direct lacks";
+    EXPECT_NEAR(printed, expected, 1e-4 * expected) << r.output;
 }
 
 } // namespace

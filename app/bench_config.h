@@ -1,0 +1,53 @@
+// What `bounce bench` runs (app/cmd_bench.cpp): the config file read and checked in full (techniques,
+// parameters, scenes, reference size) before the first, long, render, so that a typo fails in a second
+// with status 2 instead of after an hour.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "app/bench_reference.h"
+#include "core/scene.h"
+
+namespace bounce::app {
+
+// One render of the sweep: a technique with one combination of parameter values.
+struct BenchSetting {
+    std::string technique;
+    std::vector<std::string> sets; // key=value
+    // Optional: another technique to measure against (e.g. full-resolution gathering with the same VPLs).
+    std::string baseline;
+    std::vector<std::string> baselineSets;
+    // Optional: frames of a moving light for the temporal-coherence figure (0: none).
+    int temporalFrames = 0;
+    // Optional: this run's own image size (0: the config's) and scenes (empty: all of the config's).
+    int width = 0, height = 0;
+    std::vector<std::string> scenes;
+    int warmup = -1, frames = -1; // -1: the config's
+
+    bool runsOn(const std::string& scene) const;
+};
+
+struct BenchConfig {
+    int width = 128, height = 128;
+    int warmup = 2, frames = 5;
+    std::vector<BenchSetting> settings; // the runs with their sweeps expanded, in the file's order
+    std::vector<std::string> sceneNames;
+    std::vector<core::Scene> scenes;    // loaded, one per name
+    std::vector<std::string> compareTo; // references beyond the technique's own paths and `full`
+    ReferenceSpec reference;
+
+    int widthOf(const BenchSetting& s) const { return s.width > 0 ? s.width : width; }
+    int heightOf(const BenchSetting& s) const { return s.height > 0 ? s.height : height; }
+    int warmupOf(const BenchSetting& s) const { return s.warmup >= 0 ? s.warmup : warmup; }
+    int framesOf(const BenchSetting& s) const { return s.frames > 0 ? s.frames : frames; }
+};
+
+// Reads the JSON config at `path` (format in `bounce bench --help`), expands the sweeps, checks every
+// technique, parameter, scene and size, and loads the scenes. Throws UsageError saying what is wrong.
+BenchConfig readBenchConfig(const std::string& path, const std::string& cacheDir);
+
+// "k=v k=v", or "defaults" for none: how records, tables and the CSV name a setting.
+std::string settingsText(const std::vector<std::string>& sets);
+
+} // namespace bounce::app

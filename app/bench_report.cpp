@@ -1,0 +1,147 @@
+#include "app/bench_report.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <sstream>
+
+#include "core/image.h"
+
+namespace bounce::app {
+
+namespace {
+
+std::string csvField(const std::string& s)
+{
+    if (s.find_first_of(",\"\n") == std::string::npos) return s;
+    std::string q = "\"";
+    for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+    return q + "\"";
+}
+
+std::string csvText(const BenchConfig& config, const std::vector<BenchRow>& rows)
+{
+    std::ostringstream csv;
+    csv << "scene,technique,params,size,light_paths,total_ms,rel_rmse_own,rel_rmse_full,rmse_own,ssim_own,baseline,"
+           "rel_rmse_baseline,flicker,passes";
+    for (const std::string& p : config.compareTo) csv << ",rel_rmse_" << p;
+    csv << "\n";
+    for (const BenchRow& r : rows) {
+        csv << csvField(r.scene) << "," << r.technique << "," << csvField(r.settings) << "," << r.size << ","
+            << r.lightPaths << "," << r.totalMs << "," << r.relRmseOwn << "," << r.relRmseFull << "," << r.rmseOwn << ","
+            << r.ssimOwn << "," << csvField(r.baseline) << "," << r.relRmseBaseline << "," << r.flicker << ","
+            << csvField(r.passes);
+        for (double v : r.relRmseCompareTo) csv << "," << v;
+        csv << "\n";
+    }
+    return csv.str();
+}
+
+// One row of a scene's table: technique, parameters, size, light paths, ms, errors, SSIM, baseline, flicker.
+void tableRow(std::ostringstream& md, const nlohmann::json& rec, const std::vector<std::string>& compareTo)
+{
+    const std::string lp = rec["lightPaths"];
+    char buf[512];
+    std::string baseline = "-", flicker = "-";
+    if (rec.contains("baseline")) {
+        std::snprintf(buf, sizeof buf, "%.4f vs %s (%s)", rec["baseline"]["relativeRmseIndirect"].get<double>(),
+                      rec["baseline"]["technique"].get<std::string>().c_str(),
+                      rec["baseline"]["settings"].get<std::string>().c_str());
+        baseline = buf;
+    }
+    if (rec.contains("temporal")) {
+        std::snprintf(buf, sizeof buf, "%.4f", rec["temporal"]["meanFrameDifference"].get<double>());
+        flicker = buf;
+    }
+    std::snprintf(buf, sizeof buf, "| %s | %s | %s | %s | %.3f | %.4f | %.4f |", rec["technique"].get<std::string>().c_str(),
+                  rec["settings"].get<std::string>().c_str(), rec["size"].get<std::string>().c_str(), lp.c_str(),
+                  rec["totalMs"].get<double>(), rec["error"][lp]["relativeRmse"].get<double>(),
+                  rec["error"]["full"]["relativeRmse"].get<double>());
+    md << buf;
+    for (const std::string& p : compareTo) {
+        std::snprintf(buf, sizeof buf, " %.4f |", rec["error"][p]["relativeRmse"].get<double>());
+        md << buf;
+    }
+    std::snprintf(buf, sizeof buf, " %.4f | %s | %s |\n", rec["error"][lp]["ssim"].get<double>(), baseline.c_str(),
+                  flicker.c_str());
+    md << buf;
+}
+
+// The per-pass GPU ms of a scene's renders: one row per pass, one column per render.
+void passTable(std::ostringstream& md, const std::vector<const nlohmann::json*>& recs)
+{
+    std::vector<std::string> passes;
+    for (const nlohmann::json* rec : recs)
+        for (const auto& p : (*rec)["passes"])
+            if (std::find(passes.begin(), passes.end(), p["pass"].get<std::string>()) == passes.end()) passes.push_back(p["pass"]);
+    md << "| pass |";
+    for (const nlohmann::json* rec : recs)
+        md << " " << (*rec)["technique"].get<std::string>() << " (" << (*rec)["settings"].get<std::string>() << ") |";
+    md << "\n|---|";
+    for (std::size_t i = 0; i < recs.size(); ++i) md << "---:|";
+    md << "\n";
+    for (const auto& pass : passes) {
+        md << "| " << pass << " |";
+        for (const nlohmann::json* rec : recs) {
+            std::string cell = " - |";
+            for (const auto& p : (*rec)["passes"])
+                if (p["pass"] == pass) {
+                    char buf[64];
+                    std::snprintf(buf, sizeof buf, " %.3f |", p["medianMs"].get<double>());
+                    cell = buf;
+                }
+            md << cell;
+        }
+        md << "\n";
+    }
+}
+
+std::string markdownText(const BenchConfig& config, const std::vector<BenchRow>& rows, const gl::ContextInfo& context)
+{
+    std::ostringstream md;
+    md << "# Bounce benchmark\n\nGL renderer: " << context.renderer << " (" << context.platform << "). " << config.width
+       << "x" << config.height << " unless a row says otherwise, " << config.warmup << " warm-up + " << config.frames
+       << " timed frames (median GPU ms). Timings compare only within this run. Errors leave out the pixels that see"
+          " an emitter directly (and a one-pixel margin): emission is the same exact G-buffer value in every"
+          " technique, and its edges alias against the box-filtered references.\n\n";
+    for (const auto& sceneName : config.sceneNames) {
+        std::vector<const nlohmann::json*> recs;
+        for (const BenchRow& r : rows)
+            if (r.scene == sceneName) recs.push_back(&r.record);
+        md << "## " << sceneName << "\n\n| technique | parameters | size | light paths | ms | rel. RMSE (own) | rel. RMSE (full) |";
+        for (const std::string& p : config.compareTo) md << " rel. RMSE (" << p << ") |";
+        md << " SSIM (own) | rel. RMSE vs baseline (indirect) | flicker |\n|---|---|---|---|---:|---:|---:|";
+        for (std::size_t i = 0; i < config.compareTo.size(); ++i) md << "---:|";
+        md << "---:|---|---:|\n";
+        for (const nlohmann::json* rec : recs) tableRow(md, *rec, config.compareTo);
+        md << "\n### per-pass GPU ms\n\n";
+        passTable(md, recs);
+        md << "\n";
+    }
+    md << "![speed against error](speed_error.png)\n";
+    return md.str();
+}
+
+} // namespace
+
+void writeBenchReport(const std::filesystem::path& out, const BenchConfig& config, const std::vector<BenchRow>& rows,
+                      const gl::ContextInfo& context)
+{
+    nlohmann::json results = nlohmann::json::array();
+    for (const BenchRow& r : rows) results.push_back(r.record);
+    core::writeFileAtomic((out / "results.csv").string(), csvText(config, rows));
+    core::writeFileAtomic((out / "results.json").string(), results.dump(2) + "\n");
+    core::writeFileAtomic((out / "report.md").string(), markdownText(config, rows, context));
+}
+
+int plotSpeedError(const std::filesystem::path& out)
+{
+    const std::string plot = "/usr/bin/python3 '" +
+                             (std::filesystem::path(BOUNCE_SOURCE_ROOT) / "bench/plot_speed_error.py").string() + "' '" +
+                             (out / "results.csv").string() + "' '" + (out / "speed_error.png").string() + "'";
+    const int rc = std::system(plot.c_str());
+    if (rc != 0) std::fprintf(stderr, "bounce bench: the plot script failed (%d): %s\n", rc, plot.c_str());
+    return rc;
+}
+
+} // namespace bounce::app

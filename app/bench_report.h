@@ -1,0 +1,22 @@
+// What `bounce bench` writes: results.csv (one row per render, the plot's input), results.json (the
+// runs' full records), report.md (one table per scene, then the per-pass breakdown like the papers'
+// tables) and speed_error.png (bench/plot_speed_error.py, matplotlib).
+#pragma once
+
+#include <filesystem>
+#include <vector>
+
+#include "app/bench_config.h"
+#include "app/bench_run.h"
+#include "gl/context/context.h"
+
+namespace bounce::app {
+
+// Writes results.csv, results.json and report.md into `out` (atomically, each whole or not at all).
+void writeBenchReport(const std::filesystem::path& out, const BenchConfig& config, const std::vector<BenchRow>& rows,
+                      const gl::ContextInfo& context);
+
+// Runs the plot script on out/results.csv into out/speed_error.png; returns its exit status (0: done).
+int plotSpeedError(const std::filesystem::path& out);
+
+} // namespace bounce::app

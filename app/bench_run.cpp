@@ -1,0 +1,204 @@
+#include "app/bench_run.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <map>
+
+#include "app/commands.h"
+#include "app/render_job.h"
+#include "core/image.h"
+#include "core/metrics.h"
+#include "core/progress.h"
+
+namespace bounce::app {
+
+namespace {
+
+// Temporal coherence (Nichols et al. 2009, Fig. 5): the first light moves along a fixed path (a circle
+// of radius 3% of the scene's size around its position, in the horizontal plane, one turn over the
+// frames); the figure is the mean over consecutive frames of the mean absolute difference of the
+// indirect light, divided by the mean indirect light. Lower is steadier.
+double temporalFlicker(const core::Scene& scene, gl::Renderer& r, int frames)
+{
+    if (scene.lights.empty()) return NAN;
+    const float radius = 0.03f * glm::length(scene.bounds().extent());
+    std::vector<core::Light> lights = scene.lights;
+    const glm::vec3 centre = lights[0].position;
+    core::Image previous;
+    double sumDiff = 0.0, sumMean = 0.0;
+    for (int i = 0; i < frames; ++i) {
+        const float a = 2.0f * core::kPi * float(i) / float(frames);
+        lights[0].position = centre + radius * glm::vec3(std::cos(a), 0.0f, std::sin(a));
+        r.frame().setLights(lights);
+        r.renderFrame(false);
+        core::Image indirect = r.frame().read(r.frame().indirect());
+        double mean = 0.0;
+        for (float v : indirect.rgb) mean += v;
+        mean /= double(std::max<std::size_t>(indirect.rgb.size(), 1));
+        if (i > 0) {
+            double diff = 0.0;
+            for (std::size_t k = 0; k < indirect.rgb.size(); ++k) diff += std::abs(indirect.rgb[k] - previous.rgb[k]);
+            sumDiff += diff / double(indirect.rgb.size());
+            sumMean += mean;
+        }
+        previous = std::move(indirect);
+    }
+    r.frame().setLights(scene.lights);
+    return sumMean > 0.0 ? sumDiff / sumMean : 0.0;
+}
+
+// Emitters seen directly are left out of the error figures: their radiance is the G-buffer's in every
+// technique (exact, tested), and their edges alias against a box-filtered reference (a pixel of an
+// emitter of radiance 17 next to a wall of 0.1 is off by up to 17 for coverage alone), which swamped
+// every figure on cornell-area. The mask: every reference-size pixel whose block of the render holds an
+// emitting pixel, and its 8 neighbours (the reference's partial coverage at the edge).
+std::vector<bool> emitterMask(const core::Image& emission, int width, int height)
+{
+    const core::Image blocks = core::boxDownsample(emission, width, height);
+    std::vector<bool> mask(std::size_t(width) * std::size_t(height), false);
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            const glm::vec3 e = blocks.at(x, y);
+            if (std::max({e.x, e.y, e.z}) <= 0.0f) continue;
+            for (int j = std::max(y - 1, 0); j <= std::min(y + 1, height - 1); ++j)
+                for (int i = std::max(x - 1, 0); i <= std::min(x + 1, width - 1); ++i) mask[std::size_t(j) * width + i] = true;
+        }
+    return mask;
+}
+
+// Sets the masked pixels to 0 (black: no error there, no weight in the reference's mean).
+core::Image blanked(core::Image image, const std::vector<bool>& mask)
+{
+    for (std::size_t i = 0; i < mask.size(); ++i)
+        if (mask[i]) image.rgb[3 * i] = image.rgb[3 * i + 1] = image.rgb[3 * i + 2] = 0.0f;
+    return image;
+}
+
+std::string passesText(const nlohmann::json& passes)
+{
+    std::string text;
+    for (const auto& p : passes) {
+        char buf[96];
+        std::snprintf(buf, sizeof buf, "%s%s=%.3f", text.empty() ? "" : ";", p["pass"].get<std::string>().c_str(),
+                      p["medianMs"].get<double>());
+        text += buf;
+    }
+    return text;
+}
+
+// What one scene's renders share: its references by light paths and size, its baselines by technique,
+// settings and size (e.g. rsm-full at 1024^2: minutes per frame, rendered once per sweep).
+struct SceneCache {
+    std::map<std::string, core::Image> references, baselines;
+};
+
+// Error figures against each reference: own light paths, `full`, then compareTo.
+void compareWithReferences(const BenchConfig& config, const std::string& sceneName, const core::Scene& scene,
+                           gl::Renderer& r, int w, int h, SceneCache& cache, BenchRow& row)
+{
+    const gl::TechniqueInfo& info = r.technique();
+    std::vector<std::string> against = {core::lightPathsName(info.lightPaths), "full"};
+    against.insert(against.end(), config.compareTo.begin(), config.compareTo.end());
+    // References at their own size (when the config gives one): the image is box-downsampled to it.
+    const int rw = config.reference.width > 0 ? config.reference.width : w;
+    const int rh = config.reference.height > 0 ? config.reference.height : h;
+    core::Image compared;
+    std::vector<bool> emitters;
+    try {
+        emitters = emitterMask(r.frame().read(r.frame().emission()), rw, rh);
+        compared = blanked(core::boxDownsample(r.image(), rw, rh), emitters);
+    } catch (const std::invalid_argument& e) {
+        throw UsageError(std::string("bench config: the reference size must divide every run's size: ") + e.what());
+    }
+    for (const std::string& paths : against) {
+        const std::string key = paths + "@" + std::to_string(rw) + "x" + std::to_string(rh);
+        if (!cache.references.count(key))
+            cache.references[key] = referenceImage(scene, sceneName, paths, rw, rh, config.reference);
+        const core::ImageMetrics m = core::compareImages(compared, blanked(cache.references[key], emitters));
+        row.record["error"][paths] = {{"rmse", m.rmse}, {"relativeRmse", m.relativeRmse}, {"relativeMse", m.relativeMse},
+                                      {"mae", m.mae}, {"ssim", m.ssim}, {"maxError", m.maxError}};
+        if (paths == core::lightPathsName(info.lightPaths)) {
+            row.relRmseOwn = m.relativeRmse;
+            row.rmseOwn = m.rmse;
+            row.ssimOwn = m.ssim;
+        }
+        if (paths == "full") row.relRmseFull = m.relativeRmse;
+    }
+    for (const std::string& p : config.compareTo) row.relRmseCompareTo.push_back(row.record["error"][p]["relativeRmse"].get<double>());
+}
+
+// Relative RMSE of the indirect light against the setting's baseline technique: the quantity the two
+// gathers compute differently.
+void compareWithBaseline(const BenchSetting& s, const core::Scene& scene, gl::Renderer& r, int w, int h,
+                         SceneCache& cache, BenchRow& row)
+{
+    const gl::TechniqueInfo& binfo = gl::findTechnique(s.baseline);
+    gl::ParamValues bf(gl::frameParams()), bt(binfo.params);
+    applySets(s.baselineSets, binfo, bf, bt);
+    const std::string key = s.baseline + " " + settingsText(s.baselineSets) + "@" + row.size;
+    if (!cache.baselines.count(key)) {
+        gl::Renderer b(scene, s.baseline, bf, bt, w, h);
+        b.renderFrame(false);
+        cache.baselines[key] = b.frame().read(b.frame().indirect());
+    }
+    row.relRmseBaseline = core::relativeRmse(r.frame().read(r.frame().indirect()), cache.baselines[key]);
+    row.baseline = s.baseline + " " + settingsText(s.baselineSets);
+    row.record["baseline"] = {{"technique", s.baseline}, {"settings", settingsText(s.baselineSets)},
+                              {"relativeRmseIndirect", row.relRmseBaseline}};
+}
+
+BenchRow runSetting(const BenchConfig& config, const BenchSetting& s, const std::string& sceneName, const core::Scene& scene,
+                    const gl::ContextInfo& context, SceneCache& cache)
+{
+    const int w = config.widthOf(s), h = config.heightOf(s);
+    const gl::TechniqueInfo& info = gl::findTechnique(s.technique);
+    gl::ParamValues f(gl::frameParams()), t(info.params);
+    applySets(s.sets, info, f, t);
+    gl::Renderer r(scene, s.technique, f, t, w, h);
+    for (int i = 0; i < config.warmupOf(s); ++i) r.renderFrame(false);
+    for (int i = 0; i < config.framesOf(s); ++i) r.renderFrame(true);
+
+    BenchRow row;
+    row.scene = sceneName;
+    row.technique = s.technique;
+    row.settings = settingsText(s.sets);
+    row.size = std::to_string(w) + "x" + std::to_string(h);
+    row.lightPaths = core::lightPathsName(info.lightPaths);
+    row.relRmseOwn = row.relRmseFull = row.rmseOwn = row.ssimOwn = row.relRmseBaseline = row.flicker = NAN;
+    row.record = runRecord(context, sceneName, r);
+    row.record["settings"] = row.settings;
+    row.passes = passesText(row.record["passes"]);
+    row.totalMs = row.record["totalMs"].get<double>();
+    compareWithReferences(config, sceneName, scene, r, w, h, cache, row);
+    if (!s.baseline.empty()) compareWithBaseline(s, scene, r, w, h, cache, row);
+    if (s.temporalFrames > 0) {
+        row.flicker = temporalFlicker(scene, r, s.temporalFrames);
+        row.record["temporal"] = {{"frames", s.temporalFrames}, {"meanFrameDifference", row.flicker}};
+    }
+    row.record["size"] = row.size;
+    return row;
+}
+
+} // namespace
+
+std::vector<BenchRow> runBenchmark(const BenchConfig& config, const gl::ContextInfo& context)
+{
+    std::size_t renders = 0;
+    for (const auto& n : config.sceneNames)
+        for (const BenchSetting& s : config.settings) renders += s.runsOn(n);
+    core::Progress progress("bench", double(renders), "renders");
+    std::vector<BenchRow> rows;
+    for (std::size_t si = 0; si < config.scenes.size(); ++si) {
+        SceneCache cache;
+        for (const BenchSetting& s : config.settings) {
+            if (!s.runsOn(config.sceneNames[si])) continue;
+            rows.push_back(runSetting(config, s, config.sceneNames[si], config.scenes[si], context, cache));
+            progress.add(1.0);
+        }
+    }
+    progress.finish();
+    return rows;
+}
+
+} // namespace bounce::app

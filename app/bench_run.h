@@ -1,0 +1,32 @@
+// The render sweep of `bounce bench`: every setting of the config on every scene it runs on, timed,
+// compared with the cached references (the technique's own light paths, `full`, "compareTo") and with
+// its baseline technique, and, when asked, measured for temporal coherence.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "app/bench_config.h"
+#include "gl/context/context.h"
+
+namespace bounce::app {
+
+// One render's figures. NaN where a figure does not apply (no baseline, no temporal frames).
+struct BenchRow {
+    std::string scene, technique, settings, size, lightPaths;
+    std::string baseline;  // "technique k=v..." or "" when none
+    std::string passes;    // "pass=ms;pass=ms..." (median GPU ms)
+    double totalMs = 0.0;
+    double relRmseOwn = 0.0, relRmseFull = 0.0, rmseOwn = 0.0, ssimOwn = 0.0;
+    double relRmseBaseline = 0.0, flicker = 0.0;
+    std::vector<double> relRmseCompareTo; // one per config.compareTo
+    nlohmann::json record;                // runRecord() + settings, size, error, baseline, temporal
+};
+
+// Renders the sweep, scene by scene in the config's order (references are rendered or read from the
+// cache as they are first needed). Needs a current GL context.
+std::vector<BenchRow> runBenchmark(const BenchConfig& config, const gl::ContextInfo& context);
+
+} // namespace bounce::app

@@ -1,0 +1,25 @@
+// The demo's --script: comma-separated steps that drive the window without a person (the tests run it
+// under Xvfb). Parsed and checked here, with no GL and no window, so that a bad technique name, an
+// unknown parameter or a bad value exits with status 2 before the window opens.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace bounce::app {
+
+struct DemoStep {
+    std::string verb; // wait, technique, set, compare, screenshot, quit
+    std::string arg;  // what follows the colon ("" when none)
+};
+
+// Parses the steps and checks each against the registry: technique: and compare: name a registered
+// technique, set:key=value names a frame parameter or a parameter of the technique selected at that
+// point of the script (starting from `initialTechnique`) with a value in its range, wait:N has
+// 0 <= N <= 1000000, screenshot: names a file. Throws UsageError saying which step is wrong and why.
+std::vector<DemoStep> parseDemoScript(const std::string& text, const std::string& initialTechnique);
+
+// Whether `key` is one of gl::frameParams() (changing it rebuilds the frame, so every renderer).
+bool isFrameParam(const std::string& key);
+
+} // namespace bounce::app

@@ -1,0 +1,75 @@
+// The demo's --script is parsed and checked without a window or GL (app/demo_script.h): each bad step is
+// refused with a message naming the step and the problem, and set: is checked against the technique
+// selected at that point of the script.
+#include <gtest/gtest.h>
+
+#include "app/commands.h"
+#include "app/demo_script.h"
+
+namespace {
+
+using bounce::app::parseDemoScript;
+using bounce::app::UsageError;
+
+TEST(DemoScript, ParsesEveryVerbInOrder)
+{
+    const auto steps = parseDemoScript("wait:2,technique:isr,set:rsmSize=64,set:shadow.size=512,compare:rsm,"
+                                       "screenshot:out/a.exr,quit",
+                                       "direct");
+    ASSERT_EQ(steps.size(), 7u);
+    EXPECT_EQ(steps[0].verb, "wait");
+    EXPECT_EQ(steps[0].arg, "2");
+    EXPECT_EQ(steps[2].verb, "set");
+    EXPECT_EQ(steps[2].arg, "rsmSize=64");
+    EXPECT_EQ(steps[3].arg, "shadow.size=512");
+    EXPECT_EQ(steps[4].arg, "rsm");
+    EXPECT_EQ(steps[6].verb, "quit");
+    EXPECT_TRUE(parseDemoScript("", "direct").empty());
+    EXPECT_TRUE(parseDemoScript(",,", "direct").empty()) << "empty items are skipped";
+}
+
+// A technique's parameter is valid only once that technique is selected; a frame parameter always.
+TEST(DemoScript, SetFollowsTheSelectedTechnique)
+{
+    EXPECT_THROW(parseDemoScript("set:rsmSize=64,technique:isr", "direct"), UsageError);
+    EXPECT_NO_THROW(parseDemoScript("technique:isr,set:rsmSize=64", "direct"));
+    EXPECT_NO_THROW(parseDemoScript("set:rsmSize=64", "isr"));
+    EXPECT_THROW(parseDemoScript("technique:direct,set:rsmSize=64", "isr"), UsageError);
+    for (const char* technique : {"direct", "isr", "rsm"}) {
+        EXPECT_NO_THROW(parseDemoScript("set:shadow.size=512,set:shadow.linear=0", technique)) << technique;
+        EXPECT_TRUE(bounce::app::isFrameParam("shadow.size"));
+        EXPECT_FALSE(bounce::app::isFrameParam("rsmSize"));
+    }
+}
+
+TEST(DemoScript, BadStepsAreRefusedWithTheReason)
+{
+    const struct { const char* script; const char* says; } cases[] = {
+        {"technique:nosuch", "unknown technique"},
+        {"compare:nosuch", "unknown technique"},
+        {"compare:", "unknown technique"},
+        {"set:nokey=1", "unknown parameter"},
+        {"set:shadow.size=3", "out of range"},
+        {"set:shadow.size=big", "shadow.size"},
+        {"set:shadow.pcf=1.5", "integer"},
+        {"set:shadow.size", "key=value"},
+        {"wait:x", "wait"},
+        {"wait:-1", "wait"},
+        {"wait:", "wait"},
+        {"screenshot:", "file name"},
+        {"jump:3", "unknown step"},
+    };
+    for (const auto& c : cases) {
+        try {
+            parseDemoScript(std::string("wait:1,") + c.script, "direct");
+            ADD_FAILURE() << c.script << " was accepted";
+        } catch (const UsageError& e) {
+            const std::string what = e.what();
+            EXPECT_NE(what.find(c.says), std::string::npos) << c.script << ": " << what;
+            EXPECT_NE(what.find(c.script), std::string::npos) << "the message names the step: " << what;
+        }
+    }
+    EXPECT_THROW(parseDemoScript("wait:1", "nosuch"), UsageError) << "the initial technique is checked too";
+}
+
+} // namespace
