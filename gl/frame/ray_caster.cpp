@@ -1,0 +1,114 @@
+#include "gl/frame/ray_caster.h"
+
+#include <algorithm>
+#include <string>
+
+#include "gl/gl.h"
+
+namespace bounce::gl {
+
+namespace {
+constexpr unsigned kBatchRaysBinding = 10, kBatchResultsBinding = 11; // raycast_batch.glsl's defaults
+
+std::vector<Define> batchDefines()
+{
+    std::vector<Define> d = RayCaster::defines();
+    d.push_back({"RAY_BATCH_RAYS_BINDING", std::to_string(kBatchRaysBinding)});
+    d.push_back({"RAY_BATCH_RESULTS_BINDING", std::to_string(kBatchResultsBinding)});
+    return d;
+}
+} // namespace
+
+RayCaster::RayCaster(const core::Scene& scene) : bvh_(scene)
+{
+    nodes_ = Buffer::fromVector("raycast.bvhNodes", bvh_.nodes());
+    // An SSBO may not be empty: a scene without triangles gets one that no leaf names.
+    triangles_ = bvh_.triangles().empty() ? Buffer("raycast.bvhTriangles", sizeof(core::BvhTriangle))
+                                          : Buffer::fromVector("raycast.bvhTriangles", bvh_.triangles());
+}
+
+void RayCaster::bind() const
+{
+    nodes_.bindBase(GL_SHADER_STORAGE_BUFFER, BVH_NODES_BINDING);
+    triangles_.bindBase(GL_SHADER_STORAGE_BUFFER, BVH_TRIANGLES_BINDING);
+}
+
+std::vector<Define> RayCaster::defines()
+{
+    return {{"BVH_NODES_BINDING", std::to_string(BVH_NODES_BINDING)},
+            {"BVH_TRIANGLES_BINDING", std::to_string(BVH_TRIANGLES_BINDING)}};
+}
+
+RayBatch::RayBatch()
+    : compute_(Program::compute("raycast.batch.compute", "frame/raycast_batch.comp", batchDefines())),
+      fragment_(Program::graphics("raycast.batch.fragment", "frame/fullscreen.vert", "frame/raycast_batch.frag",
+                                  batchDefines())),
+      vao_("raycast.batch")
+{
+}
+
+void RayBatch::upload(const std::vector<BatchRay>& rays)
+{
+    count_ = rays.size();
+    const std::size_t n = std::max<std::size_t>(count_, 1);
+    rays_ = rays.empty() ? Buffer("raycast.batch.rays", sizeof(BatchRay)) : Buffer::fromVector("raycast.batch.rays", rays);
+    results_ = Buffer("raycast.batch.results", n * sizeof(BatchResult));
+    results_.clearToZero();
+    const int width = int(std::min<std::size_t>(n, kFragmentWidth));
+    const int height = int((n + std::size_t(width) - 1) / std::size_t(width));
+    if (width != width_ || height != height_) {
+        width_ = width;
+        height_ = height;
+        target_ = Texture::create2D("raycast.batch.target", GL_R8, width, height);
+        framebuffer_ = Framebuffer("raycast.batch");
+        framebuffer_.attach(GL_COLOR_ATTACHMENT0, target_);
+        framebuffer_.checkComplete();
+    }
+}
+
+void RayBatch::cast(const RayCaster& caster, RayStage stage, int queries)
+{
+    caster.bind();
+    rays_.bindBase(GL_SHADER_STORAGE_BUFFER, kBatchRaysBinding);
+    results_.bindBase(GL_SHADER_STORAGE_BUFFER, kBatchResultsBinding);
+    Program& p = stage == RayStage::Compute ? compute_ : fragment_;
+    p.set("rayCount", unsigned(count_));
+    p.use();
+    // One query per pass (raycast_batch.glsl says why).
+    for (int query : {kQueryClosest, kQueryAny}) {
+        if (!(queries & query)) continue;
+        p.set("queries", query);
+        if (stage == RayStage::Compute) {
+            glDispatchCompute(GLuint((count_ + 63) / 64), 1, 1);
+        } else {
+            p.set("batchWidth", width_);
+            framebuffer_.bind();
+            glViewport(0, 0, width_, height_);
+            glDisable(GL_DEPTH_TEST);
+            glDisable(GL_BLEND);
+            vao_.bind();
+            glDrawArrays(GL_TRIANGLES, 0, 3);
+            glBindFramebuffer(GL_FRAMEBUFFER, 0);
+        }
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    }
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    glFinish();
+}
+
+std::vector<BatchResult> RayBatch::results() const
+{
+    std::vector<BatchResult> r = results_.download<BatchResult>();
+    r.resize(count_);
+    return r;
+}
+
+std::vector<BatchResult> RayBatch::run(const RayCaster& caster, const std::vector<BatchRay>& rays, RayStage stage,
+                                       int queries)
+{
+    upload(rays);
+    cast(caster, stage, queries);
+    return results();
+}
+
+} // namespace bounce::gl

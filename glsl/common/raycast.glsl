@@ -1,0 +1,164 @@
+// Ray casting against the scene's triangles on the GPU: the BVH of core/bvh.h (its header says how it
+// is built and laid out), uploaded by gl/frame/ray_caster.h. Usable from compute and fragment shaders.
+//
+//   bool closestHit(vec3 origin, vec3 dir, float tMin, float tMax, out Hit hit); // tMin < t < tMax
+//   bool anyHit(vec3 origin, vec3 dir, float tMin, float tMax);
+//
+// dir need not be unit length: t is in units of dir. Hit.triangle is the global triangle index (meshes
+// in order, triangles in order: gl::GpuScene's index-buffer order); hit point =
+// (1 - b.x - b.y) v0 + b.x v1 + b.y v2.
+//
+// The walk needs no stack (a multiple-threaded BVH, Hachisuka 2015): each of six copies of the tree is
+// threaded depth-first with its children in the order a ray along one major direction meets them; a
+// node's miss link skips its subtree. llvmpipe runs every masked loop iteration on all lanes, so a
+// per-lane stack array would cost every lane every push; here a lane carries one int.
+// The triangle test is the watertight one of Woop, Benthin & Wald 2013 (JCGT 2(1)); `precise` keeps
+// the compiler from fusing the edge functions differently for the two triangles sharing an edge.
+#ifndef BOUNCE_RAYCAST_GLSL
+#define BOUNCE_RAYCAST_GLSL
+
+// The SSBO binding points (gl/frame/ray_caster.h has the same numbers as C++ constants).
+#ifndef BVH_NODES_BINDING
+#define BVH_NODES_BINDING 8
+#endif
+#ifndef BVH_TRIANGLES_BINDING
+#define BVH_TRIANGLES_BINDING 9
+#endif
+
+struct BvhNode {
+    vec3 lo;
+    int miss;    // next node when the box is missed or the subtree is done; -1 ends the walk
+    vec3 hi;
+    int leaf;    // -1: interior (first child = next node); else first triangle << 5 | count
+};
+
+struct BvhTriangle {
+    vec3 v0;
+    uint index;  // global triangle index
+    vec3 v1;
+    float pad1;
+    vec3 v2;
+    float pad2;
+};
+
+layout(std430, binding = BVH_NODES_BINDING) readonly buffer BvhNodes { BvhNode bvhNodes[]; };
+layout(std430, binding = BVH_TRIANGLES_BINDING) readonly buffer BvhTriangles { BvhTriangle bvhTriangles[]; };
+
+struct Hit {
+    uint triangle;
+    float t;
+    vec2 b;      // barycentrics of v1 and v2 (Embree's u, v)
+};
+
+// The ray as the triangle test and the slab test want it (core::WatertightRay).
+struct BvhRay {
+    vec3 origin;
+    vec3 rowX, rowY, rowZ; // the shear that takes the ray to +z (Woop et al. 2013, Sec. 3)
+    vec3 invDir;
+    int root;              // first node of the copy for the ray's major direction
+};
+
+BvhRay bvhRay(vec3 origin, vec3 dir)
+{
+    BvhRay r;
+    r.origin = origin;
+    vec3 a = abs(dir);
+    int kz = (a.x >= a.y && a.x >= a.z) ? 0 : (a.y >= a.z ? 1 : 2);
+    int kx = kz == 2 ? 0 : kz + 1;
+    int ky = kx == 2 ? 0 : kx + 1;
+    if (dir[kz] < 0.0) { int s = kx; kx = ky; ky = s; }
+    float sx = dir[kx] / dir[kz], sy = dir[ky] / dir[kz], sz = 1.0 / dir[kz];
+    r.rowX = vec3(0.0);
+    r.rowY = vec3(0.0);
+    r.rowZ = vec3(0.0);
+    r.rowX[kx] = 1.0;
+    r.rowX[kz] = -sx;
+    r.rowY[ky] = 1.0;
+    r.rowY[kz] = -sy;
+    r.rowZ[kz] = sz;
+    // 1/0 = inf, and 0 * inf = NaN for a box face through the origin: a tiny component instead.
+    vec3 d = mix(sign(dir) * 1e-30, dir, greaterThan(a, vec3(1e-30)));
+    d = mix(vec3(1e-30), d, notEqual(d, vec3(0.0)));
+    r.invDir = 1.0 / d;
+    r.root = (2 * kz + (dir[kz] < 0.0 ? 1 : 0)) * (bvhNodes.length() / 6);
+    return r;
+}
+
+// Ize 2013 ("Robust BVH ray traversal", JCGT 2(2)): the far distance times 1 + 2 gamma(3); the best
+// hit so far times 1 + 8 ulp, so that a triangle a few ulps nearer than its box's entry is not culled.
+bool bvhHitBox(BvhRay r, vec3 lo, vec3 hi, float tMin, float tMax)
+{
+    vec3 t0 = (lo - r.origin) * r.invDir;
+    vec3 t1 = (hi - r.origin) * r.invDir;
+    vec3 tNear = min(t0, t1), tFar = max(t0, t1);
+    float enter = max(max(tNear.x, tNear.y), max(tNear.z, tMin));
+    float leave = min(min(tFar.x, tFar.y), tFar.z) * 1.0000003576;
+    return enter <= min(leave, tMax * 1.00000095367);
+}
+
+bool bvhHitTriangle(BvhRay r, BvhTriangle tri, float tMin, float tMax, out float t, out vec2 b)
+{
+    vec3 a = tri.v0 - r.origin, bb = tri.v1 - r.origin, c = tri.v2 - r.origin;
+    precise float ax = dot(r.rowX, a), ay = dot(r.rowY, a);
+    precise float bx = dot(r.rowX, bb), by = dot(r.rowY, bb);
+    precise float cx = dot(r.rowX, c), cy = dot(r.rowY, c);
+    precise float u = cx * by - cy * bx;
+    precise float v = ax * cy - ay * cx;
+    precise float w = bx * ay - by * ax;
+    t = 0.0;
+    b = vec2(0.0);
+    if ((u < 0.0 || v < 0.0 || w < 0.0) && (u > 0.0 || v > 0.0 || w > 0.0)) return false;
+    float det = u + v + w;
+    if (det == 0.0) return false;
+    float rcp = 1.0 / det;
+    t = (u * dot(r.rowZ, a) + v * dot(r.rowZ, bb) + w * dot(r.rowZ, c)) * rcp;
+    b = vec2(v, w) * rcp;
+    return t > tMin && t < tMax;
+}
+
+// The walk shared by both queries; anyHit stops at the first triangle.
+bool bvhWalk(vec3 origin, vec3 dir, float tMin, float tMax, bool stopAtFirst, out Hit hit)
+{
+    BvhRay r = bvhRay(origin, dir);
+    hit.triangle = 0u;
+    hit.t = tMax;
+    hit.b = vec2(0.0);
+    bool found = false;
+    int node = r.root;
+    while (node >= 0) {
+        BvhNode n = bvhNodes[node];
+        if (!bvhHitBox(r, n.lo, n.hi, tMin, hit.t)) {
+            node = n.miss;
+        } else if (n.leaf < 0) {
+            node += 1;
+        } else {
+            int first = n.leaf >> 5, end = first + (n.leaf & 31);
+            for (int i = first; i < end; ++i) {
+                BvhTriangle tri = bvhTriangles[i];
+                float t;
+                vec2 b;
+                if (bvhHitTriangle(r, tri, tMin, hit.t, t, b)) {
+                    found = true;
+                    hit.triangle = tri.index;
+                    hit.t = t;
+                    hit.b = b;
+                }
+            }
+            node = (found && stopAtFirst) ? -1 : n.miss;
+        }
+    }
+    return found;
+}
+
+bool closestHit(vec3 origin, vec3 dir, float tMin, float tMax, out Hit hit)
+{
+    return bvhWalk(origin, dir, tMin, tMax, false, hit);
+}
+
+bool anyHit(vec3 origin, vec3 dir, float tMin, float tMax)
+{
+    Hit hit;
+    return bvhWalk(origin, dir, tMin, tMax, true, hit);
+}
+
+#endif
