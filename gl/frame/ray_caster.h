@@ -22,9 +22,10 @@
 
 namespace bounce::gl {
 
-// The SSBO binding points of glsl/common/raycast.glsl (the same numbers are its #define defaults).
-inline constexpr unsigned BVH_NODES_BINDING = 8;
-inline constexpr unsigned BVH_TRIANGLES_BINDING = 9;
+// The SSBO binding points of glsl/common/raycast.glsl (the same numbers are its #define defaults): a frame
+// service, above the 8-17 that technique families use for their own buffers, so both can be bound at once.
+inline constexpr unsigned BVH_NODES_BINDING = 18;
+inline constexpr unsigned BVH_TRIANGLES_BINDING = 19;
 
 class RayCaster {
 public:

@@ -19,10 +19,10 @@
 
 // The SSBO binding points (gl/frame/ray_caster.h has the same numbers as C++ constants).
 #ifndef BVH_NODES_BINDING
-#define BVH_NODES_BINDING 8
+#define BVH_NODES_BINDING 18
 #endif
 #ifndef BVH_TRIANGLES_BINDING
-#define BVH_TRIANGLES_BINDING 9
+#define BVH_TRIANGLES_BINDING 19
 #endif
 
 struct BvhNode {
