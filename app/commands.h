@@ -21,5 +21,6 @@ int cmdDemo(const Args& args);
 int cmdReference(const Args& args);
 int cmdCompare(const Args& args);
 int cmdBench(const Args& args);
+int cmdRays(const Args& args);
 
 } // namespace bounce::app

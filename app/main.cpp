@@ -19,7 +19,8 @@ const char* kUsage =
     "  demo       open a window: fly camera, technique toggles, side-by-side comparison\n"
     "  reference  render the ground truth with the CPU path tracer (cached)\n"
     "  compare    error metrics between two images (RMSE, relative RMSE, SSIM...)\n"
-    "  bench      sweep scenes x techniques x parameters, report speed against error\n";
+    "  bench      sweep scenes x techniques x parameters, report speed against error\n"
+    "  rays       GPU ray casting against Embree: rays per second, coherent and incoherent\n";
 
 // The parameter that lowers a GL resource that could not be had, by the resource's label.
 std::string lowerWith(const std::string& label)
@@ -50,6 +51,7 @@ int main(int argc, char** argv)
         if (cmd == "reference") return cmdReference(args);
         if (cmd == "compare") return cmdCompare(args);
         if (cmd == "bench") return cmdBench(args);
+        if (cmd == "rays") return cmdRays(args);
         std::fprintf(stderr, "bounce: unknown command '%s'\n\n%s", cmd.c_str(), kUsage);
         return 2;
     } catch (const UsageError& e) {

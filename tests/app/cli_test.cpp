@@ -550,3 +550,25 @@ TEST(Cli, ShippedSetupsRenderLit)
 }
 
 } // namespace
+
+namespace {
+
+// `bounce rays` casts the same rays on the GPU and with Embree: on the Cornell box (no ties that the
+// two watertight tests could break differently at this count) they find the same triangles.
+TEST(Cli, RaysComparesTheGpuCasterWithEmbree)
+{
+    const fs::path d = outDir("rays");
+    const CliRun r = run("rays --backend osmesa --scene cornell-spot --rays 1024 --repeat 1 --threads 1 --json " +
+                         (d / "rays.json").string());
+    ASSERT_EQ(r.status, 0) << r.output;
+    const nlohmann::json j = nlohmann::json::parse(std::ifstream(d / "rays.json"));
+    for (const char* kind : {"coherent", "incoherent"}) {
+        EXPECT_GT(j[kind]["embreeRaysPerS"].get<double>(), 0.0);
+        EXPECT_GT(j[kind]["gpuComputeRaysPerS"].get<double>(), 0.0);
+        EXPECT_GT(j[kind]["gpuFragmentRaysPerS"].get<double>(), 0.0);
+        EXPECT_GE(j[kind]["sameTriangle"].get<double>(), 0.99) << kind;
+    }
+    EXPECT_EQ(run("rays --rays 0").status, 2);
+}
+
+} // namespace
