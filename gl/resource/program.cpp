@@ -166,6 +166,7 @@ void Program::set(const std::string& n, const glm::vec2& v) { glProgramUniform2f
 void Program::set(const std::string& n, const glm::vec3& v) { glProgramUniform3fv(id(), location(n), 1, glm::value_ptr(v)); }
 void Program::set(const std::string& n, const glm::vec4& v) { glProgramUniform4fv(id(), location(n), 1, glm::value_ptr(v)); }
 void Program::set(const std::string& n, const glm::ivec2& v) { glProgramUniform2iv(id(), location(n), 1, glm::value_ptr(v)); }
+void Program::set(const std::string& n, const glm::ivec3& v) { glProgramUniform3iv(id(), location(n), 1, glm::value_ptr(v)); }
 void Program::set(const std::string& n, const glm::mat3& v)
 {
     glProgramUniformMatrix3fv(id(), location(n), 1, GL_FALSE, glm::value_ptr(v));

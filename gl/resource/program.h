@@ -49,6 +49,7 @@ public:
     void set(const std::string& name, const glm::vec3& v);
     void set(const std::string& name, const glm::vec4& v);
     void set(const std::string& name, const glm::ivec2& v);
+    void set(const std::string& name, const glm::ivec3& v);
     void set(const std::string& name, const glm::mat3& v);
     void set(const std::string& name, const glm::mat4& v);
 

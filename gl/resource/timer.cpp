@@ -8,17 +8,16 @@
 
 namespace bounce::gl {
 
-void QueryDeleter::operator()(unsigned id) const { glDeleteQueries(1, &id); }
-
 PassTimers::Scope::~Scope()
 {
-    if (!active_) return;
-    glEndQuery(GL_TIME_ELAPSED);
+    if (!owner_) return;
+    owner_->pool_[query_].end();
     // llvmpipe rasterises a pass's draws later than the calls, often inside the next pass's query (a
     // compute pass that reads the result flushes them there): the upsampling after a 240 ms gather read
     // 27 ms instead of 20. Waiting here keeps each pass's work inside its own interval. A GPU's queries
     // are ordered with its work, and there the wait would only add bubbles.
     if (serialize_) glFinish();
+    if (grouped_) glPopDebugGroup();
 }
 
 int PassTimers::pass(const std::string& name)
@@ -38,10 +37,7 @@ PassTimers::Scope PassTimers::scope(const std::string& name)
         // llvmpipe answers the first TIME_ELAPSED query of a context with a timestamp (minutes to hours)
         // instead of an interval, also when nothing ran inside it; a query around a clear of a 1x1
         // framebuffer, read at once, takes that answer before any pass does (harmless elsewhere).
-        unsigned id = 0;
-        glCreateQueries(GL_TIME_ELAPSED, 1, &id);
-        pool_.emplace_back(id);
-        GLuint64 ignored = 0;
+        pool_.emplace_back(GL_TIME_ELAPSED, "pass-timer.0");
         GLuint tex = 0, fbo = 0;
         GLint previous = 0;
         glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &previous);
@@ -50,22 +46,23 @@ PassTimers::Scope PassTimers::scope(const std::string& name)
         glCreateFramebuffers(1, &fbo);
         glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, tex, 0);
         glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo);
-        glBeginQuery(GL_TIME_ELAPSED, id);
-        glClear(GL_COLOR_BUFFER_BIT);
-        glEndQuery(GL_TIME_ELAPSED);
-        glGetQueryObjectui64v(id, GL_QUERY_RESULT, &ignored);
+        {
+            auto first = pool_.front().scope();
+            glClear(GL_COLOR_BUFFER_BIT);
+        }
+        (void)pool_.front().result();
         glBindFramebuffer(GL_DRAW_FRAMEBUFFER, GLuint(previous));
         glDeleteFramebuffers(1, &fbo);
         glDeleteTextures(1, &tex);
     }
-    if (q == pool_.size()) {
-        unsigned id = 0;
-        glCreateQueries(GL_TIME_ELAPSED, 1, &id);
-        pool_.emplace_back(id);
-    }
+    if (q == pool_.size()) pool_.emplace_back(GL_TIME_ELAPSED, "pass-timer." + std::to_string(q));
     pending_.push_back({name, q});
-    glBeginQuery(GL_TIME_ELAPSED, pool_[q].id());
-    return Scope(true, serialize_);
+    // The group opens before the query and closes after it, so the capture's group holds the whole
+    // timed interval. Present in every GL 4.3+ context; a message only with KHR_debug output enabled.
+    const bool grouped = glPushDebugGroup != nullptr;
+    if (grouped) glPushDebugGroup(GL_DEBUG_SOURCE_APPLICATION, 0, GLsizei(name.size()), name.c_str());
+    pool_[q].begin();
+    return Scope(this, q, serialize_, grouped);
 }
 
 void PassTimers::endFrame(bool keep)
@@ -73,8 +70,7 @@ void PassTimers::endFrame(bool keep)
     std::vector<double> frame(order_.size(), 0.0);
     std::vector<bool> seen(order_.size(), false);
     for (const Pending& p : pending_) {
-        GLuint64 ns = 0;
-        glGetQueryObjectui64v(pool_[p.query].id(), GL_QUERY_RESULT, &ns);
+        const std::uint64_t ns = pool_[p.query].result();
         const int i = pass(p.pass);
         if (std::size_t(i) >= frame.size()) { frame.resize(i + 1, 0.0); seen.resize(i + 1, false); }
         frame[i] += double(ns) * 1e-6;

@@ -1,16 +1,15 @@
-// Per-pass GPU time from GL_TIME_ELAPSED timer queries. A frame opens one scope per pass; endFrame()
-// reads the results back (blocking: the benchmark wants exact figures, not last frame's) and keeps
-// them, so stats() can give the median over the timed frames.
+// Per-pass GPU time from GL_TIME_ELAPSED timer queries (query.h). A frame opens one scope per pass;
+// endFrame() reads the results back (blocking: the benchmark wants exact figures, not last frame's)
+// and keeps them, so stats() can give the median over the timed frames. Each scope is also a KHR_debug
+// group named after the pass, so a capture (RenderDoc, apitrace) shows the frame pass by pass.
 #pragma once
 
 #include <string>
 #include <vector>
 
-#include "gl/resource/handle.h"
+#include "gl/resource/query.h"
 
 namespace bounce::gl {
-
-struct QueryDeleter { void operator()(unsigned id) const; };
 
 struct PassStat {
     std::string pass;
@@ -24,19 +23,28 @@ class PassTimers {
 public:
     class Scope {
     public:
-        Scope(Scope&& o) noexcept : active_(o.active_), serialize_(o.serialize_) { o.active_ = false; }
+        Scope(Scope&& o) noexcept : owner_(o.owner_), query_(o.query_), serialize_(o.serialize_), grouped_(o.grouped_)
+        {
+            o.owner_ = nullptr;
+        }
         ~Scope();
         Scope(const Scope&) = delete;
         Scope& operator=(const Scope&) = delete;
 
     private:
         friend class PassTimers;
-        Scope(bool active, bool serialize) : active_(active), serialize_(serialize) {}
-        bool active_;
+        Scope(PassTimers* owner, std::size_t query, bool serialize, bool grouped)
+            : owner_(owner), query_(query), serialize_(serialize), grouped_(grouped)
+        {
+        }
+        PassTimers* owner_; // null once moved from
+        std::size_t query_; // index into owner_->pool_ (stable while the pool grows)
         bool serialize_; // wait for the pass's work before the next pass's query begins
+        bool grouped_;   // a debug group was pushed: pop it
     };
 
-    // Opens a timed scope for `pass` (queries cannot nest: one pass at a time).
+    // Opens a timed scope for `pass` (queries cannot nest: one pass at a time), inside a debug group
+    // named `pass` (glPushDebugGroup, GL_DEBUG_SOURCE_APPLICATION).
     Scope scope(const std::string& pass);
     // Collects this frame's query results; when `keep` is false (warm-up frames) they are dropped.
     void endFrame(bool keep = true);
@@ -48,7 +56,7 @@ public:
 
 private:
     struct Pending { std::string pass; std::size_t query; };
-    std::vector<Handle<QueryDeleter>> pool_;
+    std::vector<Query> pool_;
     std::vector<Pending> pending_;
     std::vector<std::string> order_;
     std::vector<std::vector<double>> samples_; // per pass, per kept frame (ms, summed within a frame)

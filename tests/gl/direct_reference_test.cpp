@@ -15,7 +15,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -27,6 +26,7 @@
 #include "gl/renderer.h"
 #include "ref/reference.h"
 #include "tests/gl/gl_test_fixture.h"
+#include "tests/image_expect.h"
 
 namespace bounce {
 namespace {
@@ -124,39 +124,6 @@ std::vector<bool> interiorPixels(const ref::RenderResult& r)
     return interior;
 }
 
-// core::relativeRmse over the pixels where `mask` is set: sqrt(mean (a - r)^2) / mean(r).
-double maskedRelativeRmse(const core::Image& a, const core::Image& reference, const std::vector<bool>& mask)
-{
-    double squared = 0.0, sum = 0.0;
-    std::size_t values = 0;
-    for (std::size_t p = 0; p < mask.size(); ++p) {
-        if (!mask[p]) continue;
-        for (std::size_t c = 0; c < 3; ++c) {
-            const double d = double(a.rgb[p * 3 + c]) - double(reference.rgb[p * 3 + c]);
-            squared += d * d;
-            sum += reference.rgb[p * 3 + c];
-            ++values;
-        }
-    }
-    return values && sum > 0.0 ? std::sqrt(squared / double(values)) / (sum / double(values)) : 0.0;
-}
-
-// On a failed comparison: both images and the error heat map next to the test log.
-void writeOnFailure(const std::string& name, const core::Image& gl, const core::Image& want)
-{
-#ifdef BOUNCE_TEST_OUT
-    if (!::testing::Test::HasFailure()) return;
-    const std::string base = std::string(BOUNCE_TEST_OUT) + "/direct_reference_" + name;
-    std::filesystem::create_directories(BOUNCE_TEST_OUT);
-    core::writeExr(base + "-gl.exr", gl);
-    core::writeExr(base + "-reference.exr", want);
-    core::writePng(base + "-error.png", core::errorHeatmap(gl, want));
-    std::printf("wrote %s-{gl,reference}.exr and %s-error.png\n", base.c_str(), base.c_str());
-#else
-    (void)name, (void)gl, (void)want;
-#endif
-}
-
 class DirectPathTracerTest : public GlTest {};
 
 TEST_F(DirectPathTracerTest, GlDirectMatchesPathTracerDirect)
@@ -168,18 +135,17 @@ TEST_F(DirectPathTracerTest, GlDirectMatchesPathTracerDirect)
     ASSERT_GT(interiorCount, kSize * kSize * 3 / 4);
 
     const core::Image centres = renderGlDirect(1);
-    const double interiorError = maskedRelativeRmse(centres, want.image, interior);
+    const double interiorError =
+        testing::expectImagesClose("interior", centres, want.image, testing::ImageMetric::relativeRmse(),
+                                   kInteriorRelRmse, "interior pixels: reference noise and half-float G-buffer", &interior);
     std::printf("[ measured ] interior relative RMSE %.4g over %lld pixels\n", interiorError, (long long)interiorCount);
-    EXPECT_LE(interiorError, kInteriorRelRmse);
-    writeOnFailure("interior", centres, want.image);
 
     const core::Image boxed = renderGlDirect(kSuper);
     const core::ImageMetrics m = core::compareImages(boxed, want.image);
     std::printf("[ measured ] whole-image relative RMSE %.4g (GL mean %.5g, reference mean %.5g)\n", m.relativeRmse,
                 m.meanImage, m.meanReference);
-    EXPECT_TRUE(m.allFinite());
-    EXPECT_LE(m.relativeRmse, kWholeRelRmse);
-    writeOnFailure("whole", boxed, want.image);
+    testing::expectImagesClose("whole", boxed, want.image, testing::ImageMetric::relativeRmse(), kWholeRelRmse,
+                               "edge pixels: 64 regular samples against random ones, shadow-map texels");
 }
 
 // Negative control: the same two comparisons against the path tracer's onebounce (direct plus one
@@ -189,7 +155,8 @@ TEST_F(DirectPathTracerTest, PathTracerOneBounceIsClearlyFurther)
 {
     const Reference& r = reference();
     const std::vector<bool> interior = interiorPixels(r.direct); // onebounce is noisy everywhere
-    const double interiorError = maskedRelativeRmse(renderGlDirect(1), r.oneBounce.image, interior);
+    const double interiorError =
+        testing::measureImages(renderGlDirect(1), r.oneBounce.image, testing::ImageMetric::relativeRmse(), &interior);
     const double wholeError = core::relativeRmse(renderGlDirect(kSuper), r.oneBounce.image);
     const core::ImageMetrics means = core::compareImages(r.oneBounce.image, r.direct.image);
     std::printf("[ measured ] against onebounce: interior %.4g, whole image %.4g (onebounce mean %.5g, direct %.5g)\n",

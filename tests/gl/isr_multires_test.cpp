@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <filesystem>
 #include <functional>
 #include <memory>
 #include <string>
@@ -28,6 +27,7 @@
 #include "gl/technique/isr/vpl_sample.h"
 #include "gl/technique/isr/vpl_tree.h"
 #include "tests/gl/gl_test_fixture.h"
+#include "tests/image_expect.h"
 
 namespace bounce {
 namespace {
@@ -76,23 +76,6 @@ void expectFinite(const core::Image& img, const std::string& what)
     std::size_t bad = 0;
     for (float v : img.rgb) bad += !std::isfinite(v);
     EXPECT_EQ(bad, 0u) << what << ": non-finite values";
-}
-
-// Relative RMSE of `got` against `want` below `tolerance`; on failure writes both images and the error
-// heat map under BOUNCE_TEST_OUT.
-void expectSameImage(const core::Image& got, const core::Image& want, double tolerance, const std::string& name)
-{
-    const core::ImageMetrics m = core::compareImages(got, want);
-    EXPECT_TRUE(m.allFinite()) << name;
-    EXPECT_GT(m.meanReference, 0.0) << name << ": the reference is black, the comparison says nothing";
-    EXPECT_LT(m.relativeRmse, tolerance) << name << " (max abs error " << m.maxError << ")";
-    if (m.relativeRmse < tolerance && m.allFinite()) return;
-    const std::filesystem::path dir = std::filesystem::path(BOUNCE_TEST_OUT) / "isr_multires";
-    std::filesystem::create_directories(dir);
-    core::writeExr((dir / (name + ".got.exr")).string(), got);
-    core::writeExr((dir / (name + ".want.exr")).string(), want);
-    core::writePng((dir / (name + ".error.png")).string(), core::errorHeatmap(got, want));
-    ADD_FAILURE() << "images written to " << dir;
 }
 
 // The VPL cache's layout (glsl/technique/isr/vpl.glsl) and the VPL tree's (vpl_tree.glsl).
@@ -256,7 +239,8 @@ TEST_F(IsrMultiresTest, ZeroThresholdsEqualFullResolutionGather)
         const Rendered m = render(scene, "multires-gather",
                                   {{"vpls", "64"}, {"rsmSize", "32"}, {"depthThreshold", "0"}, {"normalThreshold", "0"}}, w, h);
         const Rendered r = render(scene, "rsm", {{"vpls", "64"}, {"rsmSize", "32"}}, w, h);
-        expectSameImage(m.indirect, r.indirect, 1e-3, "multires-zero-vs-rsm-" + size);
+        testing::expectImagesClose("multires-zero-vs-rsm-" + size, m.indirect, r.indirect, testing::ImageMetric::relativeRmse(), 1e-3,
+                                   "the issue's bound: only the float summation order differs");
         EXPECT_EQ(counter(m.counters, "fragments.level0"), geometryPixels(m.position)) << size;
         EXPECT_EQ(counter(m.counters, "fragments.total"), geometryPixels(m.position)) << size;
         EXPECT_EQ(counter(m.counters, "vpls"), 64.0);
@@ -311,7 +295,8 @@ TEST_F(IsrMultiresTest, ZeroThresholdsEqualCpuGather)
                 want.set(x, h - 1 - y, glm::vec3(sum));
             }
         const std::string size = std::to_string(w) + "x" + std::to_string(h);
-        expectSameImage(frame.read(frame.indirect()), want, 1e-3, "multires-zero-vs-cpu-" + size);
+        testing::expectImagesClose("multires-zero-vs-cpu-" + size, frame.read(frame.indirect()), want, testing::ImageMetric::relativeRmse(), 1e-3,
+                                   "the issue's bound: float on the GPU against double on the CPU");
         const std::vector<int> perLevel = gather.fragmentsPerLevel();
         int geometry = 0;
         for (int y = 0; y < h; ++y)
@@ -330,7 +315,8 @@ TEST_F(IsrMultiresTest, HisrTauZeroEqualsRsmFull)
                                   {"normalThreshold", "0"}},
                                  48, 48);
     const Rendered full = render(scene, "rsm-full", {{"rsmSize", "32"}}, 48, 48);
-    expectSameImage(hisr.indirect, full.indirect, 1e-3, "hisr-tau0-vs-rsm-full");
+    testing::expectImagesClose("hisr-tau0-vs-rsm-full", hisr.indirect, full.indirect, testing::ImageMetric::relativeRmse(), 1e-3,
+                                   "the same sum over single texels in another order, float");
     // Every fragment gathered every lit texel: no more clusters than texels, and at least some of them.
     const double perFragment = counter(hisr.counters, "clusters.perFragment");
     EXPECT_LE(perFragment, 32.0 * 32.0);
@@ -428,7 +414,8 @@ TEST_F(IsrMultiresTest, HisrTraversalMatchesCpuTraversal)
             for (int root = 0; root < tree.rootCount(); ++root) walk(root, tree.depth(), 0);
             want.set(x, kSize - 1 - y, glm::vec3(sum * glm::dvec3(D[i], D[i + 1], D[i + 2])));
         }
-    expectSameImage(gpu.indirect, want, 1e-3, "hisr-vs-cpu-traversal");
+    testing::expectImagesClose("hisr-vs-cpu-traversal", gpu.indirect, want, testing::ImageMetric::relativeRmse(), 1e-3,
+                                   "float sums; an Eq. 8 tie in float may go either way");
     EXPECT_NEAR(counter(gpu.counters, "clusters.gathered"), clusters, 1e-3 * clusters);
     EXPECT_EQ(counter(gpu.counters, "fragments.level0"), double(fragments));
     // Some clusters were refined and some were not: the test exercised both branches of Eq. 8.
@@ -507,7 +494,8 @@ TEST_F(IsrMultiresTest, RefineAndSplatEqualStencilAndGather)
         }
         EXPECT_EQ(marks, 0) << size;
         EXPECT_EQ(light, 0) << size;
-        if (total > 1) expectSameImage(frame.read(frame.indirect()), gathered, 1e-5, "splat-vs-gather-" + size);
+        if (total > 1) testing::expectImagesClose("splat-vs-gather-" + size, frame.read(frame.indirect()), gathered, testing::ImageMetric::relativeRmse(), 1e-5,
+                                   "the same float terms summed in another order");
     }
 }
 

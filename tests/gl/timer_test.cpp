@@ -1,11 +1,16 @@
 // Per-pass GPU timings (gl/resource/timer.h) are intervals that fit inside the frame that produced them,
 // from the very first frame of a fresh context on: the benchmark times single frames without warm-up.
 // Not a speed test: nothing here depends on how fast the machine is.
+#include <algorithm>
 #include <chrono>
+#include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
 #include "core/cornell.h"
+#include "gl/debug.h"
+#include "gl/gl.h"
 #include "gl/renderer.h"
 #include "tests/gl/gl_test_fixture.h"
 
@@ -33,6 +38,41 @@ TEST_F(TimerTest, FirstFrameOfAContextGivesIntervalsInsideTheFrame)
         EXPECT_GE(p.medianMs, 0.0) << p.pass;
         EXPECT_LE(p.medianMs, wallMs) << p.pass << ": a pass longer than its frame (" << wallMs << " ms)";
     }
+}
+
+std::vector<std::string>& pushedGroups()
+{
+    static std::vector<std::string> names;
+    return names;
+}
+
+void GLAD_API_PTR recordPushGroup(GLenum source, GLenum type, GLuint, GLenum, GLsizei length, const GLchar* text,
+                                  const void*)
+{
+    if (type == GL_DEBUG_TYPE_PUSH_GROUP && source == GL_DEBUG_SOURCE_APPLICATION)
+        pushedGroups().emplace_back(text, length >= 0 ? std::size_t(length) : std::string(text).size());
+}
+
+// Every timed pass is a KHR_debug group named after it (what a capture shows): with debug output on, the
+// push-group messages of one frame carry exactly the pass names the timers report, in order.
+TEST_F(TimerTest, EveryTimedPassIsADebugGroupNamedAfterIt)
+{
+    const core::Scene scene = core::makeCornell("cornell-spot");
+    gl::ParamValues frameValues(gl::frameParams());
+    frameValues.setValue("shadow.size", 64);
+    gl::Renderer r(scene, "direct", frameValues, gl::ParamValues(), 32, 32);
+    pushedGroups().clear();
+    glDebugMessageCallback(recordPushGroup, nullptr);
+    // Group messages have notification severity, which installDebugCallback() mutes.
+    glDebugMessageControl(GL_DEBUG_SOURCE_APPLICATION, GL_DEBUG_TYPE_PUSH_GROUP, GL_DONT_CARE, 0, nullptr, GL_TRUE);
+    r.renderFrame(true);
+    gl::installDebugCallback();
+    std::vector<std::string> passes;
+    for (const gl::PassStat& p : r.timers().stats()) passes.push_back(p.pass);
+    ASSERT_FALSE(passes.empty());
+    std::vector<std::string> groups = pushedGroups();
+    groups.erase(std::unique(groups.begin(), groups.end()), groups.end()); // a pass may run per light
+    EXPECT_EQ(groups, passes);
 }
 
 } // namespace

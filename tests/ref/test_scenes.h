@@ -3,7 +3,6 @@
 #pragma once
 
 #include <cmath>
-#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -173,18 +172,6 @@ inline double imageMeanStdErr(const core::Image& variance)
     double sum = 0.0;
     for (float v : variance.rgb) sum += v;
     return std::sqrt(sum) / double(variance.rgb.size());
-}
-
-// On a failed image assertion: the render, the expected image and their error heat map next to the test
-// log (BOUNCE_TEST_OUT/ref/<name>.{got.exr, expected.exr, heatmap.png}), as STYLE.md asks.
-inline void writeFailureImages(const std::string& name, const core::Image& got, const core::Image& expected)
-{
-    const std::filesystem::path dir = std::filesystem::path(BOUNCE_TEST_OUT) / "ref";
-    std::filesystem::create_directories(dir);
-    core::writeExr((dir / (name + ".got.exr")).string(), got);
-    core::writeExr((dir / (name + ".expected.exr")).string(), expected);
-    core::writePng((dir / (name + ".heatmap.png")).string(), core::errorHeatmap(got, expected));
-    ADD_FAILURE() << "images written to " << (dir / name).string() << ".*";
 }
 
 } // namespace bounce::testing
