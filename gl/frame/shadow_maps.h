@@ -1,5 +1,5 @@
-// Shadow maps of every light in one depth array texture: a spot gets one perspective layer (a cube when
-// its cone is wider than 120 degrees), a point light six cube-face layers, the area lights of one
+// Shadow maps of every light in one depth array texture, one layer per view of gl/frame/light_views.h:
+// a spot gets one perspective layer (a cube when its cone is wider than 120 degrees), a point light six cube-face layers, the area lights of one
 // emitting mesh one shared cube at its centroid, a directional light one orthographic layer fitted to
 // the scene. Also owns the light SSBOs of glsl/common/scene.glsl. Only what the lights need is allocated.
 #pragma once
@@ -9,6 +9,7 @@
 #include <glm/glm.hpp>
 
 #include "gl/frame/gpu_scene.h"
+#include "gl/frame/light_views.h"
 #include "gl/resource/buffer.h"
 #include "gl/resource/framebuffer.h"
 #include "gl/resource/program.h"
@@ -51,14 +52,5 @@ private:
     bool linear_ = true;
     void buildViews(const GpuScene& scene);
 };
-
-// The six cube-face views around `origin`, in glsl/common/scene.glsl's cubeFace() order.
-// Near and far planes that keep the whole scene in view of a light at `origin`; the near plane stays
-// small enough for a light 1 mm from a surface. Shared by the shadow maps and the RSMs.
-void lightNearFar(const core::Bounds& b, const glm::vec3& origin, float& near, float& far);
-// An up vector for a light looking along d (any direction not parallel to it).
-glm::vec3 lightUpVector(const glm::vec3& d);
-
-std::vector<ShadowView> cubeViews(const glm::vec3& origin, float near, float far, int size);
 
 } // namespace bounce::gl

@@ -1,4 +1,4 @@
-// The RSM baselines and per-frame VPL clusters of image-space radiosity (gl/technique/isr/: rsm_pass,
+// The RSM baselines and per-frame VPL clusters of image-space radiosity (gl/frame/rsm and gl/technique/isr/:
 // vpl_sample, vpl_gather, isr_cluster) against closed forms: the gather of one VPL over a disk, the flux
 // a spot, a point light and a directional light deliver to simple scenes, flux conservation through VPL
 // sampling and clustering, the equality of the baselines at full sampling, and the hard cases of the
@@ -19,9 +19,9 @@
 #include "core/image.h"
 #include "core/metrics.h"
 #include "gl/frame/frame.h"
+#include "gl/frame/rsm.h"
 #include "gl/renderer.h"
 #include "gl/technique/isr/isr_cluster.h"
-#include "gl/technique/isr/rsm_pass.h"
 #include "gl/technique/isr/vpl_gather.h"
 #include "gl/technique/isr/vpl_sample.h"
 #include "tests/gl/cpu_raycast.h"

@@ -11,7 +11,7 @@
 #include "gl/gl.h"
 #include "gl/technique/isr/multires_gather.h"
 #include "gl/technique/isr/multires_technique.h"
-#include "gl/technique/isr/rsm_pass.h"
+#include "gl/frame/rsm.h"
 #include "gl/technique/isr/vpl_tree.h"
 
 namespace bounce::gl {
@@ -121,8 +121,6 @@ TechniqueInfo hisrTechniqueInfo()
     info.reads = {GBufferChannel::Position, GBufferChannel::Normal, GBufferChannel::Diffuse};
     info.summary = "hierarchical image-space radiosity: per-fragment VPL clusters from a VPL tree of the full RSM";
     info.params = {
-        {"rsmSize", ParamType::Int, 256, 1, 1024,
-         "RSM texels per side of each light view, a power of two: the finest VPLs (the paper: 256)", true},
         {"tau", ParamType::Float, 1e-4, 0, 1e30,
          "Eq. 8 error threshold tau (W/sr, as the light's intensity I): larger, coarser clusters; 0: every texel (rsm-full)"},
         {"topGrid", ParamType::Int, 16, 1, 1024,
@@ -134,12 +132,11 @@ TechniqueInfo hisrTechniqueInfo()
         {"lightRefineLevel", ParamType::Int, -1, -1, VplTree::kMaxDepth,
          "departure: clusters spanning a light-space discontinuity are always refined down to this level; -1: log2(rsmSize / 128)"},
     };
+    for (const ParamDecl& p : rsmParams()) info.params.push_back(p);
     for (const ParamDecl& p : multiresParams()) info.params.push_back(p);
     info.create = [](Frame& frame, const ParamValues& v) -> std::unique_ptr<Technique> {
-        RsmSettings rsm;
-        rsm.size = v.getInt("rsmSize");
-        if (!std::has_single_bit(unsigned(rsm.size)))
-            throw std::invalid_argument("hisr: rsmSize must be a power of two, not " + std::to_string(rsm.size));
+        RsmSettings rsm = rsmSettingsFrom(v);
+        requireRsmSize("hisr", rsm.size, true, 1024); // the VPL tree is a quadtree over each view
         int level = v.getInt("lightRefineLevel");
         if (level < 0) level = std::max(0, int(std::bit_width(unsigned(rsm.size))) - 8); // log2(size / 128)
         return std::make_unique<Hisr>(frame, rsm, v.get("tau"), v.getInt("topGrid"), float(v.get("lightDepthThreshold")),

@@ -10,7 +10,7 @@
 #include "gl/resource/buffer.h"
 #include "gl/resource/program.h"
 #include "gl/resource/timer.h"
-#include "gl/technique/isr/rsm_pass.h"
+#include "gl/frame/rsm.h"
 
 namespace bounce::gl {
 

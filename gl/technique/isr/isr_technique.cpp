@@ -7,7 +7,7 @@
 #include "gl/technique/isr/isr_cluster.h"
 #include "gl/technique/isr/multires_gather.h"
 #include "gl/technique/isr/multires_technique.h"
-#include "gl/technique/isr/rsm_pass.h"
+#include "gl/frame/rsm.h"
 #include "gl/technique/isr/vpl_gather.h"
 #include "gl/technique/isr/vpl_sample.h"
 
@@ -77,7 +77,6 @@ TechniqueInfo isrTechniqueInfo()
     info.summary = "image-space radiosity: per-frame multiresolution VPL clusters from light-space min-max mipmaps, "
                    "gathered at multiresolution eye-space patches";
     info.params = {
-        {"rsmSize", ParamType::Int, 256, 4, 2048, "RSM texels per side of each light view, a power of two (the paper: 256)", true},
         {"lightDepthThreshold", ParamType::Float, 0.05, 0, 100,
          "light-space discontinuity: largest relative depth range (max d - min d) / min d of one VPL's patch"},
         {"lightNormalThreshold", ParamType::Float, 0.2, 0, 4,
@@ -85,15 +84,14 @@ TechniqueInfo isrTechniqueInfo()
         {"maxLevel", ParamType::Int, 4, 0, 11, "coarsest VPL patch: 2^maxLevel RSM texels per side"},
         {"minLevel", ParamType::Int, 2, 0, 11,
          "finest VPL patch: 2^minLevel RSM texels per side (the initial dense sampling of Fig. 7)"},
-        {"exactSolidAngle", ParamType::Bool, 0, 0, 1, "exact solid angle of each RSM texel instead of Eq. 4's equal share"},
         {"multires", ParamType::Bool, 1, 0, 1,
          "gather at multiresolution eye-space patches (§3.2, the paper's ISR); 0: at every pixel"},
     };
+    for (const ParamDecl& p : rsmParams()) info.params.push_back(p);
     for (const ParamDecl& p : multiresParams()) info.params.push_back(p); // eye space: as multires-gather
     info.create = [](Frame& frame, const ParamValues& v) -> std::unique_ptr<Technique> {
-        RsmSettings rsm;
-        rsm.size = v.getInt("rsmSize");
-        rsm.exactSolidAngle = v.getBool("exactSolidAngle");
+        RsmSettings rsm = rsmSettingsFrom(v);
+        requireRsmSize("isr", rsm.size, true); // the light-space pyramid halves it down to its coarsest level
         IsrClusterSettings c;
         int top = 0;
         while ((2 << top) <= rsm.size) ++top; // log2 of the size

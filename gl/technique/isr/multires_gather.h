@@ -1,7 +1,9 @@
 // Stencil-based multiresolution gathering (Nichols, Shopf & Wyman 2009, §3.2): indirect light gathered
-// once per multiresolution eye-space patch instead of once per pixel, then upsampled. Passes, in order:
+// once per multiresolution eye-space patch instead of once per pixel, then upsampled. The pyramid and the
+// upsampling are the frame's (gl/frame/multires.h); the stencil refinement and the gather are the
+// paper's own part, here. Passes, in order:
 //   "minmax-mipmap"  eye-space depth / normal min-max pyramid of the G-buffer, with the patch averages
-//                    (position, normal, diffuse colour) the gather shades (§3.2.1, Fig. 2b-c)
+//                    (position, normal, diffuse colour) the gather shades (§3.2.1, Fig. 2b-c; frame)
 //   "stencil-setup"  ONE full-screen pass over the flattened multiresolution buffer that sets the stencil
 //                    of exactly the valid fragments (the pseudo code of §3.2.1), counts them per level and
 //                    marks which neighbours each may be interpolated with
@@ -9,7 +11,8 @@
 //                    (the VPL cache of §3.2.2 by default; hisr plugs in its VPL-tree traversal)
 //   "upsample"       every pixel takes the valid fragment covering it, interpolated among same-level
 //                    neighbours [NW09], times the full-resolution diffuse colour, into frame.indirect()
-// Layout, thresholds and the exact upsampling rule: glsl/technique/isr/multires.glsl and the README.
+//                    (frame)
+// Layout, thresholds and the exact upsampling rule: glsl/common/multires.glsl and the README.
 //
 // The path §3.2 replaces, multiresolution splatting [NW09], fills the same buffer for the paper's Table 1
 // (technique multires-splat): "refine" (iterative subdivision from the coarsest patches, one compute pass
@@ -25,6 +28,7 @@
 #include <glm/glm.hpp>
 
 #include "gl/frame/frame.h"
+#include "gl/frame/multires.h"
 #include "gl/resource/buffer.h"
 #include "gl/resource/framebuffer.h"
 #include "gl/resource/program.h"
@@ -34,25 +38,10 @@
 
 namespace bounce::gl {
 
-struct MultiresSettings {
-    // A patch is a discontinuity (needs subdividing) when (max d - min d) >= depthThreshold * min d over
-    // its pixels' eye depths d (relative: the same threshold holds near and far), or when any component
-    // of its unit normals spans >= normalThreshold. 0 forces full resolution (every pixel at level 0).
-    float depthThreshold = 0.02f;
-    float normalThreshold = 0.15f;
-    // Coarsest patches: 2^coarsestLevel pixels per side. kAutoLevel: the paper's coarsest buffer of 64 x 64
-    // patches (§2: "coarse 64^2 pixel clusters"; 16 x 16 pixels at its 1024^2, 8 x 8 at 512^2): the
-    // finest level with at least 64 patches across the image's longer side (autoCoarsestLevel).
-    static constexpr int kAutoLevel = -1;
-    int coarsestLevel = kAutoLevel;
-};
-
 class MultiresGather {
 public:
-    static constexpr int kMaxLevels = 16;            // glsl/technique/isr/multires.glsl: MULTIRES_MAX_LEVELS
-    static constexpr unsigned kPyramidUnitBase = 14; // pyramid textures at units 14..19
-    static constexpr unsigned kIlluminationUnit = 20;
-    static constexpr unsigned kCountsBinding = 11;   // SSBO of valid fragments per level
+    static constexpr int kMaxLevels = MultiresPyramid::kMaxLevels;
+    static constexpr unsigned kCountsBinding = 11; // SSBO of valid fragments per level
 
     MultiresGather(Frame& frame, const MultiresSettings& settings);
 
@@ -60,7 +49,7 @@ public:
     void run(Frame& frame, const Buffer& vpls, int vplCount, PassTimers& timers);
 
     // The same passes one by one, for gathers other than the VPL cache (hisr's VPL tree): the program
-    // given to gather() is made by gatherProgram() from a fragment shader that includes multires.glsl.
+    // given to gather() is made by gatherProgram() from a fragment shader that includes common/multires.glsl.
     void buildPyramid(Frame& frame, PassTimers& timers);
     void markValidFragments(Frame& frame, PassTimers& timers);
     // Draws the stenciled quad `draws` times with additive blending (rgb), calling setupDraw(program, i)
@@ -81,14 +70,15 @@ public:
     static Program gatherProgram(const std::string& label, const std::string& fragmentPath,
                                  const std::vector<Define>& defines = {});
 
-    const MultiresSettings& settings() const { return settings_; }
+    const MultiresSettings& settings() const { return pyramid_.settings(); }
+    const MultiresPyramid& pyramid() const { return pyramid_; }
     // Levels actually used: coarsestLevel, or fewer when one patch already covers the whole image.
-    int coarsestLevel() const { return levels_; }
+    int coarsestLevel() const { return pyramid_.coarsestLevel(); }
     // Where level l lies in the flattened buffer: origin (x, y) and size (w, h) in texels.
-    glm::ivec4 levelRect(int level) const { return rects_.at(std::size_t(level)); }
+    glm::ivec4 levelRect(int level) const { return pyramid_.levelRect(level); }
     // The flattened multiresolution illumination buffer: rgb the gathered light without the receiver's
     // diffuse colour; a 0 where no valid fragment, else 1 + the mask of the neighbours the upsampling
-    // interpolates with (glsl/technique/isr/multires.glsl: sameSurfaceNeighbours).
+    // interpolates with (glsl/common/multires.glsl: sameSurfaceNeighbours).
     const Texture& illumination() const { return illumination_; }
     // Valid fragments per level of the last frame (reads a small buffer back: call after the frame).
     std::vector<int> fragmentsPerLevel() const;
@@ -96,31 +86,18 @@ public:
     std::vector<Counter> counters() const;
 
 private:
-    MultiresSettings settings_;
-    int width_ = 0, height_ = 0, levels_ = 0;
-    std::vector<glm::ivec4> rects_;
-    Texture pyrPosition_, pyrNormal_, pyrDiffuse_, pyrDepth_, pyrNormalMin_, pyrNormalMax_;
+    MultiresPyramid pyramid_;
     Texture illumination_, stencil_;
     Framebuffer fbo_;
     Buffer counts_;
-    Program reduce_, stencilSetup_, cacheGather_, upsample_;
+    Program stencilSetup_, cacheGather_;
     // [NW09]'s path, allocated on the first refine(): work lists, counters, the splat vertices.
     Buffer workLists_[2], refineCounts_, splatVertices_;
     VertexArray splatVao_;
     Program refine_, splat_;
     int splatCount_ = 0;
 
-    void allocate(int width, int height);
-    void setCommonUniforms(Program& program) const;
-    void bindPyramid() const;
+    void allocate(); // the illumination buffer and stencil, laid out as the pyramid's flattened buffer
 };
-
-// Layout of the flattened buffer for a width x height image with at most `coarsestLevel` levels above
-// the pixels: level 0 (the image) at the left, level l >= 1 (ceil(w / 2^l) x ceil(h / 2^l) patches)
-// stacked bottom-up in one column to its right. Exposed for tests.
-std::vector<glm::ivec4> multiresLevelRects(int width, int height, int coarsestLevel);
-// The coarsest level of MultiresSettings::kAutoLevel: the largest l with ceil(max(width, height) / 2^l)
-// >= 64 (0 for images under 127 pixels across).
-int autoCoarsestLevel(int width, int height);
 
 } // namespace bounce::gl

@@ -3,7 +3,7 @@
 #include <algorithm>
 
 #include "gl/technique/isr/multires_gather.h"
-#include "gl/technique/isr/rsm_pass.h"
+#include "gl/frame/rsm.h"
 #include "gl/technique/isr/vpl_gather.h"
 #include "gl/technique/isr/vpl_sample.h"
 
@@ -60,42 +60,18 @@ std::vector<ParamDecl> multiresTechniqueParams()
     std::vector<ParamDecl> p = {
         {"vpls", ParamType::Int, 256, 1, 1024 * 1024,
          "VPLs on a regular grid of the RSM (as rsm); gather cost is linear in it"},
-        {"rsmSize", ParamType::Int, 256, 4, 2048, "RSM texels per side of each light view (the paper: 256)"},
     };
+    for (const ParamDecl& d : rsmParams()) p.push_back(d);
     for (const ParamDecl& d : multiresParams()) p.push_back(d);
     return p;
 }
 
 std::unique_ptr<Technique> createMultires(Frame& frame, const ParamValues& v, bool splat)
 {
-    RsmSettings rsm;
-    rsm.size = v.getInt("rsmSize");
-    return std::make_unique<MultiresTechnique>(frame, rsm, v.getInt("vpls"), multiresSettingsFrom(v), splat);
+    return std::make_unique<MultiresTechnique>(frame, rsmSettingsFrom(v), v.getInt("vpls"), multiresSettingsFrom(v), splat);
 }
 
 } // namespace
-
-std::vector<ParamDecl> multiresParams()
-{
-    const MultiresSettings d;
-    return {
-        {"depthThreshold", ParamType::Float, d.depthThreshold, 0, 100,
-         "eye-space discontinuity: a patch is subdivided when (max - min) eye depth >= this x min depth; 0: full resolution"},
-        {"normalThreshold", ParamType::Float, d.normalThreshold, 0, 4,
-         "eye-space discontinuity: a patch is subdivided when any normal component spans >= this; 0: full resolution"},
-        {"coarsestLevel", ParamType::Int, double(d.coarsestLevel), -1, MultiresGather::kMaxLevels - 1,
-         "coarsest multiresolution patch: 2^level pixels per side; -1: the paper's 64x64 coarsest buffer (8x8 pixels at 512^2)"},
-    };
-}
-
-MultiresSettings multiresSettingsFrom(const ParamValues& v)
-{
-    MultiresSettings s;
-    s.depthThreshold = float(v.get("depthThreshold"));
-    s.normalThreshold = float(v.get("normalThreshold"));
-    s.coarsestLevel = v.getInt("coarsestLevel");
-    return s;
-}
 
 TechniqueInfo multiresGatherTechniqueInfo()
 {

@@ -13,9 +13,4 @@ TechniqueInfo multiresGatherTechniqueInfo();
 // RSM -> VPL cache -> eye-space min-max pyramid -> iterative refinement -> per-VPL point splats -> upsample.
 TechniqueInfo multiresSplatTechniqueInfo();
 
-// The eye-space parameters every technique built on MultiresGather declares (multires-gather, hisr):
-// depthThreshold, normalThreshold, coarsestLevel.
-std::vector<ParamDecl> multiresParams();
-MultiresSettings multiresSettingsFrom(const ParamValues& values);
-
 } // namespace bounce::gl

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "gl/technique/isr/rsm_pass.h"
+#include "gl/frame/rsm.h"
 #include "gl/technique/isr/vpl_gather.h"
 #include "gl/technique/isr/vpl_sample.h"
 
@@ -35,17 +35,6 @@ private:
     int count_ = 0;
 };
 
-ParamDecl rsmSizeParam(double max)
-{
-    return {"rsmSize", ParamType::Int, 256, 4, max, "RSM texels per side of each light view (the paper: 256)"};
-}
-
-ParamDecl exactSolidAngleParam()
-{
-    return {"exactSolidAngle", ParamType::Bool, 0, 0, 1,
-            "exact solid angle of each RSM texel instead of Eq. 4's equal share (slightly slower RSM pass)"};
-}
-
 } // namespace
 
 TechniqueInfo rsmTechniqueInfo()
@@ -64,14 +53,10 @@ TechniqueInfo rsmTechniqueInfo()
     info.params = {
         {"vpls", ParamType::Int, 256, 1, 6 * 1024 * 1024,
          "VPLs on a regular grid of the RSM (sqrt(vpls/views) per side of each view); gather cost is linear in it"},
-        rsmSizeParam(2048),
-        exactSolidAngleParam(),
     };
+    for (const ParamDecl& p : rsmParams()) info.params.push_back(p);
     info.create = [](Frame&, const ParamValues& v) -> std::unique_ptr<Technique> {
-        RsmSettings s;
-        s.size = v.getInt("rsmSize");
-        s.exactSolidAngle = v.getBool("exactSolidAngle");
-        return std::make_unique<RsmGather>(s, v.getInt("vpls"));
+        return std::make_unique<RsmGather>(rsmSettingsFrom(v), v.getInt("vpls"));
     };
     return info;
 }
@@ -89,11 +74,11 @@ TechniqueInfo rsmFullTechniqueInfo()
     };
     info.reads = {GBufferChannel::Position, GBufferChannel::Normal, GBufferChannel::Diffuse};
     info.summary = "every RSM texel a VPL (1024^2: the paper's one-million-VPL baseline), full-screen gather; slow";
-    info.params = {rsmSizeParam(1024), exactSolidAngleParam()};
+    info.params = rsmParams();
     info.create = [](Frame&, const ParamValues& v) -> std::unique_ptr<Technique> {
-        RsmSettings s;
-        s.size = v.getInt("rsmSize");
-        s.exactSolidAngle = v.getBool("exactSolidAngle");
+        const RsmSettings s = rsmSettingsFrom(v);
+        // Every texel of every view a VPL of the cache: 1024^2 per view is the paper's one-million baseline.
+        requireRsmSize("rsm-full", s.size, false, 1024);
         return std::make_unique<RsmGather>(s, -1);
     };
     return info;

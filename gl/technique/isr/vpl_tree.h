@@ -12,7 +12,7 @@
 #include "gl/resource/program.h"
 #include "gl/resource/texture.h"
 #include "gl/resource/timer.h"
-#include "gl/technique/isr/rsm_pass.h"
+#include "gl/frame/rsm.h"
 
 namespace bounce::gl {
 

@@ -15,7 +15,7 @@
 // the next finer level, so after a node that is not refined the walk moves to its next sibling, first
 // climbing while it was the last of four. The tree is read as one flat texture, as the paper stores it
 // (a buffer texture over the tree's buffer: four RGBA32F texels per node, of which the walk reads three).
-#include "technique/isr/multires.glsl"
+#include "common/multires.glsl"
 #include "technique/isr/vpl.glsl"
 #include "technique/isr/vpl_tree.glsl"
 

@@ -1,7 +1,7 @@
 #version 450 core
 // Per-frame multiresolution VPL clusters (Nichols, Shopf & Wyman 2009, §3.4, Fig. 7). One invocation per
 // patch of the finest sampling level (minLevel) of each RSM view. Going from maxLevel down, the first
-// ancestor patch without a light-space discontinuity (technique/isr/rsm.glsl: rsmPatchContinuous) is
+// ancestor patch without a light-space discontinuity (common/rsm.glsl: rsmPatchContinuous) is
 // the coarsest continuous patch; the test is monotone (a sub-patch of a continuous patch is continuous),
 // so the finest-level patches under it agree on it and its top-left one emits it as one VPL whose solid
 // angle, flux and area are the sums over its 4^level texels. A patch that is discontinuous even at

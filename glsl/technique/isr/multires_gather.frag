@@ -6,7 +6,7 @@
 // The upsampling multiplies by the full-resolution rho_i, so albedo (texture) detail inside a coarse patch
 // survives and a patch straddling two colours is not averaged. Writes rgb only (alpha holds the
 // stencil pass's marks).
-#include "technique/isr/multires.glsl"
+#include "common/multires.glsl"
 #include "technique/isr/vpl.glsl"
 
 layout(early_fragment_tests) in;

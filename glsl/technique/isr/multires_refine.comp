@@ -4,10 +4,10 @@
 // patch of the coarsest level (CoarseImageSampling); each later one takes the list the previous one wrote.
 // A patch with a discontinuity is replaced by its four children (SubdivideIntoFour, appended to the next
 // level's list); a patch without one stays: it is a valid multiresolution fragment, the same set the
-// stencil pass selects (technique/isr/multires.glsl). A valid fragment is counted, marked in the
+// stencil pass selects (common/multires.glsl). A valid fragment is counted, marked in the
 // illumination buffer's alpha exactly as the stencil pass marks it (for the upsampling), and, unless it
 // reflects nothing, appended to the splat list: the vertex array every VPL's splat draws.
-#include "technique/isr/multires.glsl"
+#include "common/multires.glsl"
 
 layout(local_size_x = 64) in;
 

@@ -1,10 +1,10 @@
 #version 450 core
 // §3.2.1, one-pass stencil refinement: drawn once over the whole flattened multiresolution buffer with
 // stencil op REPLACE; every fragment that is not a valid multiresolution fragment is discarded, so the
-// stencil ends up set at exactly the valid ones (technique/isr/multires.glsl: fragmentValid). Valid
+// stencil ends up set at exactly the valid ones (common/multires.glsl: fragmentValid). Valid
 // fragments are also counted per level (one atomic add each: they are few, and the count costs no pass),
 // and each marks which neighbours the upsampling may interpolate with (multires.glsl: sameSurfaceNeighbours).
-#include "technique/isr/multires.glsl"
+#include "common/multires.glsl"
 
 layout(std430, binding = 11) buffer FragmentCounts { uint fragmentCounts[]; };
 

@@ -4,7 +4,7 @@
 #define BOUNCE_ISR_VPL_WRITE_GLSL
 
 #include "technique/isr/vpl.glsl"
-#include "technique/isr/rsm.glsl"
+#include "common/rsm.glsl"
 
 layout(std430, binding = 8) writeonly buffer VplCacheOut { Vpl outVpls[]; };
 

@@ -1,5 +1,5 @@
 #version 450 core
-// Reflective shadow map texel (layout in technique/isr/rsm.glsl): world position, normal, light-space
+// Reflective shadow map texel (layout in common/rsm.glsl): world position, normal, light-space
 // depth, and the flux the texel's surface reflects, rho_j Phi_j, with Phi_j the flux the light sends
 // through the texel's solid angle omega_t.
 // Units: spot/point intensity I is in W/sr, so Phi_t = I(omega) omega_t with omega_t in steradians. The

@@ -1,8 +1,8 @@
 #version 450 core
-// One level of the RSM pyramid (technique/isr/rsm.glsl): the light-space depth and normal min-max
+// One level of the RSM pyramid (common/rsm.glsl): the light-space depth and normal min-max
 // mipmaps of §3.4, plus the sums from which a patch becomes one VPL (flux, lit solid angle and area,
 // area-weighted centroid and mean normal). Level `level` + 1 from level `level`, every layer at once.
-#include "technique/isr/rsm.glsl"
+#include "common/rsm.glsl"
 
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 

@@ -2,7 +2,7 @@
 // Upsample and combine (§3.2.2, after [NW09]): full-resolution indirect light from the flattened
 // multiresolution illumination buffer. For each pixel with geometry:
 //  1. its level k: the one level whose patch p >> k covering it is a valid fragment (alpha >= 1; exactly
-//     one exists, technique/isr/multires.glsl);
+//     one exists, common/multires.glsl);
 //  2. k = 0: that pixel's own value. k >= 1: bilinear interpolation at the pixel centre among the four
 //     nearest level-k patch centres, keeping only neighbours that are themselves valid at level k and
 //     that lie on the same smooth surface as the pixel's own patch (multires.glsl: sameSurface; the
@@ -11,7 +11,7 @@
 //     renormalised. So light is blended across patch borders on smooth surfaces, never across edges,
 //     and never with fragments of other levels;
 //  3. times the pixel's own diffuse colour rho_i (the gather left it out): Eq. 5's rho_i at full resolution.
-#include "technique/isr/multires.glsl"
+#include "common/multires.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 

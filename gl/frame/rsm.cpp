@@ -1,4 +1,4 @@
-#include "gl/technique/isr/rsm_pass.h"
+#include "gl/frame/rsm.h"
 
 #include <algorithm>
 #include <bit>
@@ -6,9 +6,7 @@
 #include <stdexcept>
 #include <string>
 
-#include <glm/gtc/matrix_transform.hpp>
-
-#include "gl/frame/shadow_maps.h"
+#include "gl/frame/light_views.h"
 #include "gl/gl.h"
 
 namespace bounce::gl {
@@ -25,6 +23,33 @@ struct GpuRsmView {
 double cornerSolidAngle(double x, double y) { return std::atan2(x * y, std::sqrt(1.0 + x * x + y * y)); }
 
 } // namespace
+
+std::vector<ParamDecl> rsmParams()
+{
+    return {
+        {"rsmSize", ParamType::Int, 256, 4, 2048,
+         "RSM texels per side of each light view (the paper: 256); an RSM pyramid or VPL tree needs a power of two"},
+        {"exactSolidAngle", ParamType::Bool, 0, 0, 1,
+         "exact solid angle of each RSM texel instead of Eq. 4's equal share (slightly slower RSM pass)"},
+    };
+}
+
+RsmSettings rsmSettingsFrom(const ParamValues& values)
+{
+    RsmSettings s;
+    s.size = values.getInt("rsmSize");
+    s.exactSolidAngle = values.getBool("exactSolidAngle");
+    return s;
+}
+
+void requireRsmSize(const std::string& technique, int size, bool powerOfTwo, int maxSize)
+{
+    if (powerOfTwo && (size < 1 || !std::has_single_bit(unsigned(size))))
+        throw std::invalid_argument(technique + ": rsmSize must be a power of two, not " + std::to_string(size));
+    if (size > maxSize)
+        throw std::invalid_argument(technique + ": rsmSize must be at most " + std::to_string(maxSize) + ", not " +
+                                    std::to_string(size));
+}
 
 float RsmPass::texelSide(const RsmView& v) const
 {
@@ -46,7 +71,7 @@ double RsmPass::exactTexelSolidAngle(double fovRad, int size, int x, int y)
 }
 
 RsmPass::RsmPass(const RsmSettings& settings)
-    : settings_(settings), fbo_("rsm.fbo"), program_(Program::graphics("rsm", "technique/isr/rsm.vert", "technique/isr/rsm.frag"))
+    : settings_(settings), fbo_("rsm.fbo"), program_(Program::graphics("rsm", "frame/rsm.vert", "frame/rsm.frag"))
 {
     if (settings_.size < 1) throw std::invalid_argument("RSM size must be at least 1");
     if (settings_.levels > 0) {
@@ -56,63 +81,29 @@ RsmPass::RsmPass(const RsmSettings& settings)
         if (settings_.levels > std::bit_width(unsigned(settings_.size)) - 1)
             throw std::invalid_argument("the RSM pyramid of a " + std::to_string(settings_.size) + "^2 RSM has at most " +
                                         std::to_string(std::bit_width(unsigned(settings_.size)) - 1) + " levels");
-        reduce_ = Program::compute("rsm.reduce", "technique/isr/rsm_reduce.comp");
+        reduce_ = Program::compute("rsm.reduce", "frame/rsm_reduce.comp");
     }
 }
 
 void RsmPass::buildViews(const Frame& frame)
 {
     views_.clear();
-    const core::Bounds& b = frame.gpuScene().bounds();
-    if (b.empty()) return; // nothing to see
-    const std::vector<LightSource>& lights = frame.gpuScene().lights();
+    // The spot's view covers exactly its cone: Eq. 4 shares the frustum's solid angle among the texels.
+    const LightViews lv = buildLightViews(frame.gpuScene().lights(), frame.gpuScene().bounds(), {.fovMargin = 1.0f});
     const int size = settings_.size;
-    for (int i = 0; i < int(lights.size()); ++i) {
-        const LightSource& s = lights[i];
-        float near = 0.0f, far = 0.0f;
+    for (const LightView& l : lv.views) {
         RsmView v;
-        v.light = i;
-        if (s.type == kLightSpot && s.outerConeRad <= glm::radians(60.0f)) {
-            // One perspective view whose field of view is the spot's full cone (90 deg for cornell-spot).
-            lightNearFar(b, s.position, near, far);
-            v.fovRad = 2.0f * s.outerConeRad;
-            v.view = glm::lookAt(s.position, s.position + s.direction, lightUpVector(s.direction));
-            v.proj = glm::perspective(v.fovRad, 1.0f, near, far);
-            v.origin = s.position;
-            v.direction = s.direction;
-            views_.push_back(v);
-        } else if (s.type == kLightDirectional) {
-            const glm::vec3 c = b.centre();
-            const float r = std::max(0.5f * glm::length(b.extent()), 1e-3f);
-            v.orthographic = true;
-            v.origin = c - s.direction * (2.0f * r);
-            v.direction = s.direction;
-            v.view = glm::lookAt(v.origin, c, lightUpVector(s.direction));
-            v.proj = glm::ortho(-r, r, -r, r, 0.0f, 4.0f * r);
-            v.orthoTexelArea = (2.0f * r / float(size)) * (2.0f * r / float(size));
-            views_.push_back(v);
-        } else {
-            // Point light, wide spot, or the emitting triangles of one mesh (consecutive in the list):
-            // six cube faces around the light's position (the mesh's centroid for area lights).
-            if (s.type == kLightArea) {
-                if (i > 0 && lights[i - 1].type == kLightArea && lights[i - 1].group == s.group) continue;
-                v.areaFirst = i;
-                v.areaCount = 0;
-                while (i + v.areaCount < int(lights.size()) && lights[i + v.areaCount].type == kLightArea &&
-                       lights[i + v.areaCount].group == s.group)
-                    ++v.areaCount;
-            }
-            lightNearFar(b, s.position, near, far);
-            for (const ShadowView& face : cubeViews(s.position, near, far, size)) {
-                RsmView f = v;
-                f.view = face.view;
-                f.proj = face.proj;
-                f.origin = s.position;
-                f.direction = -glm::vec3(glm::transpose(face.view)[2]);
-                f.fovRad = glm::radians(90.0f);
-                views_.push_back(f);
-            }
-        }
+        v.view = l.view;
+        v.proj = l.proj;
+        v.origin = l.origin;
+        v.direction = l.direction;
+        v.orthographic = l.orthographic;
+        v.fovRad = l.fovRad;
+        if (l.orthographic) v.orthoTexelArea = (2.0f * l.orthoHalfExtent / float(size)) * (2.0f * l.orthoHalfExtent / float(size));
+        v.light = l.light;
+        v.areaFirst = l.areaFirst;
+        v.areaCount = l.areaCount;
+        views_.push_back(v);
     }
 }
 

@@ -1,5 +1,5 @@
 // The reflective shadow map of image-space radiosity (Nichols, Shopf & Wyman 2009, §3.2.2-3.4) as every
-// ISR pass reads it (gl/technique/isr/rsm_pass.h writes it). One layer per light view (a spot: one
+// ISR pass reads it (gl/frame/rsm.h writes it). One layer per light view (a spot: one
 // perspective view; a point light or an area light: six cube faces; a directional light: one
 // orthographic view). Each layer is a pyramid atlas: level 0 (the RSM proper, size x size texels) at
 // x in [0, size), and, when the pass was asked for levels, level l >= 1 ((size >> l)^2 patches of
@@ -21,8 +21,8 @@
 // bounds |V_j| from above, as §3.5 needs) and the distance along the light direction for orthographic
 // ones. Empty texels hold the neutral elements (d range (1e30, 0), normal min 2, max -2), so a patch
 // with no geometry has min > max.
-#ifndef BOUNCE_ISR_RSM_GLSL
-#define BOUNCE_ISR_RSM_GLSL
+#ifndef BOUNCE_RSM_GLSL
+#define BOUNCE_RSM_GLSL
 
 #ifndef RSM_UNIT_BASE
 #define RSM_UNIT_BASE 8

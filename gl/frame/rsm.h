@@ -1,6 +1,8 @@
 // The reflective shadow map (RSM) of every light of the frame (Dachsbacher & Stamminger 2005; Nichols,
-// Shopf & Wyman 2009 §3.2.2-3.4), and its light-space min-max pyramid (§3.4). Layout and the meaning of
-// every channel: glsl/technique/isr/rsm.glsl.
+// Shopf & Wyman 2009 §3.2.2-3.4), and its light-space min-max pyramid (§3.4): a frame service for every
+// technique that starts from the light's first bounce (VPLs, photon emission, point lighting). Layout and
+// the meaning of every channel: glsl/common/rsm.glsl; shaders glsl/frame/rsm.{vert,frag}, rsm_reduce.comp.
+// Views (gl/frame/light_views.h, the same builder as the shadow maps):
 //   spot (outer cone <= 60 deg)   one perspective view, field of view 2 x the outer cone
 //   point, wider spot             six cube faces (90 deg each)
 //   area (an emitting mesh)       six cube faces around its centroid; a cosine-lobe point emitter
@@ -9,6 +11,7 @@
 // of each perspective texel (exactSolidAngle). Passes timed: "rsm", and "rsm-mipmap" when levels > 0.
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -19,6 +22,7 @@
 #include "gl/resource/program.h"
 #include "gl/resource/texture.h"
 #include "gl/resource/timer.h"
+#include "gl/technique/technique.h"
 
 namespace bounce::gl {
 
@@ -27,6 +31,16 @@ struct RsmSettings {
     bool exactSolidAngle = false; // exact per-texel solid angle instead of Eq. 4
     int levels = 0;               // pyramid levels above the RSM (0: the RSM only); needs a power-of-two size
 };
+
+// The parameters every technique that renders an RSM declares, once: "rsmSize" (4..2048; a technique
+// that needs a power of two or a smaller map checks it when created, see requireRsmSize) and
+// "exactSolidAngle". Aggregate rows in ParamDecl's field order.
+std::vector<ParamDecl> rsmParams();
+// RsmSettings from those parameters (levels 0: the technique sets the pyramid it needs).
+RsmSettings rsmSettingsFrom(const ParamValues& values);
+// Throws std::invalid_argument naming `technique` when `size` is not a power of two (powerOfTwo) or
+// exceeds maxSize.
+void requireRsmSize(const std::string& technique, int size, bool powerOfTwo, int maxSize = 2048);
 
 struct RsmView {
     glm::mat4 view{1.0f};
@@ -42,7 +56,7 @@ struct RsmView {
 
 class RsmPass {
 public:
-    // Texture units the RSM binds to (glsl/technique/isr/rsm.glsl: RSM_UNIT_BASE): position, normal,
+    // Texture units the RSM binds to (glsl/common/rsm.glsl: RSM_UNIT_BASE): position, normal,
     // flux, depth range, normal min, normal max at kUnitBase + 0..5; views at SSBO binding kViewsBinding.
     static constexpr unsigned kUnitBase = 8;
     static constexpr unsigned kViewsBinding = 10;

@@ -1,11 +1,11 @@
 #version 450 core
-// One level of the eye-space min-max pyramid of §3.2 (Fig. 2b-c; technique/isr/multires.glsl): level
+// One level of the eye-space min-max pyramid of §3.2 (Fig. 2b-c; common/multires.glsl): level
 // `level` >= 1 from its four children at level - 1 (the G-buffer for level 1). Children beyond the
 // previous level's size are absent (odd sizes), pixels without geometry take no part. Besides the depth
 // and normal ranges that detect discontinuities, each patch keeps the means of its pixels with geometry
 // (position, normal, diffuse colour): the representative the gather shades (§3.2.2). The patch is
 // classified here once (empty, continuous, discontinuity) for the stencil pass.
-#include "technique/isr/multires.glsl"
+#include "common/multires.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 

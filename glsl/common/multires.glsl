@@ -1,5 +1,5 @@
 // The multiresolution eye-space buffer of image-space radiosity (Nichols, Shopf & Wyman 2009, §3.2;
-// gl/technique/isr/multires_gather.h runs the passes).
+// gl/frame/multires.h builds the pyramid and upsamples; gl/technique/isr/multires_gather.h selects and gathers).
 //
 // Levels. Level 0 is the image (W x H pixels); a level-l patch covers 2^l x 2^l pixels, so level l has
 // ceil(W / 2^l) x ceil(H / 2^l) patches and the parent of patch t is t >> 1 at every size (odd sizes and
@@ -18,8 +18,8 @@
 // Valid fragment (the pseudo code of §3.2.1): a patch with geometry, without discontinuity, whose parent
 // has one (at the coarsest level: without discontinuity). Ranges only grow towards the parents, so
 // every pixel with geometry lies in exactly one valid fragment.
-#ifndef BOUNCE_ISR_MULTIRES_GLSL
-#define BOUNCE_ISR_MULTIRES_GLSL
+#ifndef BOUNCE_MULTIRES_GLSL
+#define BOUNCE_MULTIRES_GLSL
 
 #include "common/gbuffer.glsl"
 
