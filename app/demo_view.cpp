@@ -2,6 +2,7 @@
 
 #include <vector>
 
+#include "gl/frame/bindings.h"
 #include "gl/gl.h"
 
 namespace bounce::app {
@@ -18,7 +19,7 @@ void DemoView::draw(const gl::Texture& radiance, int x, int y, int w, int h, flo
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_STENCIL_TEST);
     glDisable(GL_BLEND);
-    radiance.bind(0);
+    radiance.bind(UNIT_TONEMAP_RADIANCE);
     program_.set("exposureStops", exposureStops);
     program_.use();
     vao_.bind();

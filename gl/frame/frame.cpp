@@ -1,5 +1,6 @@
 #include "gl/frame/frame.h"
 
+#include "gl/frame/bindings.h"
 #include "gl/gl.h"
 
 namespace bounce::gl {
@@ -110,24 +111,24 @@ void Frame::renderGBuffer(PassTimers& timers)
     glDisable(GL_CULL_FACE); // back faces of one-sided surfaces are drawn black (gbuffer.frag)
     gbufferProgram_.set("viewProj", projection() * view());
     gbufferProgram_.set("view", view());
-    gpu_.materials().bindBase(GL_SHADER_STORAGE_BUFFER, 0);
-    gpu_.baseColorTextures().bind(6);
+    gpu_.materials().bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_MATERIALS);
+    gpu_.baseColorTextures().bind(UNIT_BASE_COLOR);
     gbufferProgram_.use();
     gpu_.draw();
 }
 
 void Frame::bindGBuffer() const
 {
-    position_.bind(0);
-    normal_.bind(1);
-    diffuse_.bind(2);
-    specular_.bind(3);
-    emission_.bind(4);
+    position_.bind(UNIT_G_POSITION);
+    normal_.bind(UNIT_G_NORMAL);
+    diffuse_.bind(UNIT_G_DIFFUSE);
+    specular_.bind(UNIT_G_SPECULAR);
+    emission_.bind(UNIT_G_EMISSION);
 }
 
 void Frame::bindSceneData() const
 {
-    gpu_.materials().bindBase(GL_SHADER_STORAGE_BUFFER, 0);
+    gpu_.materials().bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_MATERIALS);
     gpu_.bindGeometry();
     shadows_.bind();
 }
@@ -166,8 +167,8 @@ void Frame::composite(PassTimers& timers)
     compositeFbo_.bind();
     glViewport(0, 0, settings_.width, settings_.height);
     glDisable(GL_DEPTH_TEST);
-    direct_.bind(0);
-    indirect_.bind(1);
+    direct_.bind(UNIT_COMPOSITE_DIRECT);
+    indirect_.bind(UNIT_COMPOSITE_INDIRECT);
     compositeProgram_.use();
     drawFullscreen();
 }

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "gl/frame/bindings.h"
 #include "gl/gl.h"
 
 namespace bounce::gl {
@@ -166,10 +167,10 @@ void GpuScene::setLights(const std::vector<core::Light>& punctual)
 
 void GpuScene::bindGeometry() const
 {
-    vertices_.bindBase(GL_SHADER_STORAGE_BUFFER, kSceneVerticesBinding);
-    indices_.bindBase(GL_SHADER_STORAGE_BUFFER, kSceneIndicesBinding);
-    emissive_.bindBase(GL_SHADER_STORAGE_BUFFER, kSceneEmissiveBinding);
-    textures_.bind(kBaseColorTextureUnit);
+    vertices_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_SCENE_VERTICES);
+    indices_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_SCENE_INDICES);
+    emissive_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_SCENE_EMISSIVE);
+    textures_.bind(UNIT_BASE_COLOR);
 }
 
 void GpuScene::draw() const

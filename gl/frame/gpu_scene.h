@@ -51,10 +51,6 @@ struct GpuEmissiveHeader {
     float totalPowerW; // pi L A summed, luminance
     std::uint32_t pad[2];
 };
-// SSBO binding points of the geometry (scene.glsl: the same numbers).
-inline constexpr unsigned kSceneVerticesBinding = 4, kSceneIndicesBinding = 5, kSceneEmissiveBinding = 6;
-// Texture unit of the base-colour texture array (scene.glsl, gbuffer.frag, rsm.frag).
-inline constexpr unsigned kBaseColorTextureUnit = 6;
 
 // One light as the GPU sees it, before shadow layers are assigned.
 struct LightSource {
@@ -76,7 +72,7 @@ public:
     GpuScene(const core::Scene& scene, int textureSize = 512);
 
     void draw() const; // binds the vertex array and draws every triangle
-    // Binds vertices, indices and emissive triangles at kScene*Binding and the textures at their unit.
+    // Binds vertices, indices and emissive triangles at SSBO_SCENE_* and the textures at UNIT_BASE_COLOR (gl/frame/bindings.h).
     void bindGeometry() const;
     int emissiveTriangleCount() const { return emissiveCount_; }
     void drawPositionsOnly() const { draw(); }

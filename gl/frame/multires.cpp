@@ -4,6 +4,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "gl/frame/bindings.h"
 #include "gl/gl.h"
 
 namespace bounce::gl {
@@ -116,12 +117,12 @@ void MultiresPyramid::setUniforms(Program& program) const
 
 void MultiresPyramid::bind() const
 {
-    position_.bind(kPyramidUnitBase + 0);
-    normal_.bind(kPyramidUnitBase + 1);
-    diffuse_.bind(kPyramidUnitBase + 2);
-    depth_.bind(kPyramidUnitBase + 3);
-    normalMin_.bind(kPyramidUnitBase + 4);
-    normalMax_.bind(kPyramidUnitBase + 5);
+    position_.bind(UNIT_MULTIRES_FIRST + 0);
+    normal_.bind(UNIT_MULTIRES_FIRST + 1);
+    diffuse_.bind(UNIT_MULTIRES_FIRST + 2);
+    depth_.bind(UNIT_MULTIRES_FIRST + 3);
+    normalMin_.bind(UNIT_MULTIRES_FIRST + 4);
+    normalMax_.bind(UNIT_MULTIRES_FIRST + 5);
 }
 
 void MultiresPyramid::build(Frame& frame, PassTimers& timers)
@@ -152,7 +153,7 @@ void MultiresPyramid::upsample(Frame& frame, const Texture& illumination, PassTi
     auto t = timers.scope("upsample");
     frame.bindGBuffer();
     bind();
-    illumination.bind(kIlluminationUnit);
+    illumination.bind(UNIT_MULTIRES_ILLUMINATION);
     frame.indirect().bindImage(0, GL_WRITE_ONLY, 0, GL_RGBA32F);
     setUniforms(upsample_);
     upsample_.use();

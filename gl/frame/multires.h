@@ -46,8 +46,6 @@ MultiresSettings multiresSettingsFrom(const ParamValues& values);
 class MultiresPyramid {
 public:
     static constexpr int kMaxLevels = 16;            // glsl/common/multires.glsl: MULTIRES_MAX_LEVELS
-    static constexpr unsigned kPyramidUnitBase = 14; // pyramid textures at units 14..19
-    static constexpr unsigned kIlluminationUnit = 20; // the flattened illumination buffer upsample() reads
 
     MultiresPyramid(int width, int height, const MultiresSettings& settings);
 
@@ -61,7 +59,7 @@ public:
     // alpha 0 elsewhere.
     void upsample(Frame& frame, const Texture& illumination, PassTimers& timers);
 
-    // Binds the pyramid textures (units kPyramidUnitBase + 0..5) and sets the layout and threshold
+    // Binds the pyramid textures (units UNIT_MULTIRES_FIRST + 0..5, gl/frame/bindings.h) and sets the layout and threshold
     // uniforms of glsl/common/multires.glsl on `program`.
     void bind() const;
     void setUniforms(Program& program) const;

@@ -3,20 +3,12 @@
 #include <algorithm>
 #include <string>
 
+#include "gl/frame/bindings.h"
 #include "gl/gl.h"
 
 namespace bounce::gl {
 
 namespace {
-constexpr unsigned kBatchRaysBinding = 10, kBatchResultsBinding = 11; // raycast_batch.glsl's defaults
-
-std::vector<Define> batchDefines()
-{
-    std::vector<Define> d = RayCaster::defines();
-    d.push_back({"RAY_BATCH_RAYS_BINDING", std::to_string(kBatchRaysBinding)});
-    d.push_back({"RAY_BATCH_RESULTS_BINDING", std::to_string(kBatchResultsBinding)});
-    return d;
-}
 } // namespace
 
 RayCaster::RayCaster(const core::Scene& scene) : bvh_(scene)
@@ -29,20 +21,14 @@ RayCaster::RayCaster(const core::Scene& scene) : bvh_(scene)
 
 void RayCaster::bind() const
 {
-    nodes_.bindBase(GL_SHADER_STORAGE_BUFFER, BVH_NODES_BINDING);
-    triangles_.bindBase(GL_SHADER_STORAGE_BUFFER, BVH_TRIANGLES_BINDING);
-}
-
-std::vector<Define> RayCaster::defines()
-{
-    return {{"BVH_NODES_BINDING", std::to_string(BVH_NODES_BINDING)},
-            {"BVH_TRIANGLES_BINDING", std::to_string(BVH_TRIANGLES_BINDING)}};
+    nodes_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_BVH_NODES);
+    triangles_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_BVH_TRIANGLES);
 }
 
 RayBatch::RayBatch()
-    : compute_(Program::compute("raycast.batch.compute", "frame/raycast_batch.comp", batchDefines())),
+    : compute_(Program::compute("raycast.batch.compute", "frame/raycast_batch.comp", {})),
       fragment_(Program::graphics("raycast.batch.fragment", "frame/fullscreen.vert", "frame/raycast_batch.frag",
-                                  batchDefines())),
+                                  {})),
       vao_("raycast.batch")
 {
 }
@@ -69,8 +55,8 @@ void RayBatch::upload(const std::vector<BatchRay>& rays)
 void RayBatch::cast(const RayCaster& caster, RayStage stage, int queries)
 {
     caster.bind();
-    rays_.bindBase(GL_SHADER_STORAGE_BUFFER, kBatchRaysBinding);
-    results_.bindBase(GL_SHADER_STORAGE_BUFFER, kBatchResultsBinding);
+    rays_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_RAY_BATCH_RAYS);
+    results_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_RAY_BATCH_RESULTS);
     Program& p = stage == RayStage::Compute ? compute_ : fragment_;
     p.set("rayCount", unsigned(count_));
     p.use();

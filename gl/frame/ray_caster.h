@@ -2,7 +2,7 @@
 // glsl/common/raycast.glsl walks (closestHit, anyHit) from compute or fragment shaders.
 //
 //   RayCaster caster(scene);   // builds the BVH and uploads it
-//   caster.bind();             // binds the SSBOs at BVH_NODES_BINDING, BVH_TRIANGLES_BINDING
+//   caster.bind();             // binds the SSBOs at SSBO_BVH_NODES, SSBO_BVH_TRIANGLES
 //   program = Program::compute(..., caster.defines());   // or pass the same #defines to any shader
 //
 // RayBatch casts a batch of rays and reads the hits back (tests, `bounce rays`).
@@ -22,18 +22,12 @@
 
 namespace bounce::gl {
 
-// The SSBO binding points of glsl/common/raycast.glsl (the same numbers are its #define defaults): a frame
-// service, above the 8-17 that technique families use for their own buffers, so both can be bound at once.
-inline constexpr unsigned BVH_NODES_BINDING = 18;
-inline constexpr unsigned BVH_TRIANGLES_BINDING = 19;
 
 class RayCaster {
 public:
     explicit RayCaster(const core::Scene& scene);
 
     void bind() const;
-    // The binding points as #defines for a shader that includes common/raycast.glsl.
-    static std::vector<Define> defines();
     const core::Bvh& bvh() const { return bvh_; }
     std::size_t bytes() const { return nodes_.bytes() + triangles_.bytes(); }
 

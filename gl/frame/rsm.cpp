@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "gl/frame/bindings.h"
 #include "gl/frame/light_views.h"
 #include "gl/gl.h"
 
@@ -187,8 +188,8 @@ void RsmPass::renderViews(Frame& frame)
     glDisable(GL_CULL_FACE); // back faces occlude; the shader makes them reflect nothing
     glDisable(GL_BLEND);
     frame.bindSceneData();
-    frame.gpuScene().baseColorTextures().bind(6);
-    if (solidAngles_) solidAngles_.bind(7);
+    frame.gpuScene().baseColorTextures().bind(UNIT_BASE_COLOR);
+    if (solidAngles_) solidAngles_.bind(UNIT_RSM_SOLID_ANGLES);
     program_.set("exactSolidAngle", settings_.exactSolidAngle ? 1 : 0);
     program_.use();
     const float empty[4] = {0, 0, 0, 0}, noDepth[4] = {1e30f, 0, 0, 0}, nMin[4] = {2, 2, 2, 0}, nMax[4] = {-2, -2, -2, 0};
@@ -256,15 +257,15 @@ void RsmPass::reduce()
 
 void RsmPass::bind() const
 {
-    position_.bind(kUnitBase + 0);
-    normal_.bind(kUnitBase + 1);
-    flux_.bind(kUnitBase + 2);
+    position_.bind(UNIT_RSM_FIRST + 0);
+    normal_.bind(UNIT_RSM_FIRST + 1);
+    flux_.bind(UNIT_RSM_FIRST + 2);
     if (settings_.levels > 0) {
-        depthRange_.bind(kUnitBase + 3);
-        normalMin_.bind(kUnitBase + 4);
-        normalMax_.bind(kUnitBase + 5);
+        depthRange_.bind(UNIT_RSM_FIRST + 3);
+        normalMin_.bind(UNIT_RSM_FIRST + 4);
+        normalMax_.bind(UNIT_RSM_FIRST + 5);
     }
-    if (viewsBuffer_) viewsBuffer_.bindBase(GL_SHADER_STORAGE_BUFFER, kViewsBinding);
+    if (viewsBuffer_) viewsBuffer_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_RSM_VIEWS);
 }
 
 } // namespace bounce::gl

@@ -56,11 +56,6 @@ struct RsmView {
 
 class RsmPass {
 public:
-    // Texture units the RSM binds to (glsl/common/rsm.glsl: RSM_UNIT_BASE): position, normal,
-    // flux, depth range, normal min, normal max at kUnitBase + 0..5; views at SSBO binding kViewsBinding.
-    static constexpr unsigned kUnitBase = 8;
-    static constexpr unsigned kViewsBinding = 10;
-
     explicit RsmPass(const RsmSettings& settings);
 
     // Renders the RSM of every light of the frame (rebuilding the views, which follow moving lights),

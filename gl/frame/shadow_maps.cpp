@@ -5,6 +5,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "gl/frame/bindings.h"
 #include "gl/gl.h"
 
 namespace bounce::gl {
@@ -114,10 +115,10 @@ void ShadowMaps::render(const GpuScene& scene)
 
 void ShadowMaps::bind() const
 {
-    lightsBuffer_.bindBase(GL_SHADER_STORAGE_BUFFER, 1);
-    viewsBuffer_.bindBase(GL_SHADER_STORAGE_BUFFER, 2);
-    polygonsBuffer_.bindBase(GL_SHADER_STORAGE_BUFFER, 3);
-    depth_.bind(5);
+    lightsBuffer_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_LIGHTS);
+    viewsBuffer_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_SHADOW_VIEWS);
+    polygonsBuffer_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_LIGHT_POLYGONS);
+    depth_.bind(UNIT_SHADOW_MAPS);
 }
 
 } // namespace bounce::gl

@@ -31,12 +31,12 @@ uniform int coarsestLevel;
 uniform float depthThreshold;
 uniform float normalThreshold;
 
-layout(binding = 14) uniform sampler2D mrPosition;   // xyz mean world position (m), w pixels with geometry
-layout(binding = 15) uniform sampler2D mrNormal;     // xyz mean of the unit normals (not renormalised), w state
-layout(binding = 16) uniform sampler2D mrDiffuse;    // rgb mean diffuse colour
-layout(binding = 17) uniform sampler2D mrDepthRange; // (min d, max d) eye depth (m); (1e30, -1e30) when empty
-layout(binding = 18) uniform sampler2D mrNormalMin;  // xyz componentwise min of the unit normals; 2 when empty
-layout(binding = 19) uniform sampler2D mrNormalMax;  // xyz componentwise max; -2 when empty
+layout(binding = UNIT_MULTIRES_FIRST + 0) uniform sampler2D mrPosition;   // xyz mean world position (m), w pixels with geometry
+layout(binding = UNIT_MULTIRES_FIRST + 1) uniform sampler2D mrNormal;     // xyz mean of the unit normals (not renormalised), w state
+layout(binding = UNIT_MULTIRES_FIRST + 2) uniform sampler2D mrDiffuse;    // rgb mean diffuse colour
+layout(binding = UNIT_MULTIRES_FIRST + 3) uniform sampler2D mrDepthRange; // (min d, max d) eye depth (m); (1e30, -1e30) when empty
+layout(binding = UNIT_MULTIRES_FIRST + 4) uniform sampler2D mrNormalMin;  // xyz componentwise min of the unit normals; 2 when empty
+layout(binding = UNIT_MULTIRES_FIRST + 5) uniform sampler2D mrNormalMax;  // xyz componentwise max; -2 when empty
 
 struct MultiresPatch {
     vec3 position;     // mean world position of its pixels with geometry

@@ -18,12 +18,7 @@
 #define BOUNCE_RAYCAST_GLSL
 
 // The SSBO binding points (gl/frame/ray_caster.h has the same numbers as C++ constants).
-#ifndef BVH_NODES_BINDING
-#define BVH_NODES_BINDING 18
-#endif
-#ifndef BVH_TRIANGLES_BINDING
-#define BVH_TRIANGLES_BINDING 19
-#endif
+#include "common/bindings.glsl"
 
 struct BvhNode {
     vec3 lo;
@@ -41,8 +36,8 @@ struct BvhTriangle {
     float pad2;
 };
 
-layout(std430, binding = BVH_NODES_BINDING) readonly buffer BvhNodes { BvhNode bvhNodes[]; };
-layout(std430, binding = BVH_TRIANGLES_BINDING) readonly buffer BvhTriangles { BvhTriangle bvhTriangles[]; };
+layout(std430, binding = SSBO_BVH_NODES) readonly buffer BvhNodes { BvhNode bvhNodes[]; };
+layout(std430, binding = SSBO_BVH_TRIANGLES) readonly buffer BvhTriangles { BvhTriangle bvhTriangles[]; };
 
 struct Hit {
     uint triangle;

@@ -24,15 +24,13 @@
 #ifndef BOUNCE_RSM_GLSL
 #define BOUNCE_RSM_GLSL
 
-#ifndef RSM_UNIT_BASE
-#define RSM_UNIT_BASE 8
-#endif
-layout(binding = RSM_UNIT_BASE + 0) uniform sampler2DArray rsmPosition;
-layout(binding = RSM_UNIT_BASE + 1) uniform sampler2DArray rsmNormal;
-layout(binding = RSM_UNIT_BASE + 2) uniform sampler2DArray rsmFlux;
-layout(binding = RSM_UNIT_BASE + 3) uniform sampler2DArray rsmDepthRange;
-layout(binding = RSM_UNIT_BASE + 4) uniform sampler2DArray rsmNormalMin;
-layout(binding = RSM_UNIT_BASE + 5) uniform sampler2DArray rsmNormalMax;
+#include "common/bindings.glsl"
+layout(binding = UNIT_RSM_FIRST + 0) uniform sampler2DArray rsmPosition;
+layout(binding = UNIT_RSM_FIRST + 1) uniform sampler2DArray rsmNormal;
+layout(binding = UNIT_RSM_FIRST + 2) uniform sampler2DArray rsmFlux;
+layout(binding = UNIT_RSM_FIRST + 3) uniform sampler2DArray rsmDepthRange;
+layout(binding = UNIT_RSM_FIRST + 4) uniform sampler2DArray rsmNormalMin;
+layout(binding = UNIT_RSM_FIRST + 5) uniform sampler2DArray rsmNormalMax;
 
 // One light view of the RSM (std430 mirror of RsmPass's GpuRsmView), SSBO binding 10.
 struct RsmView {
@@ -41,7 +39,7 @@ struct RsmView {
     vec4 directionTexel; // xyz view axis (the direction light travels for orthographic views), w: the side of
                          // a texel at the map's centre: at distance 1 (perspective) or in metres (orthographic)
 };
-layout(std430, binding = 10) readonly buffer RsmViews { RsmView rsmViews[]; };
+layout(std430, binding = SSBO_RSM_VIEWS) readonly buffer RsmViews { RsmView rsmViews[]; };
 
 // Atlas texel of patch p (patch coordinates at `level`) in a layer whose level 0 is size x size.
 ivec2 rsmAtlasTexel(ivec2 p, int level, int size)

@@ -27,11 +27,12 @@ struct ShadowView {
     vec4 texelWorld;              // x: world size of one texel at distance 1 (perspective) or absolute (ortho)
 };
 
+#include "common/bindings.glsl"
 #ifndef SCENE_BINDINGS_CUSTOM
-layout(std430, binding = 0) readonly buffer Materials { Material materials[]; };
-layout(std430, binding = 1) readonly buffer Lights { Light lights[]; };
-layout(std430, binding = 2) readonly buffer ShadowViews { ShadowView shadowViews[]; };
-layout(std430, binding = 3) readonly buffer LightPolygons { vec4 lightPolygons[]; };
+layout(std430, binding = SSBO_MATERIALS) readonly buffer Materials { Material materials[]; };
+layout(std430, binding = SSBO_LIGHTS) readonly buffer Lights { Light lights[]; };
+layout(std430, binding = SSBO_SHADOW_VIEWS) readonly buffer ShadowViews { ShadowView shadowViews[]; };
+layout(std430, binding = SSBO_LIGHT_POLYGONS) readonly buffer LightPolygons { vec4 lightPolygons[]; };
 #endif
 
 // The scene's geometry, for shaders that define SCENE_GEOMETRY before including this file (gl/frame/
@@ -39,18 +40,15 @@ layout(std430, binding = 3) readonly buffer LightPolygons { vec4 lightPolygons[]
 // buffers read as std430 arrays, and the emissive triangles with their power CDF. Triangle t is the t-th
 // triangle of the scene's meshes in order, as in core::Scene, the BVH and the path tracer.
 #ifdef SCENE_GEOMETRY
-#define SCENE_VERTICES_BINDING 4
-#define SCENE_INDICES_BINDING 5
-#define SCENE_EMISSIVE_BINDING 6
-layout(std430, binding = SCENE_VERTICES_BINDING) readonly buffer SceneVertices { float sceneVertexData[]; };
-layout(std430, binding = SCENE_INDICES_BINDING) readonly buffer SceneIndices { uint sceneIndices[]; };
+layout(std430, binding = SSBO_SCENE_VERTICES) readonly buffer SceneVertices { float sceneVertexData[]; };
+layout(std430, binding = SSBO_SCENE_INDICES) readonly buffer SceneIndices { uint sceneIndices[]; };
 struct EmissiveTriangle {
     uint triangle;
     uint material;
     float areaM2;
     float powerCdf;               // cumulative share of emitted power up to and including this triangle
 };
-layout(std430, binding = SCENE_EMISSIVE_BINDING) readonly buffer SceneEmissive {
+layout(std430, binding = SSBO_SCENE_EMISSIVE) readonly buffer SceneEmissive {
     uint emissiveCount;
     float emissiveTotalPowerW;    // pi L A summed over the emitters (luminance)
     uint emissivePad0, emissivePad1;

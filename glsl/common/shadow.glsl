@@ -6,7 +6,7 @@
 
 #include "common/scene.glsl"
 
-layout(binding = 5) uniform sampler2DArrayShadow shadowMaps;
+layout(binding = UNIT_SHADOW_MAPS) uniform sampler2DArrayShadow shadowMaps;
 uniform int pcfRadius;
 
 float shadowVisibility(Light l, vec3 p, vec3 n)

@@ -1,7 +1,8 @@
 #version 450 core
 // What the viewer sees: direct light plus the technique's indirect light.
-layout(binding = 0) uniform sampler2D directLight;
-layout(binding = 1) uniform sampler2D indirectLight;
+#include "common/bindings.glsl"
+layout(binding = UNIT_COMPOSITE_DIRECT) uniform sampler2D directLight;
+layout(binding = UNIT_COMPOSITE_INDIRECT) uniform sampler2D indirectLight;
 layout(location = 0) out vec4 outRadiance;
 void main()
 {

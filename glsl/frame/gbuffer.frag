@@ -9,7 +9,7 @@ in vec2 vUv;
 in float vEyeDepth;
 flat in uint vMaterial;
 
-layout(binding = 6) uniform sampler2DArray baseColorTextures;
+layout(binding = UNIT_BASE_COLOR) uniform sampler2DArray baseColorTextures;
 
 layout(location = 0) out vec4 outPosition;
 layout(location = 1) out vec4 outNormal;

@@ -15,7 +15,7 @@
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
-layout(binding = 20) uniform sampler2D mrIllumination;
+layout(binding = UNIT_MULTIRES_ILLUMINATION) uniform sampler2D mrIllumination;
 layout(rgba32f, binding = 0) uniform writeonly image2D indirectOut;
 
 vec4 illuminationAt(int level, ivec2 t) { return texelFetch(mrIllumination, levelOrigin[level] + t, 0); }

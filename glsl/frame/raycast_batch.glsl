@@ -7,12 +7,6 @@
 // both in a compute shader, agreed with Embree.
 #include "common/raycast.glsl"
 
-#ifndef RAY_BATCH_RAYS_BINDING
-#define RAY_BATCH_RAYS_BINDING 10
-#endif
-#ifndef RAY_BATCH_RESULTS_BINDING
-#define RAY_BATCH_RESULTS_BINDING 11
-#endif
 
 struct BatchRay {
     vec4 originTMin;
@@ -27,8 +21,8 @@ struct BatchResult {
     uint pad0, pad1;
 };
 
-layout(std430, binding = RAY_BATCH_RAYS_BINDING) readonly buffer BatchRays { BatchRay batchRays[]; };
-layout(std430, binding = RAY_BATCH_RESULTS_BINDING) writeonly buffer BatchResults { BatchResult batchResults[]; };
+layout(std430, binding = SSBO_RAY_BATCH_RAYS) readonly buffer BatchRays { BatchRay batchRays[]; };
+layout(std430, binding = SSBO_RAY_BATCH_RESULTS) writeonly buffer BatchResults { BatchResult batchResults[]; };
 
 uniform uint rayCount;
 uniform int queries; // 1: closestHit, 2: anyHit (RayBatch casts one query per pass)

@@ -16,8 +16,8 @@ in vec3 vNormal;
 in vec2 vUv;
 flat in uint vMaterial;
 
-layout(binding = 6) uniform sampler2DArray baseColorTextures;
-layout(binding = 7) uniform sampler2DArray texelSolidAngles; // exact omega_t per texel, one layer per view
+layout(binding = UNIT_BASE_COLOR) uniform sampler2DArray baseColorTextures;
+layout(binding = UNIT_RSM_SOLID_ANGLES) uniform sampler2DArray texelSolidAngles; // exact omega_t per texel, one layer per view
 
 uniform int lightIndex;        // spot, point, directional: index into lights[]
 uniform int areaFirst;         // area emitter: its triangles are lights[areaFirst .. areaFirst + areaCount)

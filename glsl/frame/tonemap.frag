@@ -1,6 +1,7 @@
 #version 450 core
 // Display: radiance x 2^exposure, clamped, sRGB-encoded (the PNG writer applies the same curve).
-layout(binding = 0) uniform sampler2D radiance;
+#include "common/bindings.glsl"
+layout(binding = UNIT_TONEMAP_RADIANCE) uniform sampler2D radiance;
 uniform float exposureStops;
 in vec2 vUv;
 layout(location = 0) out vec4 outColor;

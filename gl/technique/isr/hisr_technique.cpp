@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "gl/technique/isr/bindings.h"
 #include "gl/gl.h"
 #include "gl/technique/isr/multires_gather.h"
 #include "gl/technique/isr/multires_technique.h"
@@ -59,7 +60,7 @@ public:
         gather_.markValidFragments(frame, timers);
         const double T = hisrRefineConstant(hisrPeakIntensity(frame.gpuScene().lights()), tau_, rsm_.size());
         stats_.clearToZero();
-        stats_.bindBase(GL_SHADER_STORAGE_BUFFER, 13);
+        stats_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_ISR_TREE_STATS);
         tree_.bindTexels();
         tree_.setUniforms(program_);
         program_.set("alwaysRefine", std::isinf(T) ? 1 : 0);

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <stdexcept>
 
+#include "gl/technique/isr/bindings.h"
 #include "gl/gl.h"
 #include "gl/technique/isr/vpl_sample.h"
 
@@ -32,8 +33,8 @@ int IsrCluster::cluster(const RsmPass& rsm, Buffer& cache, const IsrClusterSetti
         counter_.clearToZero();
         if (rsm.viewCount() > 0) {
             rsm.bind();
-            cache.bindBase(GL_SHADER_STORAGE_BUFFER, 8);
-            counter_.bindBase(GL_SHADER_STORAGE_BUFFER, 9);
+            cache.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_ISR_VPL_CACHE);
+            counter_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_ISR_VPL_COUNT);
             program_.set("rsmSize", rsm.size());
             program_.set("minLevel", s.minLevel);
             program_.set("maxLevel", s.maxLevel);

@@ -5,6 +5,7 @@
 #include <string>
 #include <stdexcept>
 
+#include "gl/technique/isr/bindings.h"
 #include "gl/context/context.h"
 #include "gl/gl.h"
 #include "gl/technique/isr/vpl_gather.h"
@@ -64,7 +65,7 @@ void MultiresGather::markValidFragments(Frame& frame, PassTimers& timers)
     glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE); // the fragments that survive the shader set the stencil to 1
     frame.bindGBuffer();
     pyramid_.bind();
-    counts_.bindBase(GL_SHADER_STORAGE_BUFFER, kCountsBinding);
+    counts_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_ISR_FRAGMENT_COUNTS);
     pyramid_.setUniforms(stencilSetup_);
     stencilSetup_.use();
     frame.drawFullscreen();
@@ -147,9 +148,9 @@ int MultiresGather::refine(Frame& frame, PassTimers& timers)
     illumination_.clear(0, zero);
     frame.bindGBuffer();
     pyramid_.bind();
-    counts_.bindBase(GL_SHADER_STORAGE_BUFFER, kCountsBinding);
-    refineCounts_.bindBase(GL_SHADER_STORAGE_BUFFER, 16);
-    splatVertices_.bindBase(GL_SHADER_STORAGE_BUFFER, 17);
+    counts_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_ISR_FRAGMENT_COUNTS);
+    refineCounts_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_ISR_REFINE_COUNTS);
+    splatVertices_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_ISR_SPLAT_VERTICES);
     illumination_.bindImage(0, GL_WRITE_ONLY);
     pyramid_.setUniforms(refine_);
     refine_.use();
@@ -160,8 +161,8 @@ int MultiresGather::refine(Frame& frame, PassTimers& timers)
     for (int level = pyramid_.coarsestLevel(); level >= 0; --level) {
         const glm::ivec4 rect = pyramid_.levelRect(level);
         const int count = in < 0 ? rect.z * rect.w : in;
-        workLists_[current].bindBase(GL_SHADER_STORAGE_BUFFER, 14);
-        workLists_[1 - current].bindBase(GL_SHADER_STORAGE_BUFFER, 15);
+        workLists_[current].bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_ISR_WORK_IN);
+        workLists_[1 - current].bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_ISR_WORK_OUT);
         refine_.set("level", level);
         refine_.set("inCount", in);
         glDispatchCompute(GLuint((count + 63) / 64), 1, 1);

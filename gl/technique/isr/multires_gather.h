@@ -41,7 +41,6 @@ namespace bounce::gl {
 class MultiresGather {
 public:
     static constexpr int kMaxLevels = MultiresPyramid::kMaxLevels;
-    static constexpr unsigned kCountsBinding = 11; // SSBO of valid fragments per level
 
     MultiresGather(Frame& frame, const MultiresSettings& settings);
 

@@ -3,13 +3,13 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "gl/technique/isr/bindings.h"
 #include "gl/gl.h"
 #include "gl/technique/isr/vpl_sample.h"
 
 namespace bounce::gl {
 
 namespace {
-constexpr unsigned kVplBlockBinding = 0; // glsl/technique/isr/vpl.glsl: VplBlock
 }
 
 int vplsPerBlock()
@@ -46,7 +46,7 @@ int bindVplBlock(const Buffer& cache, int block, int count)
     if (block < 0 || cache.bytes() < offset + blockBytes)
         throw std::logic_error("VPL cache of " + std::to_string(cache.bytes()) + " bytes has no block " +
                                std::to_string(block) + " (allocate it with vplCacheBytes)");
-    glBindBufferRange(GL_UNIFORM_BUFFER, kVplBlockBinding, cache.id(), GLintptr(offset), GLsizeiptr(blockBytes));
+    glBindBufferRange(GL_UNIFORM_BUFFER, UBO_ISR_VPL_BLOCK, cache.id(), GLintptr(offset), GLsizeiptr(blockBytes));
     return std::clamp(count - block * vplsPerBlock(), 0, vplsPerBlock());
 }
 

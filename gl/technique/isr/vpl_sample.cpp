@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "gl/technique/isr/bindings.h"
 #include "gl/gl.h"
 
 namespace bounce::gl {
@@ -23,7 +24,7 @@ int VplSampler::sample(const RsmPass& rsm, Buffer& cache, int side, PassTimers& 
     if (count <= 0) return 0;
     if (cache.bytes() < std::size_t(count) * kVplBytes) throw std::logic_error("VPL cache too small");
     rsm.bind();
-    cache.bindBase(GL_SHADER_STORAGE_BUFFER, 8);
+    cache.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_ISR_VPL_CACHE);
     program_.set("rsmSize", rsm.size());
     program_.set("side", side);
     program_.set("viewCount", rsm.viewCount());

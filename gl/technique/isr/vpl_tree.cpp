@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "gl/technique/isr/bindings.h"
 #include "gl/gl.h"
 
 namespace bounce::gl {
@@ -18,9 +19,9 @@ VplTree::VplTree(int topGrid, float lightDepthThreshold, float lightNormalThresh
         throw std::invalid_argument("VPL tree: the top grid must be a power of two, not " + std::to_string(topGrid));
 }
 
-void VplTree::bind() const { nodes_.bindBase(GL_SHADER_STORAGE_BUFFER, kBinding); }
+void VplTree::bind() const { nodes_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_ISR_VPL_TREE); }
 
-void VplTree::bindTexels() const { texels_.bind(kTexelUnit); }
+void VplTree::bindTexels() const { texels_.bind(UNIT_ISR_VPL_TREE_TEXELS); }
 
 void VplTree::setUniforms(Program& program) const
 {

@@ -18,8 +18,6 @@ namespace bounce::gl {
 
 class VplTree {
 public:
-    static constexpr unsigned kBinding = 12;
-    static constexpr unsigned kTexelUnit = 21; // glsl/technique/isr/hisr_gather.frag: vplTreeTexels
     static constexpr int kMaxDepth = 10;   // glsl: VPL_TREE_MAX_DEPTH
     static constexpr std::size_t kNodeBytes = 64;
 
@@ -30,8 +28,8 @@ public:
 
     // Rebuilds the tree from `rsm` (level 0 of it only; its size must be a power of two).
     void build(const RsmPass& rsm, PassTimers& timers);
-    void bind() const; // the nodes at SSBO binding kBinding (the build passes write them there)
-    // The nodes as a buffer texture at unit kTexelUnit (four RGBA32F texels each): what the gather reads.
+    void bind() const; // the nodes at SSBO_ISR_VPL_TREE (the build passes write them there)
+    // The nodes as a buffer texture at UNIT_ISR_VPL_TREE_TEXELS (four RGBA32F texels each): what the gather reads.
     void bindTexels() const;
     // Sets the layout uniforms of glsl/technique/isr/vpl_tree.glsl on `program`.
     void setUniforms(Program& program) const;

@@ -15,15 +15,16 @@
 // the next finer level, so after a node that is not refined the walk moves to its next sibling, first
 // climbing while it was the last of four. The tree is read as one flat texture, as the paper stores it
 // (a buffer texture over the tree's buffer: four RGBA32F texels per node, of which the walk reads three).
+#include "technique/isr/bindings.glsl"
 #include "common/multires.glsl"
 #include "technique/isr/vpl.glsl"
 #include "technique/isr/vpl_tree.glsl"
 
 layout(early_fragment_tests) in;
 
-layout(binding = 21) uniform samplerBuffer vplTreeTexels; // node i: texels 4i .. 4i + 3 (vpl_tree.glsl)
+layout(binding = UNIT_ISR_VPL_TREE_TEXELS) uniform samplerBuffer vplTreeTexels; // node i: texels 4i .. 4i + 3 (vpl_tree.glsl)
 // Statistics: clusters gathered, as a 64-bit sum in two words (low, high), and fragments.
-layout(std430, binding = 13) buffer TreeStats { uint gatheredLow; uint gatheredHigh; uint fragments; };
+layout(std430, binding = SSBO_ISR_TREE_STATS) buffer TreeStats { uint gatheredLow; uint gatheredHigh; uint fragments; };
 
 uniform int rootBegin;       // this draw's top patches [rootBegin, rootEnd) of views x topGrid^2
 uniform int rootEnd;         // (long traversals take several additive draws)

@@ -10,9 +10,10 @@
 // compute pass that appends the survivors to the VPL cache through an atomic counter.
 #include "technique/isr/vpl_write.glsl"
 
+#include "technique/isr/bindings.glsl"
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 
-layout(std430, binding = 9) buffer VplCount { uint vplCount; uint vplsPerLevel[16]; };
+layout(std430, binding = SSBO_ISR_VPL_COUNT) buffer VplCount { uint vplCount; uint vplsPerLevel[16]; };
 
 uniform int rsmSize;
 uniform int minLevel;

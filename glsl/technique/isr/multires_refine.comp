@@ -7,20 +7,21 @@
 // stencil pass selects (common/multires.glsl). A valid fragment is counted, marked in the
 // illumination buffer's alpha exactly as the stencil pass marks it (for the upsampling), and, unless it
 // reflects nothing, appended to the splat list: the vertex array every VPL's splat draws.
+#include "technique/isr/bindings.glsl"
 #include "common/multires.glsl"
 
 layout(local_size_x = 64) in;
 
-layout(std430, binding = 11) buffer FragmentCounts { uint fragmentCounts[]; };
-layout(std430, binding = 14) readonly buffer WorkIn { uint workIn[]; };   // patches x | y << 16
-layout(std430, binding = 15) writeonly buffer WorkOut { uint workOut[]; };
-layout(std430, binding = 16) buffer RefineCounts { uint nextCount; uint splatCount; };
+layout(std430, binding = SSBO_ISR_FRAGMENT_COUNTS) buffer FragmentCounts { uint fragmentCounts[]; };
+layout(std430, binding = SSBO_ISR_WORK_IN) readonly buffer WorkIn { uint workIn[]; };   // patches x | y << 16
+layout(std430, binding = SSBO_ISR_WORK_OUT) writeonly buffer WorkOut { uint workOut[]; };
+layout(std430, binding = SSBO_ISR_REFINE_COUNTS) buffer RefineCounts { uint nextCount; uint splatCount; };
 // One vertex per valid fragment: the patch's mean position and unit normal, its texel in the flattened buffer.
 struct SplatVertex {
     vec4 positionTexelX;
     vec4 normalTexelY;
 };
-layout(std430, binding = 17) writeonly buffer SplatVertices { SplatVertex splatVertices[]; };
+layout(std430, binding = SSBO_ISR_SPLAT_VERTICES) writeonly buffer SplatVertices { SplatVertex splatVertices[]; };
 layout(rgba32f, binding = 0) uniform writeonly image2D marksOut; // the illumination buffer (cleared)
 
 uniform int level;   // the level of this dispatch's patches

@@ -4,9 +4,10 @@
 // stencil ends up set at exactly the valid ones (common/multires.glsl: fragmentValid). Valid
 // fragments are also counted per level (one atomic add each: they are few, and the count costs no pass),
 // and each marks which neighbours the upsampling may interpolate with (multires.glsl: sameSurfaceNeighbours).
+#include "technique/isr/bindings.glsl"
 #include "common/multires.glsl"
 
-layout(std430, binding = 11) buffer FragmentCounts { uint fragmentCounts[]; };
+layout(std430, binding = SSBO_ISR_FRAGMENT_COUNTS) buffer FragmentCounts { uint fragmentCounts[]; };
 
 // Alpha of the illumination buffer: 1 + the mask of same-surface neighbours for the upsampling (the
 // gather writes rgb only). Fragments that are not valid keep the cleared 0.

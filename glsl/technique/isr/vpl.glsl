@@ -3,6 +3,8 @@
 #ifndef BOUNCE_ISR_VPL_GLSL
 #define BOUNCE_ISR_VPL_GLSL
 
+#include "technique/isr/bindings.glsl"
+
 struct Vpl {
     vec4 positionArea;   // xyz world position (m), w: A_j, the patch area (m^2), Eq. 3
     vec4 normal;         // xyz unit normal N_j, w: hierarchy level (0 = one RSM texel)
@@ -15,7 +17,7 @@ struct Vpl {
 // and llvmpipe loads it without the per-lane loop it runs for every SSBO load (3x faster gathers here).
 // The passes that write the cache bind it as an SSBO (vpl_write.glsl).
 #ifdef VPL_BLOCK_SIZE
-layout(std140, binding = 0) uniform VplBlock { Vpl vplBlock[VPL_BLOCK_SIZE]; };
+layout(std140, binding = UBO_ISR_VPL_BLOCK) uniform VplBlock { Vpl vplBlock[VPL_BLOCK_SIZE]; };
 #endif
 
 // Outgoing radiance at receiver i (position p, normal n, diffuse colour rho_i) from VPL j, Eqs. 1 and 5

@@ -2,12 +2,13 @@
 // VPL tree, level 0 (§3.5; technique/isr/vpl_tree.glsl): every RSM texel becomes a leaf, its VPL exactly
 // as rsm-full makes it (position, normal, reflected flux, solid angle, area A_t = omega_t |V_t|^2, Eq. 3),
 // plus its light distance |V_t| for the refinement bound. Unlit texels keep zero flux and area.
+#include "technique/isr/bindings.glsl"
 #include "common/rsm.glsl"
 #include "technique/isr/vpl_tree.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
-layout(std430, binding = 12) writeonly buffer VplTreeOut { VplNode treeOut[]; };
+layout(std430, binding = SSBO_ISR_VPL_TREE) writeonly buffer VplTreeOut { VplNode treeOut[]; };
 
 uniform int rsmSize;
 

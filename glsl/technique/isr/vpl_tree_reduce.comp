@@ -10,9 +10,10 @@
 // the sign of the cluster's |V_j| (vpl_tree.glsl), so that the gather decides on three texels.
 #include "technique/isr/vpl_tree.glsl"
 
+#include "technique/isr/bindings.glsl"
 layout(local_size_x = 64) in;
 
-layout(std430, binding = 12) buffer VplTree { VplNode tree[]; };
+layout(std430, binding = SSBO_ISR_VPL_TREE) buffer VplTree { VplNode tree[]; };
 
 uniform int level;
 uniform int subtreeCount;

@@ -4,9 +4,10 @@
 #define BOUNCE_ISR_VPL_WRITE_GLSL
 
 #include "technique/isr/vpl.glsl"
+#include "technique/isr/bindings.glsl"
 #include "common/rsm.glsl"
 
-layout(std430, binding = 8) writeonly buffer VplCacheOut { Vpl outVpls[]; };
+layout(std430, binding = SSBO_ISR_VPL_CACHE) writeonly buffer VplCacheOut { Vpl outVpls[]; };
 
 // A VPL that contributes nothing anywhere (zero flux, zero normal, unit area: no 0/0 in Eq. 1).
 Vpl inertVpl()

@@ -1,0 +1,46 @@
+// Binding points of the frame's data, named once for GLSL and C++: shaders include this file through
+// the headers that declare the blocks (gbuffer.glsl, scene.glsl, shadow.glsl, rsm.glsl, multires.glsl,
+// raycast.glsl), and gl/frame/bindings.h includes the very same file, so that the C++ that binds a
+// buffer and the shader that reads it cannot disagree. Only #define lines and comments: the file is
+// valid GLSL and valid C++.
+//
+// Shader storage buffers (glBindBufferBase(GL_SHADER_STORAGE_BUFFER, slot)).
+// Slots not named here (7-9, 11-17, 22 and up) belong to the technique that binds them; a family names
+// its own in glsl/technique/<family>/bindings.glsl with the same pattern.
+#ifndef BOUNCE_BINDINGS_GLSL
+#define BOUNCE_BINDINGS_GLSL
+
+#define SSBO_MATERIALS 0         // scene.glsl: Material per material index
+#define SSBO_LIGHTS 1            // scene.glsl: Light per light of GpuScene::lights()
+#define SSBO_SHADOW_VIEWS 2      // scene.glsl: ShadowView per shadow-map layer
+#define SSBO_LIGHT_POLYGONS 3    // scene.glsl: area-light triangle corners
+#define SSBO_SCENE_VERTICES 4    // scene.glsl (SCENE_GEOMETRY): GpuVertex, 9 floats each
+#define SSBO_SCENE_INDICES 5     // scene.glsl (SCENE_GEOMETRY): three per triangle
+#define SSBO_SCENE_EMISSIVE 6    // scene.glsl (SCENE_GEOMETRY): emissive triangles and their power CDF
+#define SSBO_RSM_VIEWS 10        // rsm.glsl: RsmView per RSM layer
+#define SSBO_BVH_NODES 18        // raycast.glsl: the threaded BVH
+#define SSBO_BVH_TRIANGLES 19    // raycast.glsl: triangles in BVH order
+#define SSBO_RAY_BATCH_RAYS 20   // frame/raycast_batch.glsl: rays of RayBatch (bounce rays, tests)
+#define SSBO_RAY_BATCH_RESULTS 21
+
+// Texture units (glBindTextureUnit(unit, texture)). Units 21 and up belong to the technique.
+#define UNIT_G_POSITION 0        // gbuffer.glsl
+#define UNIT_G_NORMAL 1
+#define UNIT_G_DIFFUSE 2
+#define UNIT_G_SPECULAR 3
+#define UNIT_G_EMISSION 4
+#define UNIT_SHADOW_MAPS 5       // shadow.glsl: one layer per shadow view
+#define UNIT_BASE_COLOR 6        // gbuffer.frag, rsm.frag: base-colour textures, one layer each
+#define UNIT_RSM_SOLID_ANGLES 7  // rsm.frag: exact texel solid angles, one layer per view
+#define UNIT_RSM_FIRST 8         // rsm.glsl: position, normal, flux, depth range, normal min, max: 8..13
+#define UNIT_MULTIRES_FIRST 14   // multires.glsl: position, normal, diffuse, depth range, normal min, max: 14..19
+#define UNIT_MULTIRES_ILLUMINATION 20 // frame/multires_upsample.comp: the flattened illumination buffer
+// The composite and tone-map passes read no G-buffer; their inputs take the first units.
+#define UNIT_COMPOSITE_DIRECT 0
+#define UNIT_COMPOSITE_INDIRECT 1
+#define UNIT_TONEMAP_RADIANCE 0
+
+// Image units (glBindImageTexture) are bound right before the dispatch that uses them and belong to
+// that pass: each compute shader numbers its images from 0.
+
+#endif

@@ -1,0 +1,19 @@
+// Binding points of image-space radiosity's own buffers, for GLSL and C++ alike
+// (gl/technique/isr/bindings.h includes this file), in the slots glsl/common/bindings.glsl leaves to
+// techniques. Only #define lines and comments.
+#ifndef BOUNCE_ISR_BINDINGS_GLSL
+#define BOUNCE_ISR_BINDINGS_GLSL
+
+#define UBO_ISR_VPL_BLOCK 0          // vpl.glsl: one block of the VPL cache per gather draw
+#define SSBO_ISR_VPL_CACHE 8         // vpl_write.glsl: the VPL cache written by sampling and clustering
+#define SSBO_ISR_VPL_COUNT 9         // isr_cluster.comp: VPLs written, per level
+#define SSBO_ISR_FRAGMENT_COUNTS 11  // multires_stencil.frag, multires_refine.comp: valid fragments per level
+#define SSBO_ISR_VPL_TREE 12         // vpl_tree_*.comp: the VPL tree's nodes
+#define SSBO_ISR_TREE_STATS 13       // hisr_gather.frag: VPLs gathered and fragments
+#define SSBO_ISR_WORK_IN 14          // multires_refine.comp: patches to test at this level
+#define SSBO_ISR_WORK_OUT 15         //   and their children for the next
+#define SSBO_ISR_REFINE_COUNTS 16
+#define SSBO_ISR_SPLAT_VERTICES 17
+#define UNIT_ISR_VPL_TREE_TEXELS 21  // hisr_gather.frag: the VPL tree as a buffer texture
+
+#endif

@@ -1,0 +1,112 @@
+// Binding points are named once (glsl/common/bindings.glsl, glsl/technique/<family>/bindings.glsl) and
+// used by name on both sides: these tests read the sources and fail on a literal slot number in a
+// shader's block or sampler declaration or in a C++ bind call, and on two names sharing a slot.
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "gl/frame/bindings.h"
+#include "gl/technique/isr/bindings.h"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+fs::path root()
+{
+    const char* r = std::getenv("BOUNCE_ROOT");
+    return r ? fs::path(r) : fs::path(BOUNCE_SOURCE_ROOT);
+}
+
+std::string read(const fs::path& p)
+{
+    std::ifstream in(p);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+// Every line of the files under `dir` (recursively) with these extensions that matches `re`, as
+// "path:line: text".
+std::vector<std::string> grep(const fs::path& dir, const std::vector<std::string>& exts, const std::regex& re)
+{
+    std::vector<std::string> hits;
+    for (const auto& e : fs::recursive_directory_iterator(dir)) {
+        if (!e.is_regular_file()) continue;
+        if (std::find(exts.begin(), exts.end(), e.path().extension().string()) == exts.end()) continue;
+        std::istringstream in(read(e.path()));
+        std::string line;
+        for (int n = 1; std::getline(in, line); ++n)
+            if (std::regex_search(line, re)) hits.push_back(e.path().string() + ":" + std::to_string(n) + ": " + line);
+    }
+    return hits;
+}
+
+// name -> value of every "#define NAME value" in a bindings file.
+std::map<std::string, int> table(const fs::path& p)
+{
+    std::map<std::string, int> t;
+    const std::regex def(R"(^#define ((SSBO|UBO|UNIT)_\w+) (\d+))");
+    std::istringstream in(read(p));
+    std::string line;
+    std::smatch m;
+    while (std::getline(in, line))
+        if (std::regex_search(line, m, def)) t[m[1]] = std::stoi(m[3]);
+    return t;
+}
+
+} // namespace
+
+TEST(Bindings, ShadersDeclareBlocksAndSamplersByName)
+{
+    // Image units stay literal: each compute pass numbers its own images from 0 (bindings.glsl says so).
+    const std::regex literal(R"(layout\s*\((std140|std430)?[,\s]*binding\s*=\s*\d+\s*\)|layout\s*\(\s*binding\s*=\s*\d+)");
+    std::vector<std::string> hits;
+    for (const char* dir : {"glsl/common", "glsl/frame", "glsl/technique"})
+        for (const std::string& h : grep(root() / dir, {".glsl", ".vert", ".frag", ".comp", ".geom"}, literal))
+            hits.push_back(h);
+    EXPECT_TRUE(hits.empty()) << "literal binding numbers (name them in a bindings.glsl):\n" << ::testing::PrintToString(hits);
+}
+
+TEST(Bindings, CppBindsByName)
+{
+    const std::regex literal(R"((bindBase\(GL_(SHADER_STORAGE|UNIFORM)_BUFFER,\s*\d+\))|(\.bind\(\d+\))|(glBindBufferRange\(GL_\w+,\s*\d+,))");
+    std::vector<std::string> hits;
+    for (const char* dir : {"gl/frame", "gl/technique", "app"})
+        for (const std::string& h : grep(root() / dir, {".cpp", ".h"}, literal)) hits.push_back(h);
+    EXPECT_TRUE(hits.empty()) << "literal binding numbers in C++ (use gl/frame/bindings.h):\n" << ::testing::PrintToString(hits);
+}
+
+TEST(Bindings, NoTwoNamesShareASlot)
+{
+    const auto frame = table(root() / "glsl/common/bindings.glsl");
+    const auto isr = table(root() / "glsl/technique/isr/bindings.glsl");
+    ASSERT_FALSE(frame.empty());
+    ASSERT_FALSE(isr.empty());
+    // The passes that read no G-buffer (composite, tone map) reuse the first units on purpose.
+    const std::vector<std::string> passLocal{"UNIT_COMPOSITE_DIRECT", "UNIT_COMPOSITE_INDIRECT", "UNIT_TONEMAP_RADIANCE"};
+    // RSM and multires pyramid names are the first of six units each.
+    auto span = [](const std::string& n) { return n == "UNIT_RSM_FIRST" || n == "UNIT_MULTIRES_FIRST" ? 6 : 1; };
+    std::map<std::string, std::string> used; // "SSBO 4" -> name
+    for (const auto* t : {&frame, &isr})
+        for (const auto& [name, value] : *t) {
+            if (std::find(passLocal.begin(), passLocal.end(), name) != passLocal.end()) continue;
+            const std::string kind = name.substr(0, name.find('_'));
+            for (int i = 0; i < span(name); ++i) {
+                const std::string key = kind + " " + std::to_string(value + i);
+                EXPECT_EQ(used.count(key), 0u) << name << " and " << used[key] << " share " << key;
+                used[key] = name;
+            }
+        }
+    // The C++ side is the same file: spot-check that the macros are what the table says.
+    EXPECT_EQ(SSBO_BVH_NODES, frame.at("SSBO_BVH_NODES"));
+    EXPECT_EQ(UNIT_ISR_VPL_TREE_TEXELS, isr.at("UNIT_ISR_VPL_TREE_TEXELS"));
+}
