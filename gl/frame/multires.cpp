@@ -26,14 +26,19 @@ int ceilLog2(int n)
 std::vector<ParamDecl> multiresParams()
 {
     const MultiresSettings d;
-    return {
+    // The thresholds are uniforms of the passes that test patches: changing them recompiles nothing.
+    std::vector<ParamDecl> p{
         {"depthThreshold", ParamType::Float, d.depthThreshold, 0, 100,
-         "eye-space discontinuity: a patch is subdivided when (max - min) eye depth >= this x min depth; 0: full resolution"},
+         "eye-space discontinuity: a patch is subdivided when (max - min) eye depth >= this x min depth; 0: full resolution",
+         false, ParamUpdate::Uniform},
         {"normalThreshold", ParamType::Float, d.normalThreshold, 0, 4,
-         "eye-space discontinuity: a patch is subdivided when any normal component spans >= this; 0: full resolution"},
-        {"coarsestLevel", ParamType::Int, double(d.coarsestLevel), -1, MultiresPyramid::kMaxLevels - 1,
-         "coarsest multiresolution patch: 2^level pixels per side; -1: the paper's 64x64 coarsest buffer (8x8 pixels at 512^2)"},
+         "eye-space discontinuity: a patch is subdivided when any normal component spans >= this; 0: full resolution",
+         false, ParamUpdate::Uniform},
+        {"coarsestLevel", ParamType::Int, kAutoValue, 0, MultiresPyramid::kMaxLevels - 1,
+         "coarsest multiresolution patch: 2^level pixels per side; auto: the paper's 64x64 coarsest buffer (8x8 pixels at 512^2)"},
     };
+    p.back().allowAuto = true;
+    return p;
 }
 
 MultiresSettings multiresSettingsFrom(const ParamValues& v)
@@ -41,7 +46,7 @@ MultiresSettings multiresSettingsFrom(const ParamValues& v)
     MultiresSettings s;
     s.depthThreshold = float(v.get("depthThreshold"));
     s.normalThreshold = float(v.get("normalThreshold"));
-    s.coarsestLevel = v.getInt("coarsestLevel");
+    s.coarsestLevel = v.isAuto("coarsestLevel") ? MultiresSettings::kAutoLevel : v.getInt("coarsestLevel");
     return s;
 }
 

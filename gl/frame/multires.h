@@ -63,6 +63,12 @@ public:
     // uniforms of glsl/common/multires.glsl on `program`.
     void bind() const;
     void setUniforms(Program& program) const;
+    // New discontinuity thresholds for the next build (uniforms: nothing is reallocated or recompiled).
+    void setThresholds(float depthThreshold, float normalThreshold)
+    {
+        settings_.depthThreshold = depthThreshold;
+        settings_.normalThreshold = normalThreshold;
+    }
 
     const MultiresSettings& settings() const { return settings_; }
     int width() const { return width_; }

@@ -11,6 +11,9 @@
 //   - in the furnace (every surface albedo rho, emission L_e, Lambertian) its indirect light stays under
 //     the closed form of its light paths: one bounce of indirect light at most rho L_e (the second
 //     reflection of the furnace's light is rho^2 L_e), all bounces at most L_e rho / (1 - rho).
+// A second case per technique (UniformsMatchARebuild) changes each parameter declared
+// ParamUpdate::Uniform on a running technique and checks that the image equals that of the technique
+// made anew with the same value: a uniform the technique forgets to apply fails it.
 #include <cmath>
 #include <cstdio>
 #include <set>
@@ -153,6 +156,50 @@ TEST_P(Conformance, Technique)
                     << "indirect light above the furnace's closed form for " << core::lightPathsName(info.lightPaths);
             }
         }
+    }
+}
+
+TEST_P(Conformance, UniformsMatchARebuild)
+{
+    const gl::TechniqueInfo& info = gl::findTechnique(GetParam());
+    const core::Scene scene = core::makeCornell("cornell-spot");
+    gl::ParamValues frameValues(gl::frameParams());
+    frameValues.setValue("shadow.size", 256);
+    constexpr int w = 48, h = 40;
+    auto indirectOf = [&](gl::Renderer& r) {
+        r.renderFrame(false);
+        return r.frame().read(r.frame().indirect());
+    };
+    // Coarse patches even at this small size, so that the eye-space thresholds have patches to refine.
+    gl::ParamValues defaults(info.params);
+    for (const gl::ParamDecl& d : info.params)
+        if (d.name == "coarsestLevel") defaults.setValue(d.name, 3);
+    for (const gl::ParamDecl& d : info.params) {
+        if (d.update != gl::ParamUpdate::Uniform) continue;
+        SCOPED_TRACE(info.name + ": " + d.name);
+        // The end of its range farthest from the default: the change most likely to show.
+        gl::ParamValues changed = defaults;
+        const double value = d.min != d.defaultValue ? d.min : d.max;
+        changed.setValue(d.name, value);
+
+        gl::Renderer running(scene, info.name, frameValues, defaults, w, h);
+        const core::Image before = indirectOf(running);
+        EXPECT_FALSE(running.setTechniqueValues(changed)) << "a uniform change rebuilt the technique";
+        const core::Image updated = indirectOf(running);
+        gl::Renderer rebuilt(scene, info.name, frameValues, changed, w, h);
+        const core::Image fresh = indirectOf(rebuilt);
+
+        double diff = 0.0, changeByParam = 0.0, scale = 0.0;
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x)
+                for (int c = 0; c < 3; ++c) {
+                    diff = std::max(diff, double(std::abs(updated.at(x, y)[c] - fresh.at(x, y)[c])));
+                    changeByParam = std::max(changeByParam, double(std::abs(before.at(x, y)[c] - fresh.at(x, y)[c])));
+                    scale = std::max(scale, double(std::abs(fresh.at(x, y)[c])));
+                }
+        std::printf("[ uniform  ] %s %s=%g: changes the image by %.3g, uniform vs rebuild %.3g (max %.3g)\n",
+                    info.name.c_str(), d.name.c_str(), value, changeByParam, diff, scale);
+        EXPECT_LE(diff, 1e-5 * std::max(scale, 1e-6)) << "setting " << d.name << " as a uniform differs from a rebuild";
     }
 }
 

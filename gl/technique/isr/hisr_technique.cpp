@@ -79,6 +79,13 @@ public:
         gather_.upsample(frame, timers);
     }
 
+    void setUniforms(const ParamValues& values) override
+    {
+        tau_ = values.get("tau");
+        tree_.setThresholds(float(values.get("lightDepthThreshold")), float(values.get("lightNormalThreshold")));
+        gather_.setThresholds(values);
+    }
+
     std::vector<Counter> counters() const override
     {
         std::vector<Counter> c = gather_.counters();
@@ -123,22 +130,26 @@ TechniqueInfo hisrTechniqueInfo()
     info.summary = "hierarchical image-space radiosity: per-fragment VPL clusters from a VPL tree of the full RSM";
     info.params = {
         {"tau", ParamType::Float, 1e-4, 0, 1e30,
-         "Eq. 8 error threshold tau (W/sr, as the light's intensity I): larger, coarser clusters; 0: every texel (rsm-full)"},
+         "Eq. 8 error threshold tau (W/sr, as the light's intensity I): larger, coarser clusters; 0: every texel (rsm-full)",
+         false, ParamUpdate::Uniform},
         {"topGrid", ParamType::Int, 16, 1, 1024,
          "top patches per side of each view where the traversal starts, a power of two (the paper: 16)", true},
         {"lightDepthThreshold", ParamType::Float, 0.1, 0, 1e30,
-         "departure: clusters whose relative light-distance range exceeds this are always refined; 1e30: the paper"},
+         "departure: clusters whose relative light-distance range exceeds this are always refined; 1e30: the paper",
+         false, ParamUpdate::Uniform},
         {"lightNormalThreshold", ParamType::Float, 0.01, 0, 1e30,
-         "departure: clusters with 1 - |mean unit normal| above this are always refined; 1e30: the paper"},
-        {"lightRefineLevel", ParamType::Int, -1, -1, VplTree::kMaxDepth,
-         "departure: clusters spanning a light-space discontinuity are always refined down to this level; -1: log2(rsmSize / 128)"},
+         "departure: clusters with 1 - |mean unit normal| above this are always refined; 1e30: the paper",
+         false, ParamUpdate::Uniform},
+        {"lightRefineLevel", ParamType::Int, kAutoValue, 0, VplTree::kMaxDepth,
+         "departure: clusters spanning a light-space discontinuity are always refined down to this level; auto: log2(rsmSize / 128)"},
     };
+    info.params.back().allowAuto = true;
     for (const ParamDecl& p : rsmParams()) info.params.push_back(p);
     for (const ParamDecl& p : multiresParams()) info.params.push_back(p);
     info.create = [](Frame& frame, const ParamValues& v) -> std::unique_ptr<Technique> {
         RsmSettings rsm = rsmSettingsFrom(v);
         requireRsmSize("hisr", rsm.size, true, 1024); // the VPL tree is a quadtree over each view
-        int level = v.getInt("lightRefineLevel");
+        int level = v.isAuto("lightRefineLevel") ? -1 : v.getInt("lightRefineLevel");
         if (level < 0) level = std::max(0, int(std::bit_width(unsigned(rsm.size))) - 8); // log2(size / 128)
         return std::make_unique<Hisr>(frame, rsm, v.get("tau"), v.getInt("topGrid"), float(v.get("lightDepthThreshold")),
                                       float(v.get("lightNormalThreshold")), level, multiresSettingsFrom(v));

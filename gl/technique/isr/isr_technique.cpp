@@ -35,6 +35,13 @@ public:
         else gather_->gather(frame, cache_, count_, timers);
     }
 
+    void setUniforms(const ParamValues& values) override
+    {
+        settings_.depthThreshold = float(values.get("lightDepthThreshold"));
+        settings_.normalThreshold = float(values.get("lightNormalThreshold"));
+        if (multires_) multires_->setThresholds(values);
+    }
+
     std::vector<Counter> counters() const override
     {
         std::vector<Counter> c{{"vpls", double(count_)}};
@@ -78,9 +85,11 @@ TechniqueInfo isrTechniqueInfo()
                    "gathered at multiresolution eye-space patches";
     info.params = {
         {"lightDepthThreshold", ParamType::Float, 0.05, 0, 100,
-         "light-space discontinuity: largest relative depth range (max d - min d) / min d of one VPL's patch"},
+         "light-space discontinuity: largest relative depth range (max d - min d) / min d of one VPL's patch",
+         false, ParamUpdate::Uniform},
         {"lightNormalThreshold", ParamType::Float, 0.2, 0, 4,
-         "light-space discontinuity: largest range of any normal component over one VPL's patch"},
+         "light-space discontinuity: largest range of any normal component over one VPL's patch",
+         false, ParamUpdate::Uniform},
         {"maxLevel", ParamType::Int, 4, 0, 11, "coarsest VPL patch: 2^maxLevel RSM texels per side"},
         {"minLevel", ParamType::Int, 2, 0, 11,
          "finest VPL patch: 2^minLevel RSM texels per side (the initial dense sampling of Fig. 7)"},

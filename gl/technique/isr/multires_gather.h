@@ -50,6 +50,11 @@ public:
     // The same passes one by one, for gathers other than the VPL cache (hisr's VPL tree): the program
     // given to gather() is made by gatherProgram() from a fragment shader that includes common/multires.glsl.
     void buildPyramid(Frame& frame, PassTimers& timers);
+    // The eye-space thresholds of multiresSettingsFrom(values), applied from the next frame on.
+    void setThresholds(const ParamValues& values)
+    {
+        pyramid_.setThresholds(float(values.get("depthThreshold")), float(values.get("normalThreshold")));
+    }
     void markValidFragments(Frame& frame, PassTimers& timers);
     // Draws the stenciled quad `draws` times with additive blending (rgb), calling setupDraw(program, i)
     // before draw i: gathers are split into blocks of the VPL cache (vpl_gather.h) or ranges of top

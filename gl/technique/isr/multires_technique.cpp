@@ -37,6 +37,8 @@ public:
         gather_.upsample(frame, timers);
     }
 
+    void setUniforms(const ParamValues& values) override { gather_.setThresholds(values); }
+
     std::vector<Counter> counters() const override
     {
         std::vector<Counter> c{{"vpls", double(count_)}};

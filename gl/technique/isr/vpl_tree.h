@@ -28,6 +28,12 @@ public:
 
     // Rebuilds the tree from `rsm` (level 0 of it only; its size must be a power of two).
     void build(const RsmPass& rsm, PassTimers& timers);
+    // New light-space discontinuity thresholds for the next build (uniforms of its reduce pass).
+    void setThresholds(float lightDepthThreshold, float lightNormalThreshold)
+    {
+        lightDepthThreshold_ = lightDepthThreshold;
+        lightNormalThreshold_ = lightNormalThreshold;
+    }
     void bind() const; // the nodes at SSBO_ISR_VPL_TREE (the build passes write them there)
     // The nodes as a buffer texture at UNIT_ISR_VPL_TREE_TEXELS (four RGBA32F texels each): what the gather reads.
     void bindTexels() const;
