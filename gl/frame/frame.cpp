@@ -2,6 +2,7 @@
 
 #include "gl/frame/bindings.h"
 #include "gl/gl.h"
+#include "gl/resource/pass_state.h"
 
 namespace bounce::gl {
 
@@ -100,15 +101,12 @@ void Frame::renderShadowMaps(PassTimers& timers)
 void Frame::renderGBuffer(PassTimers& timers)
 {
     auto t = timers.scope("gbuffer");
-    gbufferFbo_.bind();
-    glViewport(0, 0, settings_.width, settings_.height);
+    PassState state = PassState::fullscreen(gbufferFbo_, settings_.width, settings_.height);
+    state.depthTest = true; // no culling: back faces of one-sided surfaces are drawn black (gbuffer.frag)
+    state.apply();          // before the clears, which obey the write masks
     const float zero[4] = {0, 0, 0, 0};
     for (int i = 0; i < 5; ++i) glClearNamedFramebufferfv(gbufferFbo_.id(), GL_COLOR, i, zero);
     glClearNamedFramebufferfi(gbufferFbo_.id(), GL_DEPTH_STENCIL, 0, 1.0f, 0);
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
-    glDepthMask(GL_TRUE);
-    glDisable(GL_CULL_FACE); // back faces of one-sided surfaces are drawn black (gbuffer.frag)
     gbufferProgram_.set("viewProj", projection() * view());
     gbufferProgram_.set("view", view());
     gpu_.materials().bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_MATERIALS);
@@ -142,9 +140,7 @@ void Frame::drawFullscreen() const
 void Frame::renderDirect(PassTimers& timers)
 {
     auto t = timers.scope("direct");
-    directFbo_.bind();
-    glViewport(0, 0, settings_.width, settings_.height);
-    glDisable(GL_DEPTH_TEST);
+    PassState::fullscreen(directFbo_, settings_.width, settings_.height).apply();
     bindGBuffer();
     bindSceneData();
     directProgram_.set("cameraPosition", camera_.position);
@@ -164,9 +160,7 @@ void Frame::clearIndirect()
 void Frame::composite(PassTimers& timers)
 {
     auto t = timers.scope("composite");
-    compositeFbo_.bind();
-    glViewport(0, 0, settings_.width, settings_.height);
-    glDisable(GL_DEPTH_TEST);
+    PassState::fullscreen(compositeFbo_, settings_.width, settings_.height).apply();
     direct_.bind(UNIT_COMPOSITE_DIRECT);
     indirect_.bind(UNIT_COMPOSITE_INDIRECT);
     compositeProgram_.use();

@@ -5,6 +5,7 @@
 
 #include "gl/frame/bindings.h"
 #include "gl/gl.h"
+#include "gl/resource/pass_state.h"
 
 namespace bounce::gl {
 
@@ -68,10 +69,7 @@ void RayBatch::cast(const RayCaster& caster, RayStage stage, int queries)
             glDispatchCompute(GLuint((count_ + 63) / 64), 1, 1);
         } else {
             p.set("batchWidth", width_);
-            framebuffer_.bind();
-            glViewport(0, 0, width_, height_);
-            glDisable(GL_DEPTH_TEST);
-            glDisable(GL_BLEND);
+            PassState::fullscreen(framebuffer_, width_, height_).apply();
             vao_.bind();
             glDrawArrays(GL_TRIANGLES, 0, 3);
             glBindFramebuffer(GL_FRAMEBUFFER, 0);

@@ -9,6 +9,7 @@
 #include "gl/frame/bindings.h"
 #include "gl/frame/light_views.h"
 #include "gl/gl.h"
+#include "gl/resource/pass_state.h"
 
 namespace bounce::gl {
 
@@ -180,13 +181,9 @@ void RsmPass::renderViews(Frame& frame)
     if (views_.empty()) return;
     const int size = settings_.size;
     const bool pyramid = settings_.levels > 0;
-    fbo_.bind();
-    glViewport(0, 0, size, size);
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
-    glDepthMask(GL_TRUE);
-    glDisable(GL_CULL_FACE); // back faces occlude; the shader makes them reflect nothing
-    glDisable(GL_BLEND);
+    PassState state = PassState::fullscreen(fbo_, size, size);
+    state.depthTest = true; // no culling: back faces occlude; the shader makes them reflect nothing
+    state.apply();
     frame.bindSceneData();
     frame.gpuScene().baseColorTextures().bind(UNIT_BASE_COLOR);
     if (solidAngles_) solidAngles_.bind(UNIT_RSM_SOLID_ANGLES);

@@ -7,6 +7,7 @@
 
 #include "gl/frame/bindings.h"
 #include "gl/gl.h"
+#include "gl/resource/pass_state.h"
 
 namespace bounce::gl {
 
@@ -94,14 +95,10 @@ void ShadowMaps::setPcf(bool hardwareFilter)
 void ShadowMaps::render(const GpuScene& scene)
 {
     if (views_.empty()) return;
-    fbo_.bind();
-    glViewport(0, 0, size_, size_);
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
-    glDepthMask(GL_TRUE);
-    glDisable(GL_CULL_FACE); // every surface blocks light from both sides
-    glEnable(GL_POLYGON_OFFSET_FILL);
-    glPolygonOffset(1.0f, 1.0f);
+    PassState state = PassState::fullscreen(fbo_, size_, size_);
+    state.depthTest = true; // no culling: every surface blocks light from both sides
+    state.polygonOffset = {1.0f, 1.0f};
+    state.apply();
     program_.use();
     for (std::size_t i = 0; i < views_.size(); ++i) {
         fbo_.attachLayer(GL_DEPTH_ATTACHMENT, depth_, int(i));
@@ -110,7 +107,6 @@ void ShadowMaps::render(const GpuScene& scene)
         program_.set("viewProj", views_[i].proj * views_[i].view);
         scene.draw();
     }
-    glDisable(GL_POLYGON_OFFSET_FILL);
 }
 
 void ShadowMaps::bind() const

@@ -38,6 +38,8 @@ void PassState::apply() const
     glColorMask(colorMask.x, colorMask.y, colorMask.z, colorMask.w);
     enable(GL_CULL_FACE, cull);
     glCullFace(cullFace);
+    enable(GL_POLYGON_OFFSET_FILL, polygonOffset != glm::vec2(0.0f));
+    glPolygonOffset(polygonOffset.x, polygonOffset.y);
     enable(GL_MULTISAMPLE, multisample);
     enable(GL_SAMPLE_SHADING, sampleShading);
     enable(GL_SCISSOR_TEST, false);

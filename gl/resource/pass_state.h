@@ -36,6 +36,7 @@ struct PassState {
     glm::bvec4 colorMask{true};
     bool cull = false;
     unsigned cullFace = 0x0405;            // GL_BACK
+    glm::vec2 polygonOffset{0.0f};         // glPolygonOffset(factor, units) on filled polygons; (0, 0): off
     bool multisample = false;
     bool sampleShading = false;            // per-sample fragment shading (stencil routing)
 

@@ -8,6 +8,7 @@
 #include "gl/technique/isr/bindings.h"
 #include "gl/context/context.h"
 #include "gl/gl.h"
+#include "gl/resource/pass_state.h"
 #include "gl/technique/isr/vpl_gather.h"
 
 namespace bounce::gl {
@@ -49,44 +50,34 @@ void MultiresGather::markValidFragments(Frame& frame, PassTimers& timers)
 {
     auto t = timers.scope("stencil-setup");
     counts_.clearToZero();
+    PassState state = PassState::fullscreen(fbo_, illumination_.width(), illumination_.height());
+    state.stencil.test = true;
+    state.stencil.ref = 1;
+    state.stencil.depthPass = GL_REPLACE; // the fragments that survive the shader set the stencil to 1
+    state.apply();                        // before the clears, which obey the write masks
     const float zero[4] = {0, 0, 0, 0};
-    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE); // clears obey the write masks
-    glStencilMask(0xFF);
     glClearNamedFramebufferfv(fbo_.id(), GL_COLOR, 0, zero);
     glClearNamedFramebufferfi(fbo_.id(), GL_DEPTH_STENCIL, 0, 1.0f, 0);
-    fbo_.bind();
-    glViewport(0, 0, illumination_.width(), illumination_.height());
-    glDisable(GL_DEPTH_TEST);
-    glDisable(GL_BLEND);
-    glDisable(GL_CULL_FACE);
-    glEnable(GL_STENCIL_TEST);
-    glStencilMask(0xFF);
-    glStencilFunc(GL_ALWAYS, 1, 0xFF);
-    glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE); // the fragments that survive the shader set the stencil to 1
     frame.bindGBuffer();
     pyramid_.bind();
     counts_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_ISR_FRAGMENT_COUNTS);
     pyramid_.setUniforms(stencilSetup_);
     stencilSetup_.use();
     frame.drawFullscreen();
-    glDisable(GL_STENCIL_TEST);
 }
 
 void MultiresGather::gather(Frame& frame, Program& program, PassTimers& timers, int draws,
                             const std::function<void(Program&, int)>& setupDraw)
 {
     auto t = timers.scope("gather");
-    fbo_.bind();
-    glViewport(0, 0, illumination_.width(), illumination_.height());
-    glDisable(GL_DEPTH_TEST);
-    glEnable(GL_STENCIL_TEST);
-    glStencilMask(0x00);
-    glStencilFunc(GL_EQUAL, 1, 0xFF); // only the valid multiresolution fragments (§3.2.1)
-    glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
-    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_FALSE); // alpha keeps the stencil pass's neighbour marks
-    glEnable(GL_BLEND);                               // rgb was cleared to 0: draws add up
-    glBlendEquation(GL_FUNC_ADD);
-    glBlendFunc(GL_ONE, GL_ONE);
+    PassState state = PassState::fullscreen(fbo_, illumination_.width(), illumination_.height());
+    state.stencil.test = true;
+    state.stencil.func = GL_EQUAL; // only the valid multiresolution fragments (§3.2.1)
+    state.stencil.ref = 1;
+    state.stencil.writeMask = 0x00;
+    state.colorMask = {true, true, true, false}; // alpha keeps the stencil pass's neighbour marks
+    state.blend = true;                          // additive; rgb was cleared to 0: draws add up
+    state.apply();
     frame.bindGBuffer();
     pyramid_.bind();
     pyramid_.setUniforms(program);
@@ -97,10 +88,6 @@ void MultiresGather::gather(Frame& frame, Program& program, PassTimers& timers, 
         program.use();
         frame.drawFullscreen();
     }
-    glDisable(GL_BLEND);
-    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-    glStencilMask(0xFF);
-    glDisable(GL_STENCIL_TEST);
 }
 
 int MultiresGather::loopBudget()
@@ -186,14 +173,10 @@ int MultiresGather::refine(Frame& frame, PassTimers& timers)
 void MultiresGather::splat(Frame& frame, const Buffer& vpls, int vplCount, PassTimers& timers)
 {
     auto t = timers.scope("splat");
-    fbo_.bind();
-    glViewport(0, 0, illumination_.width(), illumination_.height());
-    glDisable(GL_DEPTH_TEST);
-    glDisable(GL_STENCIL_TEST);
-    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_FALSE); // alpha keeps the refinement's marks
-    glEnable(GL_BLEND);
-    glBlendEquation(GL_FUNC_ADD);
-    glBlendFunc(GL_ONE, GL_ONE);
+    PassState state = PassState::fullscreen(fbo_, illumination_.width(), illumination_.height());
+    state.colorMask = {true, true, true, false}; // alpha keeps the refinement's marks
+    state.blend = true;                          // additive
+    state.apply();
     splat_.set("bufferSize", glm::vec2(illumination_.width(), illumination_.height()));
     splat_.use();
     splatVao_.bind();
@@ -201,8 +184,6 @@ void MultiresGather::splat(Frame& frame, const Buffer& vpls, int vplCount, PassT
     // For each VPL, one point per valid fragment: instances are VPLs, one draw per block of the cache.
     for (int block = 0; block < vplBlockCount(vplCount) && splatCount_ > 0; ++block)
         glDrawArraysInstanced(GL_POINTS, 0, splatCount_, bindVplBlock(vpls, block, vplCount));
-    glDisable(GL_BLEND);
-    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
 }
 
 std::vector<int> MultiresGather::fragmentsPerLevel() const
