@@ -114,6 +114,8 @@ BenchConfig readBenchConfig(const std::string& path, const std::string& cacheDir
     c.settings = expand(config.value("runs", nlohmann::json::array()));
     c.sceneNames = config.value("scenes", std::vector<std::string>{"cornell-spot"});
     c.compareTo = config.value("compareTo", std::vector<std::string>{});
+    c.rays = config.value("rays", 0);
+    if (c.rays < 0 || c.rays > (1 << 24)) throw UsageError("bench config: \"rays\" must be in [0, 16777216]");
     for (const BenchSetting& s : c.settings)
         for (const std::string& n : s.scenes)
             if (std::find(c.sceneNames.begin(), c.sceneNames.end(), n) == c.sceneNames.end())

@@ -35,6 +35,7 @@ struct BenchConfig {
     std::vector<std::string> sceneNames;
     std::vector<core::Scene> scenes;    // loaded, one per name
     std::vector<std::string> compareTo; // references beyond the technique's own paths and `full`
+    int rays = 0;                       // rays per batch of the GPU-against-Embree table per scene; 0: none
     ReferenceSpec reference;
 
     int widthOf(const BenchSetting& s) const { return s.width > 0 ? s.width : width; }

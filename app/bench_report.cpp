@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
+#include <iomanip>
 #include <sstream>
 
 #include "core/image.h"
@@ -96,6 +97,25 @@ void passTable(std::ostringstream& md, const std::vector<const nlohmann::json*>&
     }
 }
 
+// The ray-casting table: Embree's and the GPU's rays per second on the same rays.
+std::string raysMarkdown(const std::vector<SceneRays>& rays)
+{
+    std::ostringstream md;
+    md << "## GPU ray casting against Embree\n\nThe same closest-hit rays cast by the frame's GPU ray caster"
+          " (compute and fragment shaders) and by Embree on the CPU (app/ray_throughput.h); on llvmpipe both run"
+          " on the same cores.\n\n| scene | rays | count | Embree Mray/s | GPU compute Mray/s | GPU fragment Mray/s |"
+          " Embree / GPU compute | same triangle |\n|---|---|---:|---:|---:|---:|---:|---:|\n";
+    md << std::fixed;
+    for (const SceneRays& s : rays)
+        for (const RayThroughput& f : s.figures)
+            md << "| " << s.scene << " | " << f.kind << " | " << f.rays << " | " << std::setprecision(2)
+               << f.embreeRaysPerS * 1e-6 << " | " << f.computeRaysPerS * 1e-6 << " | " << f.fragmentRaysPerS * 1e-6
+               << " | " << f.embreeRaysPerS / f.computeRaysPerS << " | " << std::setprecision(2)
+               << 100.0 * f.agreement << "% |\n";
+    md << "\n";
+    return md.str();
+}
+
 std::string markdownText(const BenchConfig& config, const std::vector<BenchRow>& rows, const gl::ContextInfo& context)
 {
     std::ostringstream md;
@@ -125,13 +145,24 @@ std::string markdownText(const BenchConfig& config, const std::vector<BenchRow>&
 } // namespace
 
 void writeBenchReport(const std::filesystem::path& out, const BenchConfig& config, const std::vector<BenchRow>& rows,
-                      const gl::ContextInfo& context)
+                      const std::vector<SceneRays>& rays, const gl::ContextInfo& context)
 {
     nlohmann::json results = nlohmann::json::array();
     for (const BenchRow& r : rows) results.push_back(r.record);
     core::writeFileAtomic((out / "results.csv").string(), csvText(config, rows));
     core::writeFileAtomic((out / "results.json").string(), results.dump(2) + "\n");
-    core::writeFileAtomic((out / "report.md").string(), markdownText(config, rows, context));
+    std::string md = markdownText(config, rows, context);
+    if (!rays.empty()) {
+        md += raysMarkdown(rays);
+        nlohmann::json j = nlohmann::json::array();
+        for (const SceneRays& s : rays) {
+            nlohmann::json scene = {{"scene", s.scene}};
+            for (const RayThroughput& f : s.figures) scene[f.kind] = f.toJson();
+            j.push_back(scene);
+        }
+        core::writeFileAtomic((out / "rays.json").string(), j.dump(2) + "\n");
+    }
+    core::writeFileAtomic((out / "report.md").string(), md);
 }
 
 int plotSpeedError(const std::filesystem::path& out)

@@ -8,13 +8,21 @@
 
 #include "app/bench_config.h"
 #include "app/bench_run.h"
+#include "app/ray_throughput.h"
 #include "gl/context/context.h"
 
 namespace bounce::app {
 
-// Writes results.csv, results.json and report.md into `out` (atomically, each whole or not at all).
+// GPU ray casting against Embree on one scene of the config (its "rays").
+struct SceneRays {
+    std::string scene;
+    std::vector<RayThroughput> figures;
+};
+
+// Writes results.csv, results.json and report.md into `out` (atomically, each whole or not at all), and
+// rays.json when the config measured ray casting.
 void writeBenchReport(const std::filesystem::path& out, const BenchConfig& config, const std::vector<BenchRow>& rows,
-                      const gl::ContextInfo& context);
+                      const std::vector<SceneRays>& rays, const gl::ContextInfo& context);
 
 // Runs the plot script on out/results.csv into out/speed_error.png; returns its exit status (0: done).
 int plotSpeedError(const std::filesystem::path& out);

@@ -33,7 +33,9 @@ const char* kUsage =
     "indirect light). A run may override \"size\", \"warmup\" and \"frames\" and restrict \"scenes\".\n"
     "The top-level \"compareTo\": [paths...] adds references beyond the technique's own and `full` (e.g.\n"
     "\"onebounce\"). A reference \"size\" that divides every run's size compares box-downsampled images\n"
-    "against references of that size: less noise for the same cost. Timings compare only within one run.\n";
+    "against references of that size: less noise for the same cost. The top-level \"rays\": N also casts N\n"
+    "rays per scene with the GPU ray caster and with Embree (coherent and incoherent, as `bounce rays`) into\n"
+    "a table of report.md and DIR/rays.json. Timings compare only within one run.\n";
 
 } // namespace
 
@@ -52,7 +54,13 @@ int cmdBench(const Args& args)
     auto context = createContextForCli(o.get("backend", "egl"));
     std::printf("GL renderer: %s (%s)\n", context->info().renderer.c_str(), context->info().platform.c_str());
     const std::vector<BenchRow> rows = runBenchmark(config, context->info());
-    writeBenchReport(out, config, rows, context->info());
+    std::vector<SceneRays> rays;
+    if (config.rays > 0)
+        for (std::size_t i = 0; i < config.scenes.size(); ++i) {
+            std::printf("ray casting on %s: %d rays, GPU and Embree\n", config.sceneNames[i].c_str(), config.rays);
+            rays.push_back({config.sceneNames[i], measureRayThroughput(config.scenes[i], config.rays, 3, 0)});
+        }
+    writeBenchReport(out, config, rows, rays, context->info());
     const int rc = plotSpeedError(out);
     std::printf("wrote %s/{results.csv,results.json,report.md,speed_error.png}\n", out.string().c_str());
     return rc == 0 ? 0 : 1;

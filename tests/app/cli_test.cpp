@@ -213,6 +213,36 @@ TEST(Cli, BenchWritesTheFourFiles)
     EXPECT_NE(report.find("cornell-point"), std::string::npos);
 }
 
+// "rays" in a bench config adds the GPU-against-Embree table: both kinds of rays per scene, the same
+// triangles found by both, positive rates.
+TEST(Cli, BenchReportsRayCastingAgainstEmbree)
+{
+    const fs::path d = outDir("bench-rays");
+    const fs::path config = d / "rays.json";
+    std::ofstream(config) << R"({"size": "8x8", "warmup": 0, "frames": 1, "reference": {"spp": 1}, "rays": 1024,
+                                "scenes": ["cornell-area"], "runs": [{"technique": "direct"}]})";
+    const CliRun r = run("bench --backend osmesa --config " + config.string() + " --out " + (d / "out").string() +
+                         " --cache " + (d / "cache").string());
+    ASSERT_EQ(r.status, 0) << r.output;
+    std::ifstream in(d / "out" / "rays.json");
+    ASSERT_TRUE(in) << r.output;
+    const nlohmann::json j = nlohmann::json::parse(in);
+    ASSERT_EQ(j.size(), 1u);
+    EXPECT_EQ(j[0]["scene"], "cornell-area");
+    for (const char* kind : {"coherent", "incoherent"}) {
+        SCOPED_TRACE(kind);
+        const nlohmann::json& f = j[0][kind];
+        EXPECT_EQ(f["rays"], 1024);
+        EXPECT_GT(f["embreeRaysPerS"].get<double>(), 0.0);
+        EXPECT_GT(f["gpuComputeRaysPerS"].get<double>(), 0.0);
+        EXPECT_GT(f["gpuFragmentRaysPerS"].get<double>(), 0.0);
+        EXPECT_GE(f["sameTriangle"].get<double>(), 0.99);
+    }
+    std::ifstream md(d / "out" / "report.md");
+    const std::string report((std::istreambuf_iterator<char>(md)), std::istreambuf_iterator<char>());
+    EXPECT_NE(report.find("GPU ray casting against Embree"), std::string::npos);
+}
+
 // A glTF file given by path renders like the built-in scene it was written from.
 TEST(Cli, RenderAGltfByPath)
 {
