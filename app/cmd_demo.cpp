@@ -13,9 +13,9 @@ namespace bounce::app {
 
 namespace {
 
-const char* kUsage =
-    "usage: bounce demo [--scene NAME|PATH] [--technique NAME] [--size WxH] [--set key=value]...\n"
-    "                   [--reference FILE.exr] [--script STEPS]\n"
+const std::string kUsage =
+    std::string("usage: bounce demo [--scene NAME|PATH] [--technique NAME] [--size WxH] [--set key=value]...\n"
+    "                   [--reference FILE.exr] [--script STEPS] [--camera POS:TARGET[:FOV]] [--light SPEC]...\n"
     "\n"
     "Opens a window. Right mouse drag looks around, W/A/S/D/Q/E move, F12 saves a screenshot\n"
     "(EXR + PNG in out/). The panel switches techniques, sets their parameters and the frame's (a frame\n"
@@ -30,15 +30,18 @@ const char* kUsage =
     "  --script     comma-separated steps run in order, for automation, checked before the window opens:\n"
     "               wait:N (frames), technique:NAME, set:key=value (the left technique's parameters or the\n"
     "               frame's, e.g. set:shadow.size=512), compare:NAME (side by side),\n"
-    "               screenshot:FILE.exr (also the .png; when comparing, FILE-right.exr/.png too), quit\n";
+    "               screenshot:FILE.exr (also the .png; when comparing, FILE-right.exr/.png too), quit\n") +
+    kSceneOptionsHelp;
 
 } // namespace
 
 int cmdDemo(const Args& args)
 {
-    const Options o(args, {{"scene"}, {"technique"}, {"size"}, {"set", true, true}, {"reference"}, {"script"}}, kUsage);
+    const Options o(args, {{"scene"}, {"technique"}, {"size"}, {"set", true, true}, {"reference"}, {"script"},
+                                {"camera"}, {"light", true, true}},
+                    kUsage);
     if (o.helpRequested()) {
-        std::fputs(kUsage, stdout);
+        std::fputs(kUsage.c_str(), stdout);
         return 0;
     }
     if (!o.positional().empty()) throw UsageError("unexpected argument '" + o.positional()[0] + "'\n\n" + kUsage);
@@ -65,6 +68,7 @@ int cmdDemo(const Args& args)
     }
     const std::string sceneArg = o.get("scene", "cornell-spot");
     settings.scene = loadSceneForCli(sceneArg);
+    applySceneOptions(settings.scene, o.get("camera"), o.all("light"));
 
     gl::ContextOptions co;
     co.width = width;

@@ -282,6 +282,16 @@ TEST(Cli, DemoScriptIsCheckedBeforeTheWindowOpens)
     }
 }
 
+// The demo takes --camera and --light as render does, and refuses bad ones before any window opens.
+TEST(Cli, DemoChecksCameraAndLightBeforeTheWindowOpens)
+{
+    for (const std::string& bad : {std::string("--light 'bogus:x=1'"), std::string("--camera 1,2,3")}) {
+        const CliRun r = run("demo --scene cornell-spot --size 32x32 " + bad, "env -u DISPLAY -u WAYLAND_DISPLAY ");
+        EXPECT_EQ(r.status, 2) << bad << "\n" << r.output;
+        EXPECT_EQ(r.output.find("GL renderer"), std::string::npos) << "a context was created: " << r.output;
+    }
+}
+
 // The demo in a real window (Xvfb in CI): a few frames, switches through the techniques of the image-space
 // radiosity family (with a parameter set from the script, as a widget would) and a side-by-side
 // comparison (with a frame parameter set while comparing), and a screenshot that must be the Cornell box: not black, the red wall on the left, the
