@@ -39,7 +39,8 @@ std::vector<BenchSetting> expand(const nlohmann::json& runs)
             for (const auto& [k, v] : run["set"].items()) combos[0].push_back(k + "=" + numberText(v));
         if (run.contains("sweep"))
             for (const auto& [k, list] : run["sweep"].items()) {
-                if (!list.is_array() || list.empty()) throw UsageError("bench config: sweep \"" + k + "\" needs a non-empty list");
+                if (!list.is_array() || list.empty())
+                    throw UsageError("bench config: sweep \"" + k + "\" needs a non-empty list");
                 std::vector<std::vector<std::string>> next;
                 for (const auto& c : combos)
                     for (const auto& v : list) {
@@ -65,10 +66,11 @@ std::vector<BenchSetting> expand(const nlohmann::json& runs)
         if (run.contains("size")) parseSize(run["size"].get<std::string>(), width, height);
         const auto scenes = run.value("scenes", std::vector<std::string>{});
         const int warmup = run.value("warmup", -1), frames = run.value("frames", -1);
-        if (warmup < -1 || frames == 0 || frames < -1) throw UsageError("bench config: a run's warmup >= 0 and frames >= 1");
+        if (warmup < -1 || frames == 0 || frames < -1)
+            throw UsageError("bench config: a run's warmup >= 0 and frames >= 1");
         for (const auto& c : combos)
-            out.push_back({run["technique"].get<std::string>(), c, baseline, baselineSets, temporal, width, height, scenes,
-                           warmup, frames});
+            out.push_back({run["technique"].get<std::string>(), c, baseline, baselineSets, temporal, width, height,
+                           scenes, warmup, frames});
     }
     return out;
 }
@@ -77,7 +79,11 @@ std::vector<BenchSetting> expand(const nlohmann::json& runs)
 void checkTechnique(const std::string& name, const std::vector<std::string>& sets)
 {
     const gl::TechniqueInfo* info = nullptr;
-    try { info = &gl::findTechnique(name); } catch (const std::invalid_argument& e) { throw UsageError(e.what()); }
+    try {
+        info = &gl::findTechnique(name);
+    } catch (const std::invalid_argument& e) {
+        throw UsageError(e.what());
+    }
     gl::ParamValues f(gl::frameParams()), t(info->params);
     applySets(sets, *info, f, t);
 }
@@ -102,7 +108,9 @@ BenchConfig readBenchConfig(const std::string& path, const std::string& cacheDir
     {
         std::ifstream in(path);
         if (!in) throw UsageError("cannot read bench config '" + path + "'");
-        try { config = nlohmann::json::parse(in); } catch (const std::exception& e) {
+        try {
+            config = nlohmann::json::parse(in);
+        } catch (const std::exception& e) {
             throw UsageError("bench config '" + path + "': " + e.what());
         }
     }
@@ -128,7 +136,8 @@ BenchConfig readBenchConfig(const std::string& path, const std::string& cacheDir
     c.reference = referenceSpecFrom(config.value("reference", nlohmann::json::object()), cacheDir);
     for (const BenchSetting& s : c.settings) {
         const int w = c.widthOf(s), h = c.heightOf(s);
-        if ((c.reference.width > 0 && w % c.reference.width != 0) || (c.reference.height > 0 && h % c.reference.height != 0))
+        if ((c.reference.width > 0 && w % c.reference.width != 0) ||
+            (c.reference.height > 0 && h % c.reference.height != 0))
             throw UsageError("bench config: the reference size " + std::to_string(c.reference.width) + "x" +
                              std::to_string(c.reference.height) + " does not divide the run size " + std::to_string(w) +
                              "x" + std::to_string(h) + " (" + s.technique + ")");

@@ -29,8 +29,8 @@ std::string csvText(const BenchConfig& config, const std::vector<BenchRow>& rows
     csv << "\n";
     for (const BenchRow& r : rows) {
         csv << csvField(r.scene) << "," << r.technique << "," << csvField(r.settings) << "," << r.size << ","
-            << r.lightPaths << "," << r.totalMs << "," << r.relRmseOwn << "," << r.relRmseFull << "," << r.rmseOwn << ","
-            << r.ssimOwn << "," << csvField(r.baseline) << "," << r.relRmseBaseline << "," << r.flicker << ","
+            << r.lightPaths << "," << r.totalMs << "," << r.relRmseOwn << "," << r.relRmseFull << "," << r.rmseOwn
+            << "," << r.ssimOwn << "," << csvField(r.baseline) << "," << r.relRmseBaseline << "," << r.flicker << ","
             << csvField(r.passes);
         for (double v : r.relRmseCompareTo) csv << "," << v;
         csv << "\n";
@@ -54,10 +54,10 @@ void tableRow(std::ostringstream& md, const nlohmann::json& rec, const std::vect
         std::snprintf(buf, sizeof buf, "%.4f", rec["temporal"]["meanFrameDifference"].get<double>());
         flicker = buf;
     }
-    std::snprintf(buf, sizeof buf, "| %s | %s | %s | %s | %.3f | %.4f | %.4f |", rec["technique"].get<std::string>().c_str(),
-                  rec["settings"].get<std::string>().c_str(), rec["size"].get<std::string>().c_str(), lp.c_str(),
-                  rec["totalMs"].get<double>(), rec["error"][lp]["relativeRmse"].get<double>(),
-                  rec["error"]["full"]["relativeRmse"].get<double>());
+    std::snprintf(buf, sizeof buf, "| %s | %s | %s | %s | %.3f | %.4f | %.4f |",
+                  rec["technique"].get<std::string>().c_str(), rec["settings"].get<std::string>().c_str(),
+                  rec["size"].get<std::string>().c_str(), lp.c_str(), rec["totalMs"].get<double>(),
+                  rec["error"][lp]["relativeRmse"].get<double>(), rec["error"]["full"]["relativeRmse"].get<double>());
     md << buf;
     for (const std::string& p : compareTo) {
         std::snprintf(buf, sizeof buf, " %.4f |", rec["error"][p]["relativeRmse"].get<double>());
@@ -74,7 +74,8 @@ void passTable(std::ostringstream& md, const std::vector<const nlohmann::json*>&
     std::vector<std::string> passes;
     for (const nlohmann::json* rec : recs)
         for (const auto& p : (*rec)["passes"])
-            if (std::find(passes.begin(), passes.end(), p["pass"].get<std::string>()) == passes.end()) passes.push_back(p["pass"]);
+            if (std::find(passes.begin(), passes.end(), p["pass"].get<std::string>()) == passes.end())
+                passes.push_back(p["pass"]);
     md << "| pass |";
     for (const nlohmann::json* rec : recs)
         md << " " << (*rec)["technique"].get<std::string>() << " (" << (*rec)["settings"].get<std::string>() << ") |";
@@ -110,8 +111,8 @@ std::string raysMarkdown(const std::vector<SceneRays>& rays)
         for (const RayThroughput& f : s.figures)
             md << "| " << s.scene << " | " << f.kind << " | " << f.rays << " | " << std::setprecision(2)
                << f.embreeRaysPerS * 1e-6 << " | " << f.computeRaysPerS * 1e-6 << " | " << f.fragmentRaysPerS * 1e-6
-               << " | " << f.embreeRaysPerS / f.computeRaysPerS << " | " << std::setprecision(2)
-               << 100.0 * f.agreement << "% |\n";
+               << " | " << f.embreeRaysPerS / f.computeRaysPerS << " | " << std::setprecision(2) << 100.0 * f.agreement
+               << "% |\n";
     md << "\n";
     return md.str();
 }
@@ -128,7 +129,8 @@ std::string markdownText(const BenchConfig& config, const std::vector<BenchRow>&
         std::vector<const nlohmann::json*> recs;
         for (const BenchRow& r : rows)
             if (r.scene == sceneName) recs.push_back(&r.record);
-        md << "## " << sceneName << "\n\n| technique | parameters | size | light paths | ms | rel. RMSE (own) | rel. RMSE (full) |";
+        md << "## " << sceneName
+           << "\n\n| technique | parameters | size | light paths | ms | rel. RMSE (own) | rel. RMSE (full) |";
         for (const std::string& p : config.compareTo) md << " rel. RMSE (" << p << ") |";
         md << " SSIM (own) | rel. RMSE vs baseline (indirect) | flicker |\n|---|---|---|---|---:|---:|---:|";
         for (std::size_t i = 0; i < config.compareTo.size(); ++i) md << "---:|";
@@ -168,8 +170,8 @@ void writeBenchReport(const std::filesystem::path& out, const BenchConfig& confi
 int plotSpeedError(const std::filesystem::path& out)
 {
     const std::string plot = "/usr/bin/python3 '" +
-                             (std::filesystem::path(BOUNCE_SOURCE_ROOT) / "bench/plot_speed_error.py").string() + "' '" +
-                             (out / "results.csv").string() + "' '" + (out / "speed_error.png").string() + "'";
+                             (std::filesystem::path(BOUNCE_SOURCE_ROOT) / "bench/plot_speed_error.py").string() +
+                             "' '" + (out / "results.csv").string() + "' '" + (out / "speed_error.png").string() + "'";
     const int rc = std::system(plot.c_str());
     if (rc != 0) std::fprintf(stderr, "bounce bench: the plot script failed (%d): %s\n", rc, plot.c_str());
     return rc;

@@ -62,7 +62,8 @@ std::vector<bool> emitterMask(const core::Image& emission, int width, int height
             const glm::vec3 e = blocks.at(x, y);
             if (std::max({e.x, e.y, e.z}) <= 0.0f) continue;
             for (int j = std::max(y - 1, 0); j <= std::min(y + 1, height - 1); ++j)
-                for (int i = std::max(x - 1, 0); i <= std::min(x + 1, width - 1); ++i) mask[std::size_t(j) * width + i] = true;
+                for (int i = std::max(x - 1, 0); i <= std::min(x + 1, width - 1); ++i)
+                    mask[std::size_t(j) * width + i] = true;
         }
     return mask;
 }
@@ -116,8 +117,9 @@ void compareWithReferences(const BenchConfig& config, const std::string& sceneNa
         if (!cache.references.count(key))
             cache.references[key] = referenceImage(scene, sceneName, paths, rw, rh, config.reference);
         const core::ImageMetrics m = core::compareImages(compared, blanked(cache.references[key], emitters));
-        row.record["error"][paths] = {{"rmse", m.rmse}, {"relativeRmse", m.relativeRmse}, {"relativeMse", m.relativeMse},
-                                      {"mae", m.mae}, {"ssim", m.ssim}, {"maxError", m.maxError}};
+        row.record["error"][paths] = {
+            {"rmse", m.rmse}, {"relativeRmse", m.relativeRmse}, {"relativeMse", m.relativeMse}, {"mae", m.mae},
+            {"ssim", m.ssim}, {"maxError", m.maxError}};
         if (paths == core::lightPathsName(info.lightPaths)) {
             row.relRmseOwn = m.relativeRmse;
             row.rmseOwn = m.rmse;
@@ -125,7 +127,8 @@ void compareWithReferences(const BenchConfig& config, const std::string& sceneNa
         }
         if (paths == "full") row.relRmseFull = m.relativeRmse;
     }
-    for (const std::string& p : config.compareTo) row.relRmseCompareTo.push_back(row.record["error"][p]["relativeRmse"].get<double>());
+    for (const std::string& p : config.compareTo)
+        row.relRmseCompareTo.push_back(row.record["error"][p]["relativeRmse"].get<double>());
 }
 
 // Relative RMSE of the indirect light against the setting's baseline technique: the quantity the two
@@ -144,12 +147,13 @@ void compareWithBaseline(const BenchSetting& s, const core::Scene& scene, gl::Re
     }
     row.relRmseBaseline = core::relativeRmse(r.frame().read(r.frame().indirect()), cache.baselines[key]);
     row.baseline = s.baseline + " " + settingsText(s.baselineSets);
-    row.record["baseline"] = {{"technique", s.baseline}, {"settings", settingsText(s.baselineSets)},
+    row.record["baseline"] = {{"technique", s.baseline},
+                              {"settings", settingsText(s.baselineSets)},
                               {"relativeRmseIndirect", row.relRmseBaseline}};
 }
 
-BenchRow runSetting(const BenchConfig& config, const BenchSetting& s, const std::string& sceneName, const core::Scene& scene,
-                    const gl::ContextInfo& context, SceneCache& cache)
+BenchRow runSetting(const BenchConfig& config, const BenchSetting& s, const std::string& sceneName,
+                    const core::Scene& scene, const gl::ContextInfo& context, SceneCache& cache)
 {
     const int w = config.widthOf(s), h = config.heightOf(s);
     const gl::TechniqueInfo& info = gl::findTechnique(s.technique);

@@ -16,8 +16,8 @@ namespace bounce::app {
 // One render's figures. NaN where a figure does not apply (no baseline, no temporal frames).
 struct BenchRow {
     std::string scene, technique, settings, size, lightPaths;
-    std::string baseline;  // "technique k=v..." or "" when none
-    std::string passes;    // "pass=ms;pass=ms..." (median GPU ms)
+    std::string baseline; // "technique k=v..." or "" when none
+    std::string passes;   // "pass=ms;pass=ms..." (median GPU ms)
     double totalMs = 0.0;
     double relRmseOwn = 0.0, relRmseFull = 0.0, rmseOwn = 0.0, ssimOwn = 0.0;
     double relRmseBaseline = 0.0, flicker = 0.0;

@@ -25,7 +25,8 @@ const char* kUsage =
     "light paths and `full`), and write DIR/results.csv, DIR/results.json, DIR/report.md and\n"
     "DIR/speed_error.png (time against relative RMSE, log scales, Pareto front marked).\n"
     "\n"
-    "Config: {\"size\": \"WxH\", \"warmup\": N, \"frames\": N, \"reference\": {\"spp\": N} | {\"noise\": X} [+ \"size\"],\n"
+    "Config: {\"size\": \"WxH\", \"warmup\": N, \"frames\": N, \"reference\": {\"spp\": N} | {\"noise\": X} [+ "
+    "\"size\"],\n"
     "         \"scenes\": [...], \"runs\": [{\"technique\": T, \"set\": {k: v}, \"sweep\": {k: [v...]}}]}\n"
     "A sweep is the cartesian product of its lists. A run may also name \"against\": {\"technique\": T,\n"
     "\"set\": {...}} (relative RMSE of the indirect light against it, e.g. full-resolution gathering) and\n"
@@ -46,7 +47,8 @@ int cmdBench(const Args& args)
         std::fputs(kUsage, stdout);
         return 0;
     }
-    if (!o.has("config") || !o.has("out")) throw UsageError("--config and --out are required\n\n" + std::string(kUsage));
+    if (!o.has("config") || !o.has("out"))
+        throw UsageError("--config and --out are required\n\n" + std::string(kUsage));
     // Everything is checked before the first (long) render and before anything is written.
     const BenchConfig config = readBenchConfig(o.get("config"), o.get("cache"));
     const std::filesystem::path out = o.get("out");

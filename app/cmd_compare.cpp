@@ -117,8 +117,10 @@ int cmdCompare(const Args& args)
         std::printf("json:           %s\n", p.string().c_str());
     }
     if (!m.allFinite()) {
-        std::fprintf(stderr, "bounce compare: %zu NaN/Inf values in the image, %zu in the reference: the error is "
-                             "infinite\n", m.nonFiniteImage, m.nonFiniteReference);
+        std::fprintf(stderr,
+                     "bounce compare: %zu NaN/Inf values in the image, %zu in the reference: the error is "
+                     "infinite\n",
+                     m.nonFiniteImage, m.nonFiniteReference);
         return 1;
     }
     return 0;

@@ -14,31 +14,39 @@ namespace bounce::app {
 namespace {
 
 const std::string kUsage =
-    std::string("usage: bounce demo [--scene NAME|PATH] [--technique NAME] [--size WxH] [--set key=value]...\n"
-    "                   [--reference FILE.exr] [--script STEPS] [--camera POS:TARGET[:FOV]] [--light SPEC]...\n"
-    "\n"
-    "Opens a window. Right mouse drag looks around, W/A/S/D/Q/E move, F12 saves a screenshot\n"
-    "(EXR + PNG in out/). The panel switches techniques, sets their parameters and the frame's (a frame\n"
-    "parameter rebuilds both sides of a comparison), moves the light and compares: two techniques side\n"
-    "by side (each half labelled with its technique, the right one with its relative RMSE against the\n"
-    "left), or one against a reference EXR (heat map, relative RMSE).\n"
-    "\n"
-    "  --scene      built-in name or .gltf/.glb path   [cornell-spot]\n"
-    "  --technique  initial technique                  [direct]\n"
-    "  --size       window size                        [1024x768]\n"
-    "  --reference  an EXR to compare against (same size as the render)\n"
-    "  --script     comma-separated steps run in order, for automation, checked before the window opens:\n"
-    "               wait:N (frames), technique:NAME, set:key=value (the left technique's parameters or the\n"
-    "               frame's, e.g. set:shadow.size=512), compare:NAME (side by side),\n"
-    "               screenshot:FILE.exr (also the .png; when comparing, FILE-right.exr/.png too), quit\n") +
+    std::string(
+        "usage: bounce demo [--scene NAME|PATH] [--technique NAME] [--size WxH] [--set key=value]...\n"
+        "                   [--reference FILE.exr] [--script STEPS] [--camera POS:TARGET[:FOV]] [--light SPEC]...\n"
+        "\n"
+        "Opens a window. Right mouse drag looks around, W/A/S/D/Q/E move, F12 saves a screenshot\n"
+        "(EXR + PNG in out/). The panel switches techniques, sets their parameters and the frame's (a frame\n"
+        "parameter rebuilds both sides of a comparison), moves the light and compares: two techniques side\n"
+        "by side (each half labelled with its technique, the right one with its relative RMSE against the\n"
+        "left), or one against a reference EXR (heat map, relative RMSE).\n"
+        "\n"
+        "  --scene      built-in name or .gltf/.glb path   [cornell-spot]\n"
+        "  --technique  initial technique                  [direct]\n"
+        "  --size       window size                        [1024x768]\n"
+        "  --reference  an EXR to compare against (same size as the render)\n"
+        "  --script     comma-separated steps run in order, for automation, checked before the window opens:\n"
+        "               wait:N (frames), technique:NAME, set:key=value (the left technique's parameters or the\n"
+        "               frame's, e.g. set:shadow.size=512), compare:NAME (side by side),\n"
+        "               screenshot:FILE.exr (also the .png; when comparing, FILE-right.exr/.png too), quit\n") +
     kSceneOptionsHelp;
 
 } // namespace
 
 int cmdDemo(const Args& args)
 {
-    const Options o(args, {{"scene"}, {"technique"}, {"size"}, {"set", true, true}, {"reference"}, {"script"},
-                                {"camera"}, {"light", true, true}},
+    const Options o(args,
+                    {{"scene"},
+                     {"technique"},
+                     {"size"},
+                     {"set", true, true},
+                     {"reference"},
+                     {"script"},
+                     {"camera"},
+                     {"light", true, true}},
                     kUsage);
     if (o.helpRequested()) {
         std::fputs(kUsage.c_str(), stdout);

@@ -68,13 +68,15 @@ nlohmann::json registryJson()
     nlohmann::json j;
     j["scenes"] = core::builtinSceneNames();
     j["setups"] = nlohmann::json::array();
-    for (const auto& [path, present] : sceneSetups()) j["setups"].push_back({{"path", path}, {"assetPresent", present}});
+    for (const auto& [path, present] : sceneSetups())
+        j["setups"].push_back({{"path", path}, {"assetPresent", present}});
     j["lightPaths"] = core::lightPathsNames();
     j["techniques"] = nlohmann::json::array();
     for (const gl::TechniqueInfo& t : gl::techniques()) j["techniques"].push_back(t.toJson());
     nlohmann::json frame;
     frame["passes"] = nlohmann::json::array();
-    for (const gl::PassDecl& p : gl::framePasses()) frame["passes"].push_back({{"name", p.name}, {"meaning", p.meaning}});
+    for (const gl::PassDecl& p : gl::framePasses())
+        frame["passes"].push_back({{"name", p.name}, {"meaning", p.meaning}});
     frame["parameters"] = nlohmann::json::array();
     for (const gl::ParamDecl& p : gl::frameParams()) frame["parameters"].push_back(p.toJson());
     j["frame"] = frame;
@@ -85,7 +87,10 @@ nlohmann::json registryJson()
 int cmdList(const Args& args)
 {
     const Options o(args, {{"json", false}}, kUsage);
-    if (o.helpRequested()) { std::fputs(kUsage, stdout); return 0; }
+    if (o.helpRequested()) {
+        std::fputs(kUsage, stdout);
+        return 0;
+    }
     if (!o.positional().empty()) throw UsageError("unexpected argument '" + o.positional()[0] + "'\n\n" + kUsage);
     if (o.has("json")) {
         std::printf("%s\n", registryJson().dump(2).c_str());

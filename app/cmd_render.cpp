@@ -43,10 +43,24 @@ int cmdRender(const Args& args)
 {
     const std::string usage = std::string(kUsage) + kSceneOptionsHelp;
     const Options o(args,
-                    {{"scene"}, {"technique"}, {"size"}, {"out"}, {"set", true, true}, {"frames"}, {"warmup"},
-                     {"json"}, {"backend"}, {"exposure"}, {"reference"}, {"camera"}, {"light", true, true}},
+                    {{"scene"},
+                     {"technique"},
+                     {"size"},
+                     {"out"},
+                     {"set", true, true},
+                     {"frames"},
+                     {"warmup"},
+                     {"json"},
+                     {"backend"},
+                     {"exposure"},
+                     {"reference"},
+                     {"camera"},
+                     {"light", true, true}},
                     usage);
-    if (o.helpRequested()) { std::fputs(usage.c_str(), stdout); return 0; }
+    if (o.helpRequested()) {
+        std::fputs(usage.c_str(), stdout);
+        return 0;
+    }
     if (!o.positional().empty()) throw UsageError("unexpected argument '" + o.positional()[0] + "'\n\n" + usage);
 
     // Everything the user gave is checked before anything is created or written.
@@ -88,9 +102,9 @@ int cmdRender(const Args& args)
             throw UsageError("--reference: " + std::string(e.what()));
         }
         if (width % reference.width != 0 || height % reference.height != 0)
-            throw UsageError("--reference is " + std::to_string(reference.width) + "x" + std::to_string(reference.height) +
-                             ": its size must divide the render's " + std::to_string(width) + "x" +
-                             std::to_string(height));
+            throw UsageError("--reference is " + std::to_string(reference.width) + "x" +
+                             std::to_string(reference.height) + ": its size must divide the render's " +
+                             std::to_string(width) + "x" + std::to_string(height));
     }
     // The error of an image against the reference, box-downsampled to the reference's size.
     const auto errorOf = [&](const core::Image& image) {
@@ -131,7 +145,8 @@ int cmdRender(const Args& args)
     if (!reference.rgb.empty()) {
         record["reference"] = o.get("reference");
         record["relativeRmse"] = errorOf(image);
-        std::printf("relative RMSE against %s: %.4f\n", o.get("reference").c_str(), record["relativeRmse"].get<double>());
+        std::printf("relative RMSE against %s: %.4f\n", o.get("reference").c_str(),
+                    record["relativeRmse"].get<double>());
     }
     // The three files appear together or not at all.
     core::FileSet files;

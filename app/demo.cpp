@@ -8,9 +8,9 @@
 
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
-#include <imgui.h>
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_opengl3.h>
+#include <imgui.h>
 
 #include "app/render_job.h"
 #include "core/metrics.h"
@@ -77,7 +77,8 @@ bool paramWidgets(const std::vector<gl::ParamDecl>& decls, gl::ParamValues& valu
             float f = float(v);
             const float speed = float((d.max - d.min) / 500.0);
             const std::string id = labelAbove(d.name);
-            if (ImGui::DragFloat(id.c_str(), &f, speed, float(d.min), float(d.max), "%.4g", ImGuiSliderFlags_AlwaysClamp)) {
+            if (ImGui::DragFloat(id.c_str(), &f, speed, float(d.min), float(d.max), "%.4g",
+                                 ImGuiSliderFlags_AlwaysClamp)) {
                 values.setValue(d.name, f);
                 changed = true;
             }
@@ -116,7 +117,11 @@ void saveImage(const core::Image& image, std::filesystem::path path)
 } // namespace
 
 Demo::Demo(gl::Context& context, DemoSettings settings)
-    : context_(context), window_(context.window()), s_(std::move(settings)), fly_(s_.scene.camera), lights_(s_.scene.lights)
+    : context_(context),
+      window_(context.window()),
+      s_(std::move(settings)),
+      fly_(s_.scene.camera),
+      lights_(s_.scene.lights)
 {
     compareReference_ = !s_.reference.rgb.empty();
     IMGUI_CHECKVERSION();
@@ -172,12 +177,18 @@ bool Demo::runScript()
     while (waitFrames_ == 0 && !s_.script.empty()) {
         const DemoStep step = s_.script.front();
         s_.script.erase(s_.script.begin());
-        if (step.verb == "wait") waitFrames_ = std::max(1, std::stoi(step.arg));
-        else if (step.verb == "technique") setTechnique(step.arg);
-        else if (step.verb == "set") applySet(step.arg);
-        else if (step.verb == "compare") compareWith(step.arg);
-        else if (step.verb == "screenshot") screenshot(step.arg);
-        else if (step.verb == "quit") return false;
+        if (step.verb == "wait")
+            waitFrames_ = std::max(1, std::stoi(step.arg));
+        else if (step.verb == "technique")
+            setTechnique(step.arg);
+        else if (step.verb == "set")
+            applySet(step.arg);
+        else if (step.verb == "compare")
+            compareWith(step.arg);
+        else if (step.verb == "screenshot")
+            screenshot(step.arg);
+        else if (step.verb == "quit")
+            return false;
     }
     return true;
 }
@@ -212,8 +223,10 @@ void Demo::compareWith(const std::string& name)
 void Demo::applySet(const std::string& keyValue)
 {
     applySets({keyValue}, left_->technique(), s_.frameValues, s_.techniqueValues);
-    if (isFrameParam(keyValue.substr(0, keyValue.find('=')))) rebuildRenderers();
-    else left_->setTechniqueValues(s_.techniqueValues);
+    if (isFrameParam(keyValue.substr(0, keyValue.find('='))))
+        rebuildRenderers();
+    else
+        left_->setTechniqueValues(s_.techniqueValues);
 }
 
 void Demo::rebuildRenderers()
@@ -321,7 +334,8 @@ void Demo::comparePanel()
     if (!s_.reference.rgb.empty()) {
         ImGui::Checkbox("left against the reference", &compareReference_);
         ImGui::Checkbox("heat map", &showHeatmap_);
-        if (referenceRelRmse_ >= 0) ImGui::Text("relative RMSE %.4f", referenceRelRmse_);
+        if (referenceRelRmse_ >= 0)
+            ImGui::Text("relative RMSE %.4f", referenceRelRmse_);
         else if (compareReference_)
             ImGui::Text("reference is %dx%d; view is %dx%d", s_.reference.width, s_.reference.height, viewW_, viewH_);
     }
@@ -335,7 +349,8 @@ void Demo::halfLabels(int fbw)
     const float scale = ImGui::GetIO().DisplaySize.x / float(std::max(fbw, 1)); // framebuffer -> ImGui units
     const auto label = [&](float x, const std::string& text) {
         const ImVec2 at(x + 6.0f, 6.0f), size = ImGui::CalcTextSize(text.c_str());
-        draw->AddRectFilled(ImVec2(at.x - 3, at.y - 2), ImVec2(at.x + size.x + 3, at.y + size.y + 2), IM_COL32(0, 0, 0, 170));
+        draw->AddRectFilled(ImVec2(at.x - 3, at.y - 2), ImVec2(at.x + size.x + 3, at.y + size.y + 2),
+                            IM_COL32(0, 0, 0, 170));
         draw->AddText(at, IM_COL32(255, 255, 255, 255), text.c_str());
     };
     char buf[160];

@@ -24,7 +24,11 @@ int waitFrames(const std::string& text, const std::string& step)
 {
     std::size_t used = 0;
     long n = -1;
-    try { n = std::stol(text, &used); } catch (const std::exception&) { used = 0; }
+    try {
+        n = std::stol(text, &used);
+    } catch (const std::exception&) {
+        used = 0;
+    }
     if (text.empty() || used != text.size() || n < 0 || n > 1000000)
         throw UsageError("--script: step '" + step + "': wait needs a number of frames in 0..1000000");
     return int(n);

@@ -9,8 +9,7 @@ namespace bounce::app {
 
 DemoView::DemoView()
     : program_(gl::Program::graphics("demo.tonemap", "frame/fullscreen.vert", "frame/tonemap.frag")), vao_("demo.view")
-{
-}
+{}
 
 void DemoView::draw(const gl::Texture& radiance, int x, int y, int w, int h, float exposureStops)
 {
@@ -37,7 +36,9 @@ void DemoView::upload(const core::Image& image, gl::Texture& texture)
         for (int x = 0; x < image.width; ++x) {
             const glm::vec3 v = image.at(x, y);
             float* p = &rgba[(std::size_t(image.height - 1 - y) * image.width + x) * 4];
-            p[0] = v.x; p[1] = v.y; p[2] = v.z;
+            p[0] = v.x;
+            p[1] = v.y;
+            p[2] = v.z;
         }
     glTextureSubImage2D(texture.id(), 0, 0, 0, image.width, image.height, GL_RGBA, GL_FLOAT, rgba.data());
 }

@@ -30,9 +30,11 @@ bool FlyCamera::update(GLFWwindow* w, float dt, float speed)
     const glm::vec3 right = glm::normalize(glm::cross(camera_.forward, glm::vec3(0, 1, 0)));
     camera_.up = glm::normalize(glm::cross(right, camera_.forward));
     if (ImGui::GetIO().WantCaptureKeyboard) return moved;
-    const struct { int key; glm::vec3 dir; } keys[] = {
-        {GLFW_KEY_W, camera_.forward}, {GLFW_KEY_S, -camera_.forward}, {GLFW_KEY_D, right},
-        {GLFW_KEY_A, -right},          {GLFW_KEY_E, glm::vec3(0, 1, 0)}, {GLFW_KEY_Q, glm::vec3(0, -1, 0)}};
+    const struct {
+        int key;
+        glm::vec3 dir;
+    } keys[] = {{GLFW_KEY_W, camera_.forward}, {GLFW_KEY_S, -camera_.forward},   {GLFW_KEY_D, right},
+                {GLFW_KEY_A, -right},          {GLFW_KEY_E, glm::vec3(0, 1, 0)}, {GLFW_KEY_Q, glm::vec3(0, -1, 0)}};
     for (const auto& k : keys)
         if (glfwGetKey(w, k.key) == GLFW_PRESS) {
             camera_.position += k.dir * speed * dt;

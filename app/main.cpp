@@ -8,19 +8,18 @@
 
 namespace {
 
-const char* kUsage =
-    "bounce - a real-time global-illumination laboratory\n"
-    "\n"
-    "usage: bounce <command> [options]    (bounce <command> --help for its options)\n"
-    "\n"
-    "commands:\n"
-    "  render     render a scene with one technique to EXR/PNG, with per-pass GPU timings\n"
-    "  list       list the built-in scenes, the techniques and their parameters\n"
-    "  demo       open a window: fly camera, technique toggles, side-by-side comparison\n"
-    "  reference  render the ground truth with the CPU path tracer (cached)\n"
-    "  compare    error metrics between two images (RMSE, relative RMSE, SSIM...)\n"
-    "  bench      sweep scenes x techniques x parameters, report speed against error\n"
-    "  rays       GPU ray casting against Embree: rays per second, coherent and incoherent\n";
+const char* kUsage = "bounce - a real-time global-illumination laboratory\n"
+                     "\n"
+                     "usage: bounce <command> [options]    (bounce <command> --help for its options)\n"
+                     "\n"
+                     "commands:\n"
+                     "  render     render a scene with one technique to EXR/PNG, with per-pass GPU timings\n"
+                     "  list       list the built-in scenes, the techniques and their parameters\n"
+                     "  demo       open a window: fly camera, technique toggles, side-by-side comparison\n"
+                     "  reference  render the ground truth with the CPU path tracer (cached)\n"
+                     "  compare    error metrics between two images (RMSE, relative RMSE, SSIM...)\n"
+                     "  bench      sweep scenes x techniques x parameters, report speed against error\n"
+                     "  rays       GPU ray casting against Embree: rays per second, coherent and incoherent\n";
 
 // The parameter that lowers a GL resource that could not be had, by the resource's label.
 std::string lowerWith(const std::string& label)
@@ -44,7 +43,10 @@ int main(int argc, char** argv)
     const std::string cmd = argv[1];
     const Args args(argv + 2, argv + argc);
     try {
-        if (cmd == "--help" || cmd == "-h" || cmd == "help") { std::fputs(kUsage, stdout); return 0; }
+        if (cmd == "--help" || cmd == "-h" || cmd == "help") {
+            std::fputs(kUsage, stdout);
+            return 0;
+        }
         if (cmd == "render") return cmdRender(args);
         if (cmd == "list") return cmdList(args);
         if (cmd == "demo") return cmdDemo(args);

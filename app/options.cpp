@@ -9,8 +9,14 @@ Options::Options(const Args& args, const std::vector<OptionSpec>& specs, const s
 {
     for (std::size_t i = 0; i < args.size(); ++i) {
         const std::string& a = args[i];
-        if (a == "--help" || a == "-h") { help_ = true; continue; }
-        if (a.rfind("--", 0) != 0 || a.size() == 2) { positional_.push_back(a); continue; }
+        if (a == "--help" || a == "-h") {
+            help_ = true;
+            continue;
+        }
+        if (a.rfind("--", 0) != 0 || a.size() == 2) {
+            positional_.push_back(a);
+            continue;
+        }
         std::string name = a.substr(2), value;
         bool inlineValue = false;
         if (const auto eq = name.find('='); eq != std::string::npos) {
@@ -68,7 +74,11 @@ double Options::getDouble(const std::string& name, double fallback, double min, 
     const std::string text = get(name);
     std::size_t used = 0;
     double v = 0.0;
-    try { v = std::stod(text, &used); } catch (...) { used = 0; }
+    try {
+        v = std::stod(text, &used);
+    } catch (...) {
+        used = 0;
+    }
     if (used != text.size() || text.empty() || !std::isfinite(v))
         throw UsageError("--" + name + " needs a number, not '" + text + "'");
     if (v < min || v > max) {

@@ -10,7 +10,7 @@
 namespace bounce::app {
 
 struct OptionSpec {
-    std::string name;      // without the dashes
+    std::string name; // without the dashes
     bool takesValue = true;
     bool repeatable = false;
 };

@@ -16,7 +16,10 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-double seconds(Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double>(b - a).count(); }
+double seconds(Clock::time_point a, Clock::time_point b)
+{
+    return std::chrono::duration<double>(b - a).count();
+}
 
 double median(std::vector<double> v)
 {
@@ -45,7 +48,7 @@ double castEmbree(const ref::EmbreeScene& embree, const std::vector<gl::BatchRay
 }
 
 RayThroughput measure(const std::string& kind, const ref::EmbreeScene& embree, const gl::RayCaster& caster,
-                gl::RayBatch& batch, const std::vector<gl::BatchRay>& rays, int threads, int repeat)
+                      gl::RayBatch& batch, const std::vector<gl::BatchRay>& rays, int threads, int repeat)
 {
     RayThroughput f;
     f.kind = kind;
@@ -106,8 +109,8 @@ std::vector<RayThroughput> measureRayThroughput(const core::Scene& scene, int re
     const core::Camera& cam = scene.camera;
     for (int y = 0; y < side; ++y)
         for (int x = 0; x < side; ++x)
-            primary.push_back({cam.position, 0.0f, cam.rayDirection(float(x) + 0.5f, float(y) + 0.5f, side, side),
-                               1e30f});
+            primary.push_back(
+                {cam.position, 0.0f, cam.rayDirection(float(x) + 0.5f, float(y) + 0.5f, side, side), 1e30f});
 
     // Incoherent: from each primary hit, a cosine-distributed direction about the surface's normal
     // (rays that missed leave the camera in a random direction instead).

@@ -36,7 +36,8 @@ void applySceneOptions(core::Scene& scene, const std::string& camera, const std:
             core::setCameraFromJson(scene, core::cameraJsonFromArgument(camera), "--camera");
             scene.cameraSource = "command line";
         }
-        for (const std::string& l : lights) core::addLightFromJson(scene, core::lightJsonFromArgument(l), "--light '" + l + "'");
+        for (const std::string& l : lights)
+            core::addLightFromJson(scene, core::lightJsonFromArgument(l), "--light '" + l + "'");
     } catch (const core::SceneError& e) {
         throw UsageError(e.what());
     }
@@ -58,8 +59,10 @@ void applySets(const std::vector<std::string>& sets, const gl::TechniqueInfo& te
         bool isFrame = false;
         for (const gl::ParamDecl& d : gl::frameParams()) isFrame |= d.name == key;
         try {
-            if (isFrame) frameValues.set(gl::frameParams(), key, value);
-            else techniqueValues.set(technique.params, key, value);
+            if (isFrame)
+                frameValues.set(gl::frameParams(), key, value);
+            else
+                techniqueValues.set(technique.params, key, value);
         } catch (const std::invalid_argument& e) {
             throw UsageError(std::string(e.what()) + (isFrame ? "" : " (technique '" + technique.name + "')"));
         }
@@ -102,8 +105,8 @@ nlohmann::json runRecord(const gl::ContextInfo& ctx, const std::string& scene, g
     double total = 0.0;
     nlohmann::json passes = nlohmann::json::array();
     for (const gl::PassStat& p : r.timers().stats()) {
-        passes.push_back({{"pass", p.pass}, {"medianMs", p.medianMs}, {"minMs", p.minMs}, {"maxMs", p.maxMs},
-                          {"frames", p.frames}});
+        passes.push_back(
+            {{"pass", p.pass}, {"medianMs", p.medianMs}, {"minMs", p.minMs}, {"maxMs", p.maxMs}, {"frames", p.frames}});
         total += p.medianMs;
     }
     j["passes"] = passes;

@@ -62,7 +62,10 @@ float pdfSpecular(const BrdfParams& p, const glm::vec3& n, const glm::vec3& wo, 
 
 } // namespace
 
-float luminance(const glm::vec3& rgb) { return 0.2126f * rgb.x + 0.7152f * rgb.y + 0.0722f * rgb.z; }
+float luminance(const glm::vec3& rgb)
+{
+    return 0.2126f * rgb.x + 0.7152f * rgb.y + 0.0722f * rgb.z;
+}
 
 BrdfParams BrdfParams::fromMaterial(const Material& m, const glm::vec3& textureColor)
 {
@@ -112,8 +115,8 @@ glm::vec3 evalBrdf(const BrdfParams& p, const glm::vec3& n, const glm::vec3& wo,
     if (!halfVector(wo, wi, h)) return glm::vec3(0.0f); // wi == -wo cannot be above the surface with wo
     const glm::vec3 wF = p.weight * fresnelSchlick(p.f0, glm::dot(wo, h));
     // The diffuse part keeps what the glossy interface transmits on the way in and on the way out.
-    const glm::vec3 transmitted = (1.0f - p.weight * fresnelSchlick(p.f0, nDotWo)) *
-                                  (1.0f - p.weight * fresnelSchlick(p.f0, nDotWi));
+    const glm::vec3 transmitted =
+        (1.0f - p.weight * fresnelSchlick(p.f0, nDotWo)) * (1.0f - p.weight * fresnelSchlick(p.f0, nDotWi));
     const glm::vec3 diffuse = transmitted * p.diffuse * kInvPi;
     return diffuse + wF * (ggxD(std::max(glm::dot(n, h), 0.0f), p.alpha) * smithVisibility(nDotWi, nDotWo, p.alpha));
 }

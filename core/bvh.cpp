@@ -141,8 +141,9 @@ private:
         const glm::vec3 e = centroids.extent();
         const int axis = e.x >= e.y && e.x >= e.z ? 0 : (e.y >= e.z ? 1 : 2);
         const int mid = first + count / 2;
-        std::nth_element(order_.begin() + first, order_.begin() + mid, order_.begin() + first + count,
-                         [&](std::uint32_t a, std::uint32_t b) { return refs_[a].centroid[axis] < refs_[b].centroid[axis]; });
+        std::nth_element(
+            order_.begin() + first, order_.begin() + mid, order_.begin() + first + count,
+            [&](std::uint32_t a, std::uint32_t b) { return refs_[a].centroid[axis] < refs_[b].centroid[axis]; });
         return mid;
     }
 

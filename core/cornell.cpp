@@ -153,7 +153,8 @@ void addSlatsAndShelf(Scene& scene, std::uint32_t material)
     std::vector<Quad> slats;
     for (int k = 0; k < 7; ++k) {
         const float x = 0.07f + 0.07f * float(k);
-        for (const Quad& q : boxQuads({x - 0.0125f, 0.0f, 0.02f}, {x + 0.0125f, 0.25f, 0.035f}, false)) slats.push_back(q);
+        for (const Quad& q : boxQuads({x - 0.0125f, 0.0f, 0.02f}, {x + 0.0125f, 0.25f, 0.035f}, false))
+            slats.push_back(q);
     }
     const auto centreOfAll = [](const std::vector<Quad>& quads) {
         glm::dvec3 c(0.0);
@@ -181,9 +182,8 @@ Scene makeCornell(std::string_view variant)
 {
     const std::vector<std::string> names = builtinSceneNames();
     if (std::find(names.begin(), names.end(), variant) == names.end())
-        throw SceneError(
-            std::string(variant) +
-            ": not a Cornell box variant (cornell-area, cornell-spot, cornell-point, cornell-point-ceiling, cornell-slats)");
+        throw SceneError(std::string(variant) + ": not a Cornell box variant (cornell-area, cornell-spot, "
+                                                "cornell-point, cornell-point-ceiling, cornell-slats)");
 
     Scene scene;
     scene.name = std::string(variant);
@@ -240,7 +240,8 @@ Scene loadScene(const std::string& nameOrPath)
     if (endsWith(".json")) return loadSetup(nameOrPath);
     std::string known;
     for (const std::string& n : names) known += (known.empty() ? "" : ", ") + n;
-    throw SceneError(nameOrPath + ": neither a built-in scene (" + known + "), a .gltf/.glb file nor a scene setup (.json)");
+    throw SceneError(nameOrPath + ": neither a built-in scene (" + known +
+                     "), a .gltf/.glb file nor a scene setup (.json)");
 }
 
 } // namespace bounce::core

@@ -47,7 +47,10 @@ bool jailFileExists(const std::string& absPath, void* user)
 }
 
 // No shell-style expansion (~, $VAR): a URI names a file, nothing else.
-std::string jailExpandFilePath(const std::string& path, void*) { return path; }
+std::string jailExpandFilePath(const std::string& path, void*)
+{
+    return path;
+}
 
 bool jailReadWholeFile(std::vector<unsigned char>* out, std::string* err, const std::string& absPath, void* user)
 {
@@ -74,7 +77,10 @@ bool jailWriteWholeFile(std::string* err, const std::string&, const std::vector<
 
 } // namespace
 
-void fail(const std::string& path, const std::string& problem) { throw SceneError(path + ": " + problem); }
+void fail(const std::string& path, const std::string& problem)
+{
+    throw SceneError(path + ": " + problem);
+}
 
 std::string lowerExtension(const std::string& path)
 {

@@ -18,7 +18,7 @@
 #include <glm/gtc/matrix_inverse.hpp>
 #include <glm/gtc/quaternion.hpp>
 #include <nlohmann/json.hpp>
-#include <stb_image.h>       // implementation in Debian's libstb
+#include <stb_image.h> // implementation in Debian's libstb
 
 #include "core/gltf_files.h"
 #include "core/image.h"
@@ -39,11 +39,17 @@ constexpr std::uint64_t kMaxTexturePixels = std::uint64_t(1) << 26; // 8k x 8k
 
 constexpr int kModeTriangles = 4;
 
-bool isIdentity(const glm::dmat4& m) { return m == glm::dmat4(1.0); }
+bool isIdentity(const glm::dmat4& m)
+{
+    return m == glm::dmat4(1.0);
+}
 
 // -0 and +0 mean the same direction; directions derived from node matrices are canonicalised so that a
 // written and reloaded scene hashes the same as the original.
-glm::vec3 withoutNegativeZero(glm::vec3 v) { return v + glm::vec3(0.0f); }
+glm::vec3 withoutNegativeZero(glm::vec3 v)
+{
+    return v + glm::vec3(0.0f);
+}
 
 // Normalises only when the vector is measurably off unit length, so that unit vectors survive a round
 // trip bit for bit.
@@ -266,7 +272,8 @@ private:
         }
     }
 
-    template <int N> std::vector<glm::vec<N, float>> readVectors(int accessorIndex, const std::string& what) const
+    template <int N>
+    std::vector<glm::vec<N, float>> readVectors(int accessorIndex, const std::string& what) const
     {
         const View v = view(accessorIndex, N == 2 ? TINYGLTF_TYPE_VEC2 : TINYGLTF_TYPE_VEC3, what);
         std::vector<glm::vec<N, float>> out(v.count);
@@ -688,6 +695,9 @@ private:
 
 } // namespace
 
-Scene loadGltf(const std::string& path) { return GltfReader(path).read(); }
+Scene loadGltf(const std::string& path)
+{
+    return GltfReader(path).read();
+}
 
 } // namespace bounce::core

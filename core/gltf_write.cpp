@@ -43,7 +43,10 @@ double decimal(float f)
     return float(d) == f ? d : double(f);
 }
 
-json vec3Json(const glm::vec3& v) { return {decimal(v.x), decimal(v.y), decimal(v.z)}; }
+json vec3Json(const glm::vec3& v)
+{
+    return {decimal(v.x), decimal(v.y), decimal(v.z)};
+}
 
 // The .bin being assembled and the glTF objects that describe it.
 struct BinaryWriter {

@@ -23,7 +23,10 @@ namespace {
 // Larger images are refused before allocating: no image of the project comes near 16k x 16k.
 constexpr std::uint64_t kMaxPixels = std::uint64_t(1) << 28;
 
-[[noreturn]] void fail(const std::string& path, const std::string& problem) { throw ImageError(path + ": " + problem); }
+[[noreturn]] void fail(const std::string& path, const std::string& problem)
+{
+    throw ImageError(path + ": " + problem);
+}
 
 std::string lowerExtension(const std::string& path)
 {
@@ -232,7 +235,10 @@ std::string encodeImage(const std::string& path, const Image& image, float expos
     fail(path, "unknown image extension '" + ext + "' (writable: .exr, .png, .pfm)");
 }
 
-void writeExr(const std::string& path, const Image& image) { writeFileAtomic(path, encodeExr(path, image)); }
+void writeExr(const std::string& path, const Image& image)
+{
+    writeFileAtomic(path, encodeExr(path, image));
+}
 
 void writePng(const std::string& path, const Image& image, float exposureStops)
 {
@@ -245,7 +251,10 @@ void writeImage(const std::string& path, const Image& image, float exposureStops
 }
 
 namespace {
-std::string temporaryName(const std::string& path) { return path + ".tmp-" + std::to_string(::getpid()); }
+std::string temporaryName(const std::string& path)
+{
+    return path + ".tmp-" + std::to_string(::getpid());
+}
 
 // Writes bytes to temporaryName(path); on failure removes it and throws.
 void writeTemporary(const std::string& path, const std::string& bytes)
@@ -278,7 +287,10 @@ void checkOutputPath(const std::string& path)
     std::remove(temporaryName(path).c_str());
 }
 
-void FileSet::add(const std::string& path, std::string bytes) { files_.emplace_back(path, std::move(bytes)); }
+void FileSet::add(const std::string& path, std::string bytes)
+{
+    files_.emplace_back(path, std::move(bytes));
+}
 
 void FileSet::addImage(const std::string& path, const Image& image, float exposureStops)
 {

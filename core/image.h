@@ -27,7 +27,9 @@ struct Image {
     void set(int x, int y, const glm::vec3& v)
     {
         float* p = &rgb[(std::size_t(y) * std::size_t(width) + std::size_t(x)) * 3];
-        p[0] = v.x; p[1] = v.y; p[2] = v.z;
+        p[0] = v.x;
+        p[1] = v.y;
+        p[2] = v.z;
     }
 };
 
@@ -36,8 +38,8 @@ struct ImageError : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
-Image readImage(const std::string& path);                         // .exr (float/half RGB(A)) or .pfm
-void writeExr(const std::string& path, const Image& image);       // 32-bit float RGB, atomic
+Image readImage(const std::string& path);                   // .exr (float/half RGB(A)) or .pfm
+void writeExr(const std::string& path, const Image& image); // 32-bit float RGB, atomic
 // Tone map (radiance x 2^exposureStops, clamped, sRGB-encoded) and write an 8-bit PNG, atomically.
 void writePng(const std::string& path, const Image& image, float exposureStops = 0.0f);
 // Writes by extension: .exr, .png (tone mapped), .pfm. Throws ImageError for any other.

@@ -11,13 +11,18 @@ std::size_t jsonNestingDepth(const char* begin, const char* end)
     for (const char* p = begin; p < end; ++p) {
         const char c = *p;
         if (inString) {
-            if (c == '\\') ++p; // the escaped character cannot end the string
-            else if (c == '"') inString = false;
+            if (c == '\\')
+                ++p; // the escaped character cannot end the string
+            else if (c == '"')
+                inString = false;
             continue;
         }
-        if (c == '"') inString = true;
-        else if (c == '[' || c == '{') deepest = std::max(deepest, ++depth);
-        else if ((c == ']' || c == '}') && depth > 0) --depth;
+        if (c == '"')
+            inString = true;
+        else if (c == '[' || c == '{')
+            deepest = std::max(deepest, ++depth);
+        else if ((c == ']' || c == '}') && depth > 0)
+            --depth;
     }
     return deepest;
 }

@@ -24,7 +24,10 @@ void checkSizes(const Image& a, const Image& r)
     if (a.rgb.size() != n || r.rgb.size() != n) throw MetricsError("image storage does not match its size");
 }
 
-bool finite3(const float* p) { return std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]); }
+bool finite3(const float* p)
+{
+    return std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]);
+}
 
 // Luminance per pixel; a pixel with a non-finite channel in either image is 0 in both (see metrics.h).
 void luminancePair(const Image& a, const Image& r, std::vector<double>& la, std::vector<double>& lr)
@@ -221,7 +224,8 @@ Image boxDownsample(const Image& image, int width, int height)
 {
     if (width < 1 || height < 1 || image.width % width != 0 || image.height % height != 0)
         throw std::invalid_argument("box downsampling: " + std::to_string(width) + "x" + std::to_string(height) +
-                                    " does not divide " + std::to_string(image.width) + "x" + std::to_string(image.height));
+                                    " does not divide " + std::to_string(image.width) + "x" +
+                                    std::to_string(image.height));
     const int fx = image.width / width, fy = image.height / height;
     Image out(width, height);
     for (int y = 0; y < height; ++y)

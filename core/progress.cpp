@@ -24,8 +24,7 @@ bool silencedByEnvironment()
 
 Progress::Progress(std::string label, double total, std::string unit)
     : Progress(std::move(label), total, std::move(unit), Output{})
-{
-}
+{}
 
 Progress::Progress(std::string label, double total, std::string unit, Output output)
     : label_(std::move(label)), unit_(std::move(unit)), total_(total), out_(output)
@@ -35,7 +34,10 @@ Progress::Progress(std::string label, double total, std::string unit, Output out
     start_ = lastDraw_ = std::chrono::steady_clock::now();
 }
 
-Progress::~Progress() { finish(); }
+Progress::~Progress()
+{
+    finish();
+}
 
 void Progress::add(double amount)
 {

@@ -73,11 +73,17 @@ glm::vec2 sampleConcentricDisk(const glm::vec2& u);
 // Cosine-weighted hemisphere around +z (Malley's method: a disk point lifted to the hemisphere);
 // pdf = cos(theta) / pi.
 glm::vec3 sampleCosineHemisphere(const glm::vec2& u);
-inline float cosineHemispherePdf(float cosTheta) { return cosTheta > 0.0f ? cosTheta * 0.31830988618379067f : 0.0f; }
+inline float cosineHemispherePdf(float cosTheta)
+{
+    return cosTheta > 0.0f ? cosTheta * 0.31830988618379067f : 0.0f;
+}
 
 // Uniform on the unit sphere; pdf = 1 / (4 pi).
 glm::vec3 sampleUniformSphere(const glm::vec2& u);
-inline float uniformSpherePdf() { return 0.07957747154594767f; }
+inline float uniformSpherePdf()
+{
+    return 0.07957747154594767f;
+}
 
 // Uniform in the cone of directions around +z with cos(theta) >= cosThetaMax; pdf = 1 / (2 pi (1 - cosThetaMax)).
 glm::vec3 sampleUniformCone(const glm::vec2& u, float cosThetaMax);
@@ -95,7 +101,10 @@ glm::vec2 sampleUniformTriangle(const glm::vec2& u);
 inline constexpr int kHaltonDimensions = 64;
 double radicalInverse(int dimension, std::uint64_t index);
 // The Halton sequence (Halton 1960): point `index`, coordinate `dimension`; unscrambled.
-inline double halton(int dimension, std::uint64_t index) { return radicalInverse(dimension, index); }
+inline double halton(int dimension, std::uint64_t index)
+{
+    return radicalInverse(dimension, index);
+}
 
 // A discrete distribution over weights (not necessarily normalised), sampled by inversion of the CDF
 // (binary search). Zero weights are never chosen; all-zero weights give an empty distribution.

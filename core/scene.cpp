@@ -18,9 +18,15 @@ float Light::spotWeight(float cosAngle) const
     return t * t;
 }
 
-glm::mat4 Camera::view() const { return glm::lookAt(position, position + forward, up); }
+glm::mat4 Camera::view() const
+{
+    return glm::lookAt(position, position + forward, up);
+}
 
-glm::mat4 Camera::projection(float aspect) const { return glm::perspective(yfovRad, aspect, znear, zfar); }
+glm::mat4 Camera::projection(float aspect) const
+{
+    return glm::perspective(yfovRad, aspect, znear, zfar);
+}
 
 glm::vec3 Camera::rayDirection(float px, float py, int width, int height) const
 {
@@ -69,11 +75,23 @@ struct Fnv1a {
         const auto* c = static_cast<const unsigned char*>(p);
         for (std::size_t i = 0; i < n; ++i) h = (h ^ c[i]) * 1099511628211ull;
     }
-    template <class T> void pod(const T& v) { bytes(&v, sizeof v); }
-    template <class T> void vec(const std::vector<T>& v) { pod(v.size()); bytes(v.data(), v.size() * sizeof(T)); }
+    template <class T>
+    void pod(const T& v)
+    {
+        bytes(&v, sizeof v);
+    }
+    template <class T>
+    void vec(const std::vector<T>& v)
+    {
+        pod(v.size());
+        bytes(v.data(), v.size() * sizeof(T));
+    }
 };
 
-bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+bool finite(const glm::vec3& v)
+{
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
 } // namespace
 
 std::uint64_t Scene::contentHash() const
@@ -81,19 +99,37 @@ std::uint64_t Scene::contentHash() const
     Fnv1a f;
     f.pod(meshes.size());
     for (const Mesh& m : meshes) {
-        f.vec(m.positions); f.vec(m.normals); f.vec(m.uvs); f.vec(m.indices); f.pod(m.material);
+        f.vec(m.positions);
+        f.vec(m.normals);
+        f.vec(m.uvs);
+        f.vec(m.indices);
+        f.pod(m.material);
     }
     f.pod(materials.size());
     for (const Material& m : materials) {
-        f.pod(m.baseColor); f.pod(m.baseColorTexture); f.pod(m.metallic); f.pod(m.roughness);
-        f.pod(m.specular); f.pod(m.specularColor); f.pod(m.emission); f.pod(m.doubleSided);
+        f.pod(m.baseColor);
+        f.pod(m.baseColorTexture);
+        f.pod(m.metallic);
+        f.pod(m.roughness);
+        f.pod(m.specular);
+        f.pod(m.specularColor);
+        f.pod(m.emission);
+        f.pod(m.doubleSided);
     }
     f.pod(textures.size());
-    for (const Texture& t : textures) { f.pod(t.width); f.pod(t.height); f.vec(t.rgba8); }
+    for (const Texture& t : textures) {
+        f.pod(t.width);
+        f.pod(t.height);
+        f.vec(t.rgba8);
+    }
     f.pod(lights.size());
     for (const Light& l : lights) {
-        f.pod(l.type); f.pod(l.position); f.pod(l.direction); f.pod(l.intensity);
-        f.pod(l.innerConeRad); f.pod(l.outerConeRad);
+        f.pod(l.type);
+        f.pod(l.position);
+        f.pod(l.direction);
+        f.pod(l.intensity);
+        f.pod(l.innerConeRad);
+        f.pod(l.outerConeRad);
     }
     return f.h;
 }
@@ -104,16 +140,28 @@ std::string Scene::validate() const
     for (std::size_t i = 0; i < meshes.size(); ++i) {
         const Mesh& m = meshes[i];
         const std::string where = "mesh " + std::to_string(i) + " ('" + m.name + "')";
-        if (m.indices.size() % 3 != 0) err << where << ": index count " << m.indices.size() << " is not a multiple of 3\n";
-        if (m.normals.size() != m.positions.size()) err << where << ": " << m.normals.size() << " normals for " << m.positions.size() << " positions\n";
-        if (!m.uvs.empty() && m.uvs.size() != m.positions.size()) err << where << ": uv count differs from position count\n";
+        if (m.indices.size() % 3 != 0)
+            err << where << ": index count " << m.indices.size() << " is not a multiple of 3\n";
+        if (m.normals.size() != m.positions.size())
+            err << where << ": " << m.normals.size() << " normals for " << m.positions.size() << " positions\n";
+        if (!m.uvs.empty() && m.uvs.size() != m.positions.size())
+            err << where << ": uv count differs from position count\n";
         if (m.material >= materials.size()) err << where << ": material " << m.material << " out of range\n";
         for (std::uint32_t idx : m.indices)
-            if (idx >= m.positions.size()) { err << where << ": index " << idx << " out of range (" << m.positions.size() << " positions)\n"; break; }
+            if (idx >= m.positions.size()) {
+                err << where << ": index " << idx << " out of range (" << m.positions.size() << " positions)\n";
+                break;
+            }
         for (const glm::vec3& p : m.positions)
-            if (!finite(p)) { err << where << ": non-finite (NaN/Inf) position\n"; break; }
+            if (!finite(p)) {
+                err << where << ": non-finite (NaN/Inf) position\n";
+                break;
+            }
         for (const glm::vec3& n : m.normals)
-            if (!finite(n)) { err << where << ": non-finite (NaN/Inf) normal\n"; break; }
+            if (!finite(n)) {
+                err << where << ": non-finite (NaN/Inf) normal\n";
+                break;
+            }
     }
     for (std::size_t i = 0; i < materials.size(); ++i) {
         const Material& m = materials[i];

@@ -17,14 +17,14 @@ inline constexpr float kPi = 3.14159265358979323846f;
 // One material, one BRDF (brdf.h): Lambertian diffuse baseColor x (1 - metallic) plus one GGX lobe.
 struct Material {
     std::string name;
-    glm::vec3 baseColor{1.0f};       // linear RGB; multiplied by the texture when there is one
-    int baseColorTexture = -1;       // index into Scene::textures, -1 when none
+    glm::vec3 baseColor{1.0f}; // linear RGB; multiplied by the texture when there is one
+    int baseColorTexture = -1; // index into Scene::textures, -1 when none
     float metallic = 0.0f;
-    float roughness = 1.0f;          // GGX alpha = roughness^2
-    float specular = 1.0f;           // KHR_materials_specular specularFactor; 0 gives pure Lambertian
-    glm::vec3 specularColor{1.0f};   // KHR_materials_specular specularColorFactor
-    glm::vec3 emission{0.0f};        // W/(m^2 sr): emissiveFactor x KHR_materials_emissive_strength
-    bool doubleSided = false;        // shading only; every surface blocks light from both sides
+    float roughness = 1.0f;        // GGX alpha = roughness^2
+    float specular = 1.0f;         // KHR_materials_specular specularFactor; 0 gives pure Lambertian
+    glm::vec3 specularColor{1.0f}; // KHR_materials_specular specularColorFactor
+    glm::vec3 emission{0.0f};      // W/(m^2 sr): emissiveFactor x KHR_materials_emissive_strength
+    bool doubleSided = false;      // shading only; every surface blocks light from both sides
 
     bool isEmissive() const { return emission.x > 0.0f || emission.y > 0.0f || emission.z > 0.0f; }
     // True when the GGX lobe contributes (a Lambertian-only scene needs no glossy resources).
@@ -55,11 +55,11 @@ enum class LightType { Point, Spot, Directional };
 struct Light {
     std::string name;
     LightType type = LightType::Point;
-    glm::vec3 position{0.0f};             // point, spot
+    glm::vec3 position{0.0f};               // point, spot
     glm::vec3 direction{0.0f, -1.0f, 0.0f}; // spot, directional: the direction light travels (unit)
-    glm::vec3 intensity{1.0f};            // colour x intensity
-    float innerConeRad = 0.0f;            // spot: full intensity inside
-    float outerConeRad = kPi / 4.0f;      // spot: nothing outside; inner == outer is a hard edge
+    glm::vec3 intensity{1.0f};              // colour x intensity
+    float innerConeRad = 0.0f;              // spot: full intensity inside
+    float outerConeRad = kPi / 4.0f;        // spot: nothing outside; inner == outer is a hard edge
 
     // Angular falloff of a spot (glTF's: t = (cos - cosOuter) / (cosInner - cosOuter), weight t^2),
     // 1 for point and directional lights. A hard cone (inner >= outer) is a step at the outer angle.
@@ -75,8 +75,8 @@ struct Camera {
     float znear = 0.01f;
     float zfar = 100.0f;
 
-    glm::mat4 view() const;                     // world to eye (OpenGL: eye looks down -z)
-    glm::mat4 projection(float aspect) const;   // eye to clip (OpenGL, depth -1..1)
+    glm::mat4 view() const;                   // world to eye (OpenGL: eye looks down -z)
+    glm::mat4 projection(float aspect) const; // eye to clip (OpenGL, depth -1..1)
     // The world-space direction through pixel centre (px, py) of a width x height image, row 0 top.
     glm::vec3 rayDirection(float px, float py, int width, int height) const;
 };
@@ -84,7 +84,11 @@ struct Camera {
 struct Bounds {
     glm::vec3 lo{std::numeric_limits<float>::infinity()};
     glm::vec3 hi{-std::numeric_limits<float>::infinity()};
-    void extend(const glm::vec3& p) { lo = glm::min(lo, p); hi = glm::max(hi, p); }
+    void extend(const glm::vec3& p)
+    {
+        lo = glm::min(lo, p);
+        hi = glm::max(hi, p);
+    }
     bool empty() const { return !(lo.x <= hi.x && lo.y <= hi.y && lo.z <= hi.z); }
     glm::vec3 extent() const { return empty() ? glm::vec3(0.0f) : hi - lo; }
     glm::vec3 centre() const { return empty() ? glm::vec3(0.0f) : 0.5f * (lo + hi); }

@@ -19,7 +19,10 @@ namespace {
 using nlohmann::json;
 namespace fs = std::filesystem;
 
-[[noreturn]] void fail(const std::string& where, const std::string& problem) { throw SceneError(where + ": " + problem); }
+[[noreturn]] void fail(const std::string& where, const std::string& problem)
+{
+    throw SceneError(where + ": " + problem);
+}
 
 void allowOnly(const json& j, const std::string& where, std::initializer_list<const char*> keys)
 {
@@ -243,7 +246,8 @@ Scene loadSetup(const std::string& path)
             for (const auto& [name, o] : overrides.items()) {
                 bool found = name == "*";
                 for (Material& m : loaded.materials)
-                    if (name == "*" || m.name == name) overrideMaterial(m, o, path + ": material '" + name + "'"), found = true;
+                    if (name == "*" || m.name == name)
+                        overrideMaterial(m, o, path + ": material '" + name + "'"), found = true;
                 if (!found) fail(path, "no material named '" + name + "' in the glTF");
             }
         }
@@ -335,7 +339,8 @@ json lightJsonFromArgument(const std::string& text)
 {
     const std::string where = "--light '" + text + "'";
     const auto colon = text.find(':');
-    if (colon == std::string::npos) fail(where, "needs TYPE:key=value;key=value, e.g. point:position=0,1,0;intensity=5");
+    if (colon == std::string::npos)
+        fail(where, "needs TYPE:key=value;key=value, e.g. point:position=0,1,0;intensity=5");
     json l = {{"type", text.substr(0, colon)}};
     for (const std::string& kv : split(text.substr(colon + 1), ';')) {
         if (kv.empty()) continue;

@@ -31,7 +31,8 @@ TriangleRef findTriangle(const Scene& scene, const std::vector<std::size_t>& off
     if (triangle >= offsets.back())
         throw SurfacePointError("surface point on triangle " + std::to_string(triangle) + ", but the scene has " +
                                 std::to_string(offsets.back()) + " triangles");
-    const auto mesh = std::size_t(std::upper_bound(offsets.begin(), offsets.end(), std::size_t(triangle)) - offsets.begin()) - 1;
+    const auto mesh =
+        std::size_t(std::upper_bound(offsets.begin(), offsets.end(), std::size_t(triangle)) - offsets.begin()) - 1;
     return {&scene.meshes[mesh], (triangle - offsets[mesh]) * 3};
 }
 
@@ -83,7 +84,8 @@ public:
             for (int dy = -1; dy <= 1; ++dy)
                 for (int dx = -1; dx <= 1; ++dx) {
                     const glm::ivec3 n = c + glm::ivec3(dx, dy, dz);
-                    if (glm::any(glm::lessThan(n, glm::ivec3(0))) || glm::any(glm::greaterThan(n, glm::ivec3(kMaxCell))))
+                    if (glm::any(glm::lessThan(n, glm::ivec3(0))) ||
+                        glm::any(glm::greaterThan(n, glm::ivec3(kMaxCell))))
                         continue;
                     const Slot& s = slotFor(key(n));
                     if (!s.used) continue;
@@ -213,7 +215,8 @@ std::vector<double> triangleAreas(const Scene& scene)
     areas.reserve(scene.triangleCount());
     for (const Mesh& m : scene.meshes)
         for (std::size_t i = 0; i + 2 < m.indices.size(); i += 3) {
-            const glm::dvec3 a(m.positions[m.indices[i]]), b(m.positions[m.indices[i + 1]]), c(m.positions[m.indices[i + 2]]);
+            const glm::dvec3 a(m.positions[m.indices[i]]), b(m.positions[m.indices[i + 1]]),
+                c(m.positions[m.indices[i + 2]]);
             areas.push_back(0.5 * glm::length(glm::cross(b - a, c - a)));
         }
     return areas;

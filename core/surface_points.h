@@ -41,8 +41,8 @@
 
 namespace bounce::core {
 
-inline constexpr int kCandidatesPerPoint = 5;        // Yuksel 2015 recommends 5x the output count
-inline constexpr float kMinDistanceFactor = 0.65f;  // r = c sqrt(A / N) of step 2
+inline constexpr int kCandidatesPerPoint = 5;      // Yuksel 2015 recommends 5x the output count
+inline constexpr float kMinDistanceFactor = 0.65f; // r = c sqrt(A / N) of step 2
 
 struct SurfacePointError : std::invalid_argument {
     using std::invalid_argument::invalid_argument;
@@ -56,9 +56,9 @@ struct SurfacePoint {
 
 struct SurfacePoints {
     std::vector<SurfacePoint> points;
-    double totalAreaM2 = 0.0;  // the scene's surface area (degenerate triangles add nothing)
-    double minDistance = 0.0;  // every two points are at least this far apart (metres, 3D)
-    int restarts = 0;          // radius reductions of step 2 (0 on ordinary scenes)
+    double totalAreaM2 = 0.0; // the scene's surface area (degenerate triangles add nothing)
+    double minDistance = 0.0; // every two points are at least this far apart (metres, 3D)
+    int restarts = 0;         // radius reductions of step 2 (0 on ordinary scenes)
 };
 
 // N points over `scene`'s triangles. Zero-area triangles get no points. Throws SurfacePointError when

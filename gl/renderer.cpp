@@ -4,16 +4,14 @@ namespace bounce::gl {
 
 Renderer::Renderer(const core::Scene& scene, const std::string& technique, const ParamValues& frameValues,
                    const ParamValues& techniqueValues, int width, int height)
-    : frame_(std::make_unique<Frame>(scene, frameSettingsFrom(frameValues, width, height))),
-      frameValues_(frameValues)
+    : frame_(std::make_unique<Frame>(scene, frameSettingsFrom(frameValues, width, height))), frameValues_(frameValues)
 {
     setTechnique(technique, techniqueValues);
 }
 
 Renderer::Renderer(const core::Scene& scene, const TechniqueInfo& info, const ParamValues& frameValues,
                    const ParamValues& techniqueValues, int width, int height)
-    : frame_(std::make_unique<Frame>(scene, frameSettingsFrom(frameValues, width, height))),
-      frameValues_(frameValues)
+    : frame_(std::make_unique<Frame>(scene, frameSettingsFrom(frameValues, width, height))), frameValues_(frameValues)
 {
     make(info, techniqueValues);
 }
@@ -54,8 +52,7 @@ void Renderer::make(const TechniqueInfo& info, const ParamValues& techniqueValue
 void Renderer::renderFrame(bool keepTimings)
 {
     // Techniques size their buffers from the frame: a resized frame gets a technique made anew.
-    if (frame_->width() != techniqueWidth_ || frame_->height() != techniqueHeight_)
-        make(*info_, techniqueValues_);
+    if (frame_->width() != techniqueWidth_ || frame_->height() != techniqueHeight_) make(*info_, techniqueValues_);
     frame_->beginFrame();
     frame_->renderShadowMaps(timers_);
     frame_->renderGBuffer(timers_);

@@ -23,8 +23,14 @@ float powerHeuristic(float pdfThis, float pdfOther)
     return a + b > 0.0f ? a / (a + b) : 0.0f;
 }
 
-bool isZero(const glm::vec3& v) { return v.x == 0.0f && v.y == 0.0f && v.z == 0.0f; }
-float maxComponent(const glm::vec3& v) { return std::max({v.x, v.y, v.z}); }
+bool isZero(const glm::vec3& v)
+{
+    return v.x == 0.0f && v.y == 0.0f && v.z == 0.0f;
+}
+float maxComponent(const glm::vec3& v)
+{
+    return std::max({v.x, v.y, v.z});
+}
 
 } // namespace
 

@@ -126,8 +126,7 @@ RenderResult cachedReference(const core::Scene& scene, const core::Camera& camer
                     return r;
                 }
             }
-        } catch (const std::exception&) {
-        }
+        } catch (const std::exception&) {}
     }
 
     RenderResult r = render(scene, camera, settings);

@@ -2,11 +2,11 @@
 // mean and variance per pixel (Welford), stopping at a sample count or a relative noise target.
 #include <algorithm>
 #include <atomic>
+#include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <limits>
 #include <optional>
-#include <chrono>
-#include <cmath>
 #include <stdexcept>
 #include <string>
 #include <vector>

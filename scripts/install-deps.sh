@@ -5,7 +5,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 packages=(
-  cmake ninja-build g++ pkg-config
+  cmake ninja-build g++ pkg-config clang-format
   libegl-dev libegl1-mesa-dev libgl-dev libosmesa6-dev libgl1-mesa-dri libglfw3-dev libglm-dev python3-glad
   libtinygltf-dev nlohmann-json3-dev libstb-dev libtinyexr-dev libimgui-dev libgtest-dev
   libembree-dev libtbb-dev

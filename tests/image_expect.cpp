@@ -83,7 +83,8 @@ double measureImages(const core::Image& got, const core::Image& want, const Imag
 std::filesystem::path testImageDir()
 {
     const char* env = std::getenv("TEST_OUTPUT_DIR");
-    const std::filesystem::path root = env && *env ? std::filesystem::path(env) : std::filesystem::path(BOUNCE_TEST_IMAGE_DIR);
+    const std::filesystem::path root =
+        env && *env ? std::filesystem::path(env) : std::filesystem::path(BOUNCE_TEST_IMAGE_DIR);
     const ::testing::TestInfo* t = ::testing::UnitTest::GetInstance()->current_test_info();
     if (!t) return root;
     // Parameterised suites and tests have '/' in their names: one folder per test all the same.
@@ -116,12 +117,15 @@ double expectImagesClose(const std::string& name, const core::Image& got, const 
     }
     const core::ImageMetrics all = core::compareImages(got, want);
     const double measured = measureImages(got, want, metric, mask);
-    const bool blackMatters = metric.kind != ImageMetric::Kind::ValuesOutside && metric.kind != ImageMetric::Kind::MaxAbs;
+    const bool blackMatters =
+        metric.kind != ImageMetric::Kind::ValuesOutside && metric.kind != ImageMetric::Kind::MaxAbs;
     // One failure per comparison, with every reason in it and where the images went.
     std::ostringstream problems;
     if (!all.allFinite())
-        problems << "\n  non-finite values (" << all.nonFiniteImage << " in got, " << all.nonFiniteReference << " in want)";
-    if (blackMatters && !(all.meanReference > 0.0)) problems << "\n  the reference is black, the comparison says nothing";
+        problems << "\n  non-finite values (" << all.nonFiniteImage << " in got, " << all.nonFiniteReference
+                 << " in want)";
+    if (blackMatters && !(all.meanReference > 0.0))
+        problems << "\n  the reference is black, the comparison says nothing";
     if (!(measured <= tolerance))
         problems << "\n  " << metric.describe() << " " << measured << " > " << tolerance << " (" << reason
                  << "); relative RMSE " << all.relativeRmse << ", max |diff| " << all.maxError << ", means "

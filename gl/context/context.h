@@ -19,10 +19,10 @@ Backend parseBackend(const std::string& name);
 const char* backendName(Backend backend);
 
 struct ContextOptions {
-    int width = 1280;          // window size (GLFW only; headless contexts render into framebuffers)
+    int width = 1280; // window size (GLFW only; headless contexts render into framebuffers)
     int height = 720;
-    bool debug = true;         // a KHR_debug context with the callback installed
-    bool visible = true;       // GLFW only
+    bool debug = true;   // a KHR_debug context with the callback installed
+    bool visible = true; // GLFW only
     std::string title = "Bounce";
     // EGL only: "device" or "surfaceless" to use only that platform; empty: $BOUNCE_EGL_PLATFORM if set,
     // else automatic (a hardware device, then surfaceless, then a software device).
@@ -30,12 +30,12 @@ struct ContextOptions {
 };
 
 struct ContextInfo {
-    std::string backend;       // "egl", "osmesa", "glfw"
-    std::string platform;      // "egl-device", "egl-surfaceless", "egl-device-software", "egl-default",
-                               // "osmesa", "glfw-x11", "glfw-wayland"
-    std::string renderer;      // GL_RENDERER
-    std::string vendor;        // GL_VENDOR
-    std::string version;       // GL_VERSION
+    std::string backend;  // "egl", "osmesa", "glfw"
+    std::string platform; // "egl-device", "egl-surfaceless", "egl-device-software", "egl-default",
+                          // "osmesa", "glfw-x11", "glfw-wayland"
+    std::string renderer; // GL_RENDERER
+    std::string vendor;   // GL_VENDOR
+    std::string version;  // GL_VERSION
 };
 
 // Thrown when no 4.5 core context can be had; the message says what was found (version, renderer).

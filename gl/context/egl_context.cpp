@@ -49,7 +49,10 @@ std::string eglErrorName(EGLint code)
     }
 }
 
-std::string lastEglError() { return eglErrorName(eglGetError()); }
+std::string lastEglError()
+{
+    return eglErrorName(eglGetError());
+}
 
 bool hasExtension(const char* list, const char* name)
 {
@@ -61,7 +64,10 @@ bool hasExtension(const char* list, const char* name)
 }
 
 // A stable loader: glad's eglGetProcAddress is a pointer that is reassigned on every EGL load.
-ProcAddress eglLoader(const char* name) { return eglGetProcAddress(name); }
+ProcAddress eglLoader(const char* name)
+{
+    return eglGetProcAddress(name);
+}
 
 void releaseCurrentEgl()
 {
@@ -160,8 +166,9 @@ private:
         std::vector<EGLint> attribs;
         const bool egl15 = eglVersion >= GLAD_MAKE_VERSION(1, 5);
         if (egl15 || GLAD_EGL_KHR_create_context) {
-            attribs = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5, EGL_CONTEXT_OPENGL_PROFILE_MASK,
-                       EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT};
+            attribs = {EGL_CONTEXT_MAJOR_VERSION,       4,
+                       EGL_CONTEXT_MINOR_VERSION,       5,
+                       EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT};
             if (debug && egl15) attribs.insert(attribs.end(), {EGL_CONTEXT_OPENGL_DEBUG, EGL_TRUE});
             if (debug && !egl15)
                 attribs.insert(attribs.end(), {EGL_CONTEXT_FLAGS_KHR, EGL_CONTEXT_OPENGL_DEBUG_BIT_KHR});
@@ -223,11 +230,15 @@ std::vector<Candidate> candidateDisplays(const std::string& only)
                                    ? eglQueryDeviceStringEXT(devices[i], kDrmDeviceFileExt)
                                    : nullptr;
             const std::string label = "egl device " + std::to_string(i) +
-                                      (isSoftware ? " (software)" : file ? std::string(" (") + file + ")" : "");
+                                      (isSoftware ? " (software)"
+                                       : file     ? std::string(" (") + file + ")"
+                                                  : "");
             const EGLDisplay display = eglGetPlatformDisplayEXT(EGL_PLATFORM_DEVICE_EXT, devices[i], nullptr);
             if (display == EGL_NO_DISPLAY) continue;
-            if (isSoftware) software.push_back({display, "egl-device-software", label});
-            else hardware.push_back({display, "egl-device", label});
+            if (isSoftware)
+                software.push_back({display, "egl-device-software", label});
+            else
+                hardware.push_back({display, "egl-device", label});
         }
     }
     if (only != "device" && hasExtension(client, "EGL_MESA_platform_surfaceless") && eglGetPlatformDisplayEXT) {

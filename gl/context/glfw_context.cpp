@@ -13,7 +13,10 @@ namespace {
 
 int liveWindows = 0;
 
-ProcAddress glfwLoader(const char* name) { return glfwGetProcAddress(name); }
+ProcAddress glfwLoader(const char* name)
+{
+    return glfwGetProcAddress(name);
+}
 
 void releaseCurrentGlfw()
 {

@@ -9,7 +9,10 @@ namespace bounce::gl::detail {
 
 namespace {
 
-ProcAddress osMesaLoader(const char* name) { return OSMesaGetProcAddress(name); }
+ProcAddress osMesaLoader(const char* name)
+{
+    return OSMesaGetProcAddress(name);
+}
 
 void releaseCurrentOsMesa()
 {
@@ -78,9 +81,21 @@ std::unique_ptr<Context> createOsMesa(const ContextOptions& options)
 {
     // No depth, stencil or accumulation buffer: nothing renders into the OSMesa buffer itself. OSMesa has
     // no debug-context attribute; KHR_debug output works without one.
-    const int attribs[] = {OSMESA_FORMAT, OSMESA_RGBA, OSMESA_DEPTH_BITS, 0, OSMESA_STENCIL_BITS, 0,
-                           OSMESA_ACCUM_BITS, 0, OSMESA_PROFILE, OSMESA_CORE_PROFILE, OSMESA_CONTEXT_MAJOR_VERSION, 4,
-                           OSMESA_CONTEXT_MINOR_VERSION, 5, 0};
+    const int attribs[] = {OSMESA_FORMAT,
+                           OSMESA_RGBA,
+                           OSMESA_DEPTH_BITS,
+                           0,
+                           OSMESA_STENCIL_BITS,
+                           0,
+                           OSMESA_ACCUM_BITS,
+                           0,
+                           OSMESA_PROFILE,
+                           OSMESA_CORE_PROFILE,
+                           OSMESA_CONTEXT_MAJOR_VERSION,
+                           4,
+                           OSMESA_CONTEXT_MINOR_VERSION,
+                           5,
+                           0};
     const OSMesaContext context = OSMesaCreateContextAttribs(attribs, nullptr);
     if (!context) {
         const std::string found = describeDefaultContext();

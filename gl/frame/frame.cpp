@@ -22,9 +22,15 @@ Program directProgram(const GpuScene& scene)
 } // namespace
 
 Frame::Frame(const core::Scene& scene, const FrameSettings& settings)
-    : scene_(scene), settings_(settings), camera_(scene.camera), gpu_(scene, settings.textureSize),
-      shadows_(gpu_, settings.shadowMapSize), gbufferFbo_("gbuffer.fbo"), directFbo_("direct.fbo"),
-      compositeFbo_("composite.fbo"), emptyVao_("fullscreen"),
+    : scene_(scene),
+      settings_(settings),
+      camera_(scene.camera),
+      gpu_(scene, settings.textureSize),
+      shadows_(gpu_, settings.shadowMapSize),
+      gbufferFbo_("gbuffer.fbo"),
+      directFbo_("direct.fbo"),
+      compositeFbo_("composite.fbo"),
+      emptyVao_("fullscreen"),
       gbufferProgram_(Program::graphics("gbuffer", "frame/gbuffer.vert", "frame/gbuffer.frag")),
       directProgram_(directProgram(gpu_)),
       compositeProgram_(Program::graphics("composite", "frame/fullscreen.vert", "frame/composite.frag"))
@@ -51,8 +57,8 @@ void Frame::allocateTargets()
     gbufferFbo_.attach(GL_COLOR_ATTACHMENT3, specular_);
     gbufferFbo_.attach(GL_COLOR_ATTACHMENT4, emission_);
     gbufferFbo_.attach(GL_DEPTH_ATTACHMENT, depth_);
-    gbufferFbo_.setDrawBuffers({GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2,
-                                GL_COLOR_ATTACHMENT3, GL_COLOR_ATTACHMENT4});
+    gbufferFbo_.setDrawBuffers(
+        {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2, GL_COLOR_ATTACHMENT3, GL_COLOR_ATTACHMENT4});
     gbufferFbo_.checkComplete();
     directFbo_.attach(GL_COLOR_ATTACHMENT0, direct_);
     directFbo_.checkComplete();
@@ -90,7 +96,10 @@ void Frame::resize(int width, int height)
     ++version_.camera;
 }
 
-void Frame::beginFrame() { ++frameIndex_; }
+void Frame::beginFrame()
+{
+    ++frameIndex_;
+}
 
 void Frame::renderShadowMaps(PassTimers& timers)
 {

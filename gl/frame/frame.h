@@ -23,9 +23,9 @@ struct FrameSettings {
     int width = 512;
     int height = 512;
     int shadowMapSize = 1024;
-    int pcfRadius = 1;       // 0: one hard tap per pixel
-    bool pcfLinear = true;   // hardware 2x2 bilinear comparison
-    int textureSize = 512;   // base-colour textures are resampled to this size
+    int pcfRadius = 1;     // 0: one hard tap per pixel
+    bool pcfLinear = true; // hardware 2x2 bilinear comparison
+    int textureSize = 512; // base-colour textures are resampled to this size
 };
 
 // Counters that change when the scene, a light or the camera moves (and only then): progressive

@@ -67,7 +67,10 @@ GpuScene::GpuScene(const core::Scene& scene, int textureSize) : vao_("scene"), b
         glm::vec3 sum(0.0f);
         int n = 0;
         for (const LightSource& o : area_)
-            if (o.group == s.group) { sum += (o.triangle[0] + o.triangle[1] + o.triangle[2]) / 3.0f; ++n; }
+            if (o.group == s.group) {
+                sum += (o.triangle[0] + o.triangle[1] + o.triangle[2]) / 3.0f;
+                ++n;
+            }
         s.position = sum / float(n) + s.direction * 1e-3f;
     }
 
@@ -76,7 +79,12 @@ GpuScene::GpuScene(const core::Scene& scene, int textureSize) : vao_("scene"), b
     indexCount_ = indices.size();
     glVertexArrayVertexBuffer(vao_.id(), 0, vertices_.id(), 0, sizeof(Vertex));
     glVertexArrayElementBuffer(vao_.id(), indices_.id());
-    const struct { unsigned loc; int size; unsigned type; std::size_t offset; } attribs[] = {
+    const struct {
+        unsigned loc;
+        int size;
+        unsigned type;
+        std::size_t offset;
+    } attribs[] = {
         {0, 3, GL_FLOAT, offsetof(Vertex, position)},
         {1, 3, GL_FLOAT, offsetof(Vertex, normal)},
         {2, 2, GL_FLOAT, offsetof(Vertex, uv)},
@@ -102,7 +110,8 @@ GpuScene::GpuScene(const core::Scene& scene, int textureSize) : vao_("scene"), b
     for (std::size_t t = 0; t < scene.textures.size(); ++t) {
         if (layerOf[t] < 0) continue;
         resampleInto(scene.textures[t], size, texels.data());
-        glTextureSubImage3D(textures_.id(), 0, 0, 0, layerOf[t], size, size, 1, GL_RGBA, GL_UNSIGNED_BYTE, texels.data());
+        glTextureSubImage3D(textures_.id(), 0, 0, 0, layerOf[t], size, size, 1, GL_RGBA, GL_UNSIGNED_BYTE,
+                            texels.data());
     }
     if (!hasTextures_)
         glTextureSubImage3D(textures_.id(), 0, 0, 0, 0, 1, 1, 1, GL_RGBA, GL_UNSIGNED_BYTE, texels.data());
@@ -130,9 +139,11 @@ GpuScene::GpuScene(const core::Scene& scene, int textureSize) : vao_("scene"), b
     if (!emissive.empty()) emissive.back().powerCdf = 1.0f;
     emissiveCount_ = int(emissive.size());
     const GpuEmissiveHeader header{std::uint32_t(emissive.size()), float(totalPower), {0, 0}};
-    emissive_ = Buffer("scene.emissiveTriangles", sizeof header + std::max<std::size_t>(emissive.size(), 1) * sizeof(GpuEmissiveTriangle));
+    emissive_ = Buffer("scene.emissiveTriangles",
+                       sizeof header + std::max<std::size_t>(emissive.size(), 1) * sizeof(GpuEmissiveTriangle));
     emissive_.update(0, sizeof header, &header);
-    if (!emissive.empty()) emissive_.update(sizeof header, emissive.size() * sizeof(GpuEmissiveTriangle), emissive.data());
+    if (!emissive.empty())
+        emissive_.update(sizeof header, emissive.size() * sizeof(GpuEmissiveTriangle), emissive.data());
 
     std::vector<GpuMaterial> mats;
     for (const core::Material& m : scene.materials)
@@ -151,7 +162,7 @@ void GpuScene::setLights(const std::vector<core::Light>& punctual)
     lights_.clear();
     for (const core::Light& l : punctual) {
         LightSource s;
-        s.type = l.type == core::LightType::Point ? kLightPoint
+        s.type = l.type == core::LightType::Point  ? kLightPoint
                  : l.type == core::LightType::Spot ? kLightSpot
                                                    : kLightDirectional;
         s.position = l.position;

@@ -55,13 +55,13 @@ struct GpuEmissiveHeader {
 // One light as the GPU sees it, before shadow layers are assigned.
 struct LightSource {
     int type = kLightPoint;
-    glm::vec3 position{0.0f};   // point/spot position; area: centroid of its emitting mesh
-    glm::vec3 direction{0.0f};  // spot/directional travel direction; area: emitter normal
-    glm::vec3 intensity{0.0f};  // W/sr, W/m^2, or radiance for area triangles
+    glm::vec3 position{0.0f};  // point/spot position; area: centroid of its emitting mesh
+    glm::vec3 direction{0.0f}; // spot/directional travel direction; area: emitter normal
+    glm::vec3 intensity{0.0f}; // W/sr, W/m^2, or radiance for area triangles
     float cosOuter = -1.0f, cosInner = -1.0f;
     float outerConeRad = 0.0f;
-    glm::vec3 triangle[3];      // area only
-    int group = -1;             // area triangles of one mesh share a shadow cube: the mesh index
+    glm::vec3 triangle[3]; // area only
+    int group = -1;        // area triangles of one mesh share a shadow cube: the mesh index
 };
 
 class GpuScene {

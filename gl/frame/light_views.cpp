@@ -18,7 +18,10 @@ void lightNearFar(const core::Bounds& b, const glm::vec3& origin, float& near, f
     near = std::max(far * 1e-4f, 1e-5f);
 }
 
-glm::vec3 lightUpVector(const glm::vec3& d) { return std::abs(d.y) < 0.99f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0); }
+glm::vec3 lightUpVector(const glm::vec3& d)
+{
+    return std::abs(d.y) < 0.99f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
+}
 
 std::vector<LightView> cubeViews(const glm::vec3& origin, float near, float far)
 {
@@ -37,7 +40,8 @@ std::vector<LightView> cubeViews(const glm::vec3& origin, float near, float far)
     return v;
 }
 
-LightViews buildLightViews(const std::vector<LightSource>& lights, const core::Bounds& b, const LightViewOptions& options)
+LightViews buildLightViews(const std::vector<LightSource>& lights, const core::Bounds& b,
+                           const LightViewOptions& options)
 {
     LightViews out;
     if (b.empty()) return out; // nothing to see

@@ -20,11 +20,11 @@ struct LightView {
     glm::vec3 origin{0.0f};    // light position (orthographic: the view's eye point)
     glm::vec3 direction{0.0f}; // view axis; for orthographic views the direction light travels
     bool orthographic = false;
-    bool cubeFace = false;     // one of six 90-degree faces (cubeViews)
-    float fovRad = 0.0f;       // perspective field of view of the square view
-    float far = 0.0f;          // perspective far plane; 0 for orthographic views
-    float orthoHalfExtent = 0.0f; // orthographic: half the side of the square the view covers (m)
-    int light = -1;            // index into GpuScene::lights() (area: the first triangle of its mesh)
+    bool cubeFace = false;            // one of six 90-degree faces (cubeViews)
+    float fovRad = 0.0f;              // perspective field of view of the square view
+    float far = 0.0f;                 // perspective far plane; 0 for orthographic views
+    float orthoHalfExtent = 0.0f;     // orthographic: half the side of the square the view covers (m)
+    int light = -1;                   // index into GpuScene::lights() (area: the first triangle of its mesh)
     int areaFirst = 0, areaCount = 0; // area emitter: its triangles are lights [areaFirst, areaFirst + areaCount)
 };
 

@@ -11,7 +11,10 @@ namespace bounce::gl {
 
 namespace {
 
-int ceilDiv(int a, int b) { return (a + b - 1) / b; }
+int ceilDiv(int a, int b)
+{
+    return (a + b - 1) / b;
+}
 
 // Smallest l with 2^l >= n: the level whose single patch covers n pixels.
 int ceilLog2(int n)
@@ -29,13 +32,15 @@ std::vector<ParamDecl> multiresParams()
     // The thresholds are uniforms of the passes that test patches: changing them recompiles nothing.
     std::vector<ParamDecl> p{
         {"depthThreshold", ParamType::Float, d.depthThreshold, 0, 100,
-         "eye-space discontinuity: a patch is subdivided when (max - min) eye depth >= this x min depth; 0: full resolution",
+         "eye-space discontinuity: a patch is subdivided when (max - min) eye depth >= this x min depth; 0: full "
+         "resolution",
          false, ParamUpdate::Uniform},
         {"normalThreshold", ParamType::Float, d.normalThreshold, 0, 4,
          "eye-space discontinuity: a patch is subdivided when any normal component spans >= this; 0: full resolution",
          false, ParamUpdate::Uniform},
         {"coarsestLevel", ParamType::Int, kAutoValue, 0, MultiresPyramid::kMaxLevels - 1,
-         "coarsest multiresolution patch: 2^level pixels per side; auto: the paper's 64x64 coarsest buffer (8x8 pixels at 512^2)"},
+         "coarsest multiresolution patch: 2^level pixels per side; auto: the paper's 64x64 coarsest buffer (8x8 pixels "
+         "at 512^2)"},
     };
     p.back().allowAuto = true;
     return p;
@@ -53,8 +58,8 @@ MultiresSettings multiresSettingsFrom(const ParamValues& v)
 std::vector<glm::ivec4> multiresLevelRects(int width, int height, int coarsestLevel)
 {
     if (width < 1 || height < 1) throw std::invalid_argument("multiresolution buffer of an empty image");
-    const int levels = std::clamp(std::min(coarsestLevel, ceilLog2(std::max(width, height))), 0,
-                                  MultiresPyramid::kMaxLevels - 1);
+    const int levels =
+        std::clamp(std::min(coarsestLevel, ceilLog2(std::max(width, height))), 0, MultiresPyramid::kMaxLevels - 1);
     std::vector<glm::ivec4> rects{{0, 0, width, height}};
     int y = 0;
     for (int l = 1; l <= levels; ++l) {
@@ -74,7 +79,8 @@ int autoCoarsestLevel(int width, int height)
 }
 
 MultiresPyramid::MultiresPyramid(int width, int height, const MultiresSettings& settings)
-    : settings_(settings), reduce_(Program::compute("multires.minmax", "frame/multires_minmax.comp")),
+    : settings_(settings),
+      reduce_(Program::compute("multires.minmax", "frame/multires_minmax.comp")),
       upsample_(Program::compute("multires.upsample", "frame/multires_upsample.comp"))
 {
     if (settings_.coarsestLevel < MultiresSettings::kAutoLevel)

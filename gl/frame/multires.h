@@ -45,7 +45,7 @@ MultiresSettings multiresSettingsFrom(const ParamValues& values);
 
 class MultiresPyramid {
 public:
-    static constexpr int kMaxLevels = 16;            // glsl/common/multires.glsl: MULTIRES_MAX_LEVELS
+    static constexpr int kMaxLevels = 16; // glsl/common/multires.glsl: MULTIRES_MAX_LEVELS
 
     MultiresPyramid(int width, int height, const MultiresSettings& settings);
 

@@ -9,8 +9,7 @@
 
 namespace bounce::gl {
 
-namespace {
-} // namespace
+namespace {} // namespace
 
 RayCaster::RayCaster(const core::Scene& scene) : bvh_(scene)
 {
@@ -28,17 +27,16 @@ void RayCaster::bind() const
 
 RayBatch::RayBatch()
     : compute_(Program::compute("raycast.batch.compute", "frame/raycast_batch.comp", {})),
-      fragment_(Program::graphics("raycast.batch.fragment", "frame/fullscreen.vert", "frame/raycast_batch.frag",
-                                  {})),
+      fragment_(Program::graphics("raycast.batch.fragment", "frame/fullscreen.vert", "frame/raycast_batch.frag", {})),
       vao_("raycast.batch")
-{
-}
+{}
 
 void RayBatch::upload(const std::vector<BatchRay>& rays)
 {
     count_ = rays.size();
     const std::size_t n = std::max<std::size_t>(count_, 1);
-    rays_ = rays.empty() ? Buffer("raycast.batch.rays", sizeof(BatchRay)) : Buffer::fromVector("raycast.batch.rays", rays);
+    rays_ =
+        rays.empty() ? Buffer("raycast.batch.rays", sizeof(BatchRay)) : Buffer::fromVector("raycast.batch.rays", rays);
     results_ = Buffer("raycast.batch.results", n * sizeof(BatchResult));
     results_.clearToZero();
     const int width = int(std::min<std::size_t>(n, kFragmentWidth));

@@ -22,7 +22,6 @@
 
 namespace bounce::gl {
 
-
 class RayCaster {
 public:
     explicit RayCaster(const core::Scene& scene);
@@ -46,9 +45,9 @@ struct BatchRay {
 struct BatchResult {
     std::uint32_t triangle; // global index, 0xFFFFFFFF without a closest hit
     float t;
-    float b1, b2;            // barycentrics of v1 and v2
-    std::uint32_t closest;   // closestHit found a hit
-    std::uint32_t any;       // anyHit found one
+    float b1, b2;          // barycentrics of v1 and v2
+    std::uint32_t closest; // closestHit found a hit
+    std::uint32_t any;     // anyHit found one
     std::uint32_t pad0, pad1;
 };
 

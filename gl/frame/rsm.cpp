@@ -22,7 +22,10 @@ struct GpuRsmView {
 };
 
 // The integral of the solid angle over [0, x] x [0, y] of the image plane at distance 1.
-double cornerSolidAngle(double x, double y) { return std::atan2(x * y, std::sqrt(1.0 + x * x + y * y)); }
+double cornerSolidAngle(double x, double y)
+{
+    return std::atan2(x * y, std::sqrt(1.0 + x * x + y * y));
+}
 
 } // namespace
 
@@ -81,7 +84,8 @@ RsmPass::RsmPass(const RsmSettings& settings)
             throw std::invalid_argument("rsmSize must be a power of two for the RSM pyramid, not " +
                                         std::to_string(settings_.size));
         if (settings_.levels > std::bit_width(unsigned(settings_.size)) - 1)
-            throw std::invalid_argument("the RSM pyramid of a " + std::to_string(settings_.size) + "^2 RSM has at most " +
+            throw std::invalid_argument("the RSM pyramid of a " + std::to_string(settings_.size) +
+                                        "^2 RSM has at most " +
                                         std::to_string(std::bit_width(unsigned(settings_.size)) - 1) + " levels");
         reduce_ = Program::compute("rsm.reduce", "frame/rsm_reduce.comp");
     }
@@ -101,7 +105,8 @@ void RsmPass::buildViews(const Frame& frame)
         v.direction = l.direction;
         v.orthographic = l.orthographic;
         v.fovRad = l.fovRad;
-        if (l.orthographic) v.orthoTexelArea = (2.0f * l.orthoHalfExtent / float(size)) * (2.0f * l.orthoHalfExtent / float(size));
+        if (l.orthographic)
+            v.orthoTexelArea = (2.0f * l.orthoHalfExtent / float(size)) * (2.0f * l.orthoHalfExtent / float(size));
         v.light = l.light;
         v.areaFirst = l.areaFirst;
         v.areaCount = l.areaCount;
@@ -189,7 +194,8 @@ void RsmPass::renderViews(Frame& frame)
     if (solidAngles_) solidAngles_.bind(UNIT_RSM_SOLID_ANGLES);
     program_.set("exactSolidAngle", settings_.exactSolidAngle ? 1 : 0);
     program_.use();
-    const float empty[4] = {0, 0, 0, 0}, noDepth[4] = {1e30f, 0, 0, 0}, nMin[4] = {2, 2, 2, 0}, nMax[4] = {-2, -2, -2, 0};
+    const float empty[4] = {0, 0, 0, 0}, noDepth[4] = {1e30f, 0, 0, 0}, nMin[4] = {2, 2, 2, 0},
+                nMax[4] = {-2, -2, -2, 0};
     for (int i = 0; i < viewCount(); ++i) {
         const RsmView& v = views_[i];
         fbo_.attachLayer(GL_COLOR_ATTACHMENT0, position_, i);

@@ -45,12 +45,12 @@ void requireRsmSize(const std::string& technique, int size, bool powerOfTwo, int
 struct RsmView {
     glm::mat4 view{1.0f};
     glm::mat4 proj{1.0f};
-    glm::vec3 origin{0.0f};          // light position (orthographic: the view's eye point)
-    glm::vec3 direction{0.0f};       // view axis; for orthographic views the direction light travels
+    glm::vec3 origin{0.0f};    // light position (orthographic: the view's eye point)
+    glm::vec3 direction{0.0f}; // view axis; for orthographic views the direction light travels
     bool orthographic = false;
-    float fovRad = 0.0f;             // perspective field of view (square views)
-    float orthoTexelArea = 0.0f;     // m^2 perpendicular to the light (orthographic only)
-    int light = -1;                  // index into the frame's lights (GpuScene::lights(), SSBO binding 1)
+    float fovRad = 0.0f;              // perspective field of view (square views)
+    float orthoTexelArea = 0.0f;      // m^2 perpendicular to the light (orthographic only)
+    int light = -1;                   // index into the frame's lights (GpuScene::lights(), SSBO binding 1)
     int areaFirst = 0, areaCount = 0; // area emitter: its triangles' light range
 };
 
@@ -73,9 +73,9 @@ public:
     const Texture& position() const { return position_; }
     const Texture& normal() const { return normal_; }
     const Texture& flux() const { return flux_; }
-    const Texture& depthRange() const { return depthRange_; }   // allocated only when levels > 0
-    const Texture& normalMin() const { return normalMin_; }     // allocated only when levels > 0
-    const Texture& normalMax() const { return normalMax_; }     // allocated only when levels > 0
+    const Texture& depthRange() const { return depthRange_; } // allocated only when levels > 0
+    const Texture& normalMin() const { return normalMin_; }   // allocated only when levels > 0
+    const Texture& normalMax() const { return normalMax_; }   // allocated only when levels > 0
 
     // The side of a texel at the view's centre: at distance 1 (perspective) or in metres (orthographic).
     float texelSide(const RsmView& v) const;

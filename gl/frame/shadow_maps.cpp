@@ -51,7 +51,8 @@ void ShadowMaps::buildViews(const GpuScene& scene)
         g.positionType = glm::vec4(s.position, float(s.type));
         g.directionCosOuter = glm::vec4(s.direction, s.cosOuter);
         g.intensityCosInner = glm::vec4(s.intensity, s.cosInner);
-        const glm::ivec2 layers = i < lv.lightViews.size() ? lv.lightViews[i] : glm::ivec2(-1, 0); // no geometry: unshadowed
+        const glm::ivec2 layers =
+            i < lv.lightViews.size() ? lv.lightViews[i] : glm::ivec2(-1, 0); // no geometry: unshadowed
         g.shadow = glm::ivec4(layers.x, layers.y, -1, 0);
         if (s.type == kLightArea) {
             g.shadow.z = int(polygons.size());

@@ -15,7 +15,10 @@ int Allocations::add(const std::string& label, std::size_t bytes)
     return t;
 }
 
-void Allocations::release(int ticket) { entries_.erase(ticket); }
+void Allocations::release(int ticket)
+{
+    entries_.erase(ticket);
+}
 
 std::map<std::string, std::size_t> Allocations::byLabel() const
 {

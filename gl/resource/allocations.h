@@ -20,7 +20,10 @@ public:
     std::size_t totalBytes() const;
 
 private:
-    struct Entry { std::string label; std::size_t bytes; };
+    struct Entry {
+        std::string label;
+        std::size_t bytes;
+    };
     std::map<int, Entry> entries_;
     int next_ = 1;
 };
@@ -29,12 +32,20 @@ private:
 class AllocationTicket {
 public:
     AllocationTicket() = default;
-    AllocationTicket(const std::string& label, std::size_t bytes) : ticket_(Allocations::instance().add(label, bytes)) {}
-    ~AllocationTicket() { if (ticket_) Allocations::instance().release(ticket_); }
+    AllocationTicket(const std::string& label, std::size_t bytes) : ticket_(Allocations::instance().add(label, bytes))
+    {}
+    ~AllocationTicket()
+    {
+        if (ticket_) Allocations::instance().release(ticket_);
+    }
     AllocationTicket(AllocationTicket&& o) noexcept : ticket_(o.ticket_) { o.ticket_ = 0; }
     AllocationTicket& operator=(AllocationTicket&& o) noexcept
     {
-        if (this != &o) { if (ticket_) Allocations::instance().release(ticket_); ticket_ = o.ticket_; o.ticket_ = 0; }
+        if (this != &o) {
+            if (ticket_) Allocations::instance().release(ticket_);
+            ticket_ = o.ticket_;
+            o.ticket_ = 0;
+        }
         return *this;
     }
 

@@ -5,7 +5,10 @@
 
 namespace bounce::gl {
 
-void BufferDeleter::operator()(unsigned id) const { glDeleteBuffers(1, &id); }
+void BufferDeleter::operator()(unsigned id) const
+{
+    glDeleteBuffers(1, &id);
+}
 
 Buffer::Buffer(const std::string& label, std::size_t bytes, const void* data) : bytes_(bytes), ticket_(label, bytes)
 {
@@ -33,6 +36,9 @@ void Buffer::clearToZero()
     glClearNamedBufferData(id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
 }
 
-void Buffer::bindBase(unsigned target, unsigned index) const { glBindBufferBase(target, index, id()); }
+void Buffer::bindBase(unsigned target, unsigned index) const
+{
+    glBindBufferBase(target, index, id());
+}
 
 } // namespace bounce::gl

@@ -10,7 +10,9 @@
 
 namespace bounce::gl {
 
-struct BufferDeleter { void operator()(unsigned id) const; };
+struct BufferDeleter {
+    void operator()(unsigned id) const;
+};
 
 class Buffer {
 public:

@@ -39,8 +39,8 @@ void dispatchCompute(const Program& program, glm::ivec3 size, glm::ivec3 localSi
         GLint most = 0;
         glGetIntegeri_v(GL_MAX_COMPUTE_WORK_GROUP_COUNT, GLuint(axis), &most);
         if (groups[axis] > most)
-            throw DispatchError("compute dispatch of size " + str(size) + " needs " + str(groups) +
-                                " groups of " + str(localSize) + ", more than GL_MAX_COMPUTE_WORK_GROUP_COUNT (" +
+            throw DispatchError("compute dispatch of size " + str(size) + " needs " + str(groups) + " groups of " +
+                                str(localSize) + ", more than GL_MAX_COMPUTE_WORK_GROUP_COUNT (" +
                                 std::to_string(most) + ") on axis " + std::to_string(axis));
     }
     program.use();

@@ -10,8 +10,14 @@
 
 namespace bounce::gl {
 
-void FramebufferDeleter::operator()(unsigned id) const { glDeleteFramebuffers(1, &id); }
-void VertexArrayDeleter::operator()(unsigned id) const { glDeleteVertexArrays(1, &id); }
+void FramebufferDeleter::operator()(unsigned id) const
+{
+    glDeleteFramebuffers(1, &id);
+}
+void VertexArrayDeleter::operator()(unsigned id) const
+{
+    glDeleteVertexArrays(1, &id);
+}
 
 Framebuffer::Framebuffer(const std::string& label) : label_(label)
 {
@@ -45,7 +51,10 @@ void Framebuffer::checkComplete() const
                                         "): an attachment could not be allocated or is over the driver's limits");
 }
 
-void Framebuffer::bind() const { glBindFramebuffer(GL_FRAMEBUFFER, id()); }
+void Framebuffer::bind() const
+{
+    glBindFramebuffer(GL_FRAMEBUFFER, id());
+}
 
 VertexArray::VertexArray(const std::string& label)
 {
@@ -55,6 +64,9 @@ VertexArray::VertexArray(const std::string& label)
     labelObject(GL_VERTEX_ARRAY, id, label);
 }
 
-void VertexArray::bind() const { glBindVertexArray(id()); }
+void VertexArray::bind() const
+{
+    glBindVertexArray(id());
+}
 
 } // namespace bounce::gl

@@ -10,8 +10,12 @@ namespace bounce::gl {
 
 class Texture;
 
-struct FramebufferDeleter { void operator()(unsigned id) const; };
-struct VertexArrayDeleter { void operator()(unsigned id) const; };
+struct FramebufferDeleter {
+    void operator()(unsigned id) const;
+};
+struct VertexArrayDeleter {
+    void operator()(unsigned id) const;
+};
 
 class Framebuffer {
 public:

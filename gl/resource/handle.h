@@ -15,7 +15,10 @@ public:
     Handle(Handle&& o) noexcept : id_(std::exchange(o.id_, 0u)) {}
     Handle& operator=(Handle&& o) noexcept
     {
-        if (this != &o) { reset(); id_ = std::exchange(o.id_, 0u); }
+        if (this != &o) {
+            reset();
+            id_ = std::exchange(o.id_, 0u);
+        }
         return *this;
     }
     Handle(const Handle&) = delete;

@@ -8,8 +8,10 @@ namespace bounce::gl {
 namespace {
 void enable(unsigned cap, bool on)
 {
-    if (on) glEnable(cap);
-    else glDisable(cap);
+    if (on)
+        glEnable(cap);
+    else
+        glDisable(cap);
 }
 } // namespace
 

@@ -16,7 +16,7 @@ class Framebuffer;
 
 struct StencilState {
     bool test = false;
-    unsigned func = 0x0207;  // GL_ALWAYS
+    unsigned func = 0x0207; // GL_ALWAYS
     int ref = 0;
     unsigned readMask = 0xFF;
     unsigned writeMask = 0xFF;
@@ -24,21 +24,21 @@ struct StencilState {
 };
 
 struct PassState {
-    unsigned framebuffer = 0;              // 0: the default framebuffer
-    glm::ivec4 viewport{0, 0, 1, 1};       // x, y, width, height
+    unsigned framebuffer = 0;        // 0: the default framebuffer
+    glm::ivec4 viewport{0, 0, 1, 1}; // x, y, width, height
     bool depthTest = false;
-    unsigned depthFunc = 0x0201;           // GL_LESS
+    unsigned depthFunc = 0x0201; // GL_LESS
     bool depthWrite = true;
     StencilState stencil;
     bool blend = false;
-    unsigned blendSrc = 1, blendDst = 1;   // GL_ONE, GL_ONE (additive)
-    unsigned blendEquation = 0x8006;       // GL_FUNC_ADD
+    unsigned blendSrc = 1, blendDst = 1; // GL_ONE, GL_ONE (additive)
+    unsigned blendEquation = 0x8006;     // GL_FUNC_ADD
     glm::bvec4 colorMask{true};
     bool cull = false;
-    unsigned cullFace = 0x0405;            // GL_BACK
-    glm::vec2 polygonOffset{0.0f};         // glPolygonOffset(factor, units) on filled polygons; (0, 0): off
+    unsigned cullFace = 0x0405;    // GL_BACK
+    glm::vec2 polygonOffset{0.0f}; // glPolygonOffset(factor, units) on filled polygons; (0, 0): off
     bool multisample = false;
-    bool sampleShading = false;            // per-sample fragment shading (stencil routing)
+    bool sampleShading = false; // per-sample fragment shading (stencil routing)
 
     // A pass over the whole of a target: its framebuffer and viewport, everything else default.
     static PassState fullscreen(const Framebuffer& target, int width, int height);

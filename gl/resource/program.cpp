@@ -12,7 +12,10 @@
 
 namespace bounce::gl {
 
-void ProgramDeleter::operator()(unsigned id) const { glDeleteProgram(id); }
+void ProgramDeleter::operator()(unsigned id) const
+{
+    glDeleteProgram(id);
+}
 
 std::string glslRoot()
 {
@@ -33,8 +36,8 @@ std::string readFile(const std::string& path)
 
 // Expands #include "x" recursively. Source-string numbers in #line directives index `files`, so a
 // compile error can be mapped back to its file.
-void expand(const std::string& rel, std::vector<std::string>& files, std::set<std::string>& seen, std::ostringstream& out,
-            bool top)
+void expand(const std::string& rel, std::vector<std::string>& files, std::set<std::string>& seen,
+            std::ostringstream& out, bool top)
 {
     if (!seen.insert(rel).second) return; // each file once: includes act as include guards
     const int index = int(files.size());
@@ -48,13 +51,15 @@ void expand(const std::string& rel, std::vector<std::string>& files, std::set<st
         const auto p = line.find_first_not_of(" \t");
         if (p != std::string::npos && line.compare(p, 8, "#include") == 0) {
             const auto a = line.find('"'), b = line.rfind('"');
-            if (a == std::string::npos || b <= a) throw ShaderError(rel + ":" + std::to_string(n) + ": malformed #include");
+            if (a == std::string::npos || b <= a)
+                throw ShaderError(rel + ":" + std::to_string(n) + ": malformed #include");
             expand(line.substr(a + 1, b - a - 1), files, seen, out, false);
             out << "#line " << n + 1 << " " << index << "\n";
             continue;
         }
         out << line << "\n";
-        if (top && p != std::string::npos && line.compare(p, 8, "#version") == 0) out << "@DEFINES@\n#line " << n + 1 << " 0\n";
+        if (top && p != std::string::npos && line.compare(p, 8, "#version") == 0)
+            out << "@DEFINES@\n#line " << n + 1 << " 0\n";
     }
 }
 
@@ -109,7 +114,10 @@ unsigned link(const std::string& label, const std::vector<unsigned>& stages)
     const unsigned prog = glCreateProgram();
     for (unsigned s : stages) glAttachShader(prog, s);
     glLinkProgram(prog);
-    for (unsigned s : stages) { glDetachShader(prog, s); glDeleteShader(s); }
+    for (unsigned s : stages) {
+        glDetachShader(prog, s);
+        glDeleteShader(s);
+    }
     int ok = 0;
     glGetProgramiv(prog, GL_LINK_STATUS, &ok);
     if (!ok) {
@@ -150,7 +158,10 @@ Program Program::compute(const std::string& label, const std::string& path, cons
     return p;
 }
 
-void Program::use() const { glUseProgram(id()); }
+void Program::use() const
+{
+    glUseProgram(id());
+}
 
 int Program::location(const std::string& name)
 {
@@ -159,14 +170,38 @@ int Program::location(const std::string& name)
     return it->second;
 }
 
-void Program::set(const std::string& n, int v) { glProgramUniform1i(id(), location(n), v); }
-void Program::set(const std::string& n, unsigned v) { glProgramUniform1ui(id(), location(n), v); }
-void Program::set(const std::string& n, float v) { glProgramUniform1f(id(), location(n), v); }
-void Program::set(const std::string& n, const glm::vec2& v) { glProgramUniform2fv(id(), location(n), 1, glm::value_ptr(v)); }
-void Program::set(const std::string& n, const glm::vec3& v) { glProgramUniform3fv(id(), location(n), 1, glm::value_ptr(v)); }
-void Program::set(const std::string& n, const glm::vec4& v) { glProgramUniform4fv(id(), location(n), 1, glm::value_ptr(v)); }
-void Program::set(const std::string& n, const glm::ivec2& v) { glProgramUniform2iv(id(), location(n), 1, glm::value_ptr(v)); }
-void Program::set(const std::string& n, const glm::ivec3& v) { glProgramUniform3iv(id(), location(n), 1, glm::value_ptr(v)); }
+void Program::set(const std::string& n, int v)
+{
+    glProgramUniform1i(id(), location(n), v);
+}
+void Program::set(const std::string& n, unsigned v)
+{
+    glProgramUniform1ui(id(), location(n), v);
+}
+void Program::set(const std::string& n, float v)
+{
+    glProgramUniform1f(id(), location(n), v);
+}
+void Program::set(const std::string& n, const glm::vec2& v)
+{
+    glProgramUniform2fv(id(), location(n), 1, glm::value_ptr(v));
+}
+void Program::set(const std::string& n, const glm::vec3& v)
+{
+    glProgramUniform3fv(id(), location(n), 1, glm::value_ptr(v));
+}
+void Program::set(const std::string& n, const glm::vec4& v)
+{
+    glProgramUniform4fv(id(), location(n), 1, glm::value_ptr(v));
+}
+void Program::set(const std::string& n, const glm::ivec2& v)
+{
+    glProgramUniform2iv(id(), location(n), 1, glm::value_ptr(v));
+}
+void Program::set(const std::string& n, const glm::ivec3& v)
+{
+    glProgramUniform3iv(id(), location(n), 1, glm::value_ptr(v));
+}
 void Program::set(const std::string& n, const glm::mat3& v)
 {
     glProgramUniformMatrix3fv(id(), location(n), 1, GL_FALSE, glm::value_ptr(v));

@@ -13,7 +13,9 @@
 
 namespace bounce::gl {
 
-struct ProgramDeleter { void operator()(unsigned id) const; };
+struct ProgramDeleter {
+    void operator()(unsigned id) const;
+};
 
 // Thrown when a shader cannot be read, compiled or linked; the message names the file and line.
 struct ShaderError : std::runtime_error {

@@ -5,7 +5,10 @@
 
 namespace bounce::gl {
 
-void QueryDeleter::operator()(unsigned id) const { glDeleteQueries(1, &id); }
+void QueryDeleter::operator()(unsigned id) const
+{
+    glDeleteQueries(1, &id);
+}
 
 Query::Query(unsigned target, const std::string& label) : target_(target)
 {

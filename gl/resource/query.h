@@ -11,7 +11,9 @@
 
 namespace bounce::gl {
 
-struct QueryDeleter { void operator()(unsigned id) const; };
+struct QueryDeleter {
+    void operator()(unsigned id) const;
+};
 
 // Thrown on misuse: begin on an active query, end on an idle one, a result before any end.
 struct QueryError : std::logic_error {

@@ -9,8 +9,7 @@
 namespace bounce::gl {
 
 struct ResourceError : std::runtime_error {
-    ResourceError(const std::string& label, const std::string& what)
-        : std::runtime_error(what), label(label) {}
+    ResourceError(const std::string& label, const std::string& what) : std::runtime_error(what), label(label) {}
     std::string label; // the resource's label ("shadow.depth", "gbuffer.position"...)
 };
 

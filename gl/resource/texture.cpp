@@ -10,20 +10,38 @@
 
 namespace bounce::gl {
 
-void TextureDeleter::operator()(unsigned id) const { glDeleteTextures(1, &id); }
+void TextureDeleter::operator()(unsigned id) const
+{
+    glDeleteTextures(1, &id);
+}
 
 std::size_t bytesPerTexel(unsigned f)
 {
     switch (f) {
-    case GL_R8: case GL_R8UI: return 1;
-    case GL_RG8: case GL_R16F: case GL_DEPTH_COMPONENT16: return 2;
-    case GL_RGBA8: case GL_SRGB8_ALPHA8: case GL_R32F: case GL_R32UI: case GL_R32I: case GL_RG16F:
-    case GL_DEPTH_COMPONENT24: case GL_DEPTH_COMPONENT32F: case GL_DEPTH24_STENCIL8: case GL_RGB10_A2:
-    case GL_R11F_G11F_B10F: case GL_RGBA8_SNORM:
-        return 4;
-    case GL_DEPTH32F_STENCIL8: case GL_RG32F: case GL_RGBA16F: case GL_RG32UI: return 8;
+    case GL_R8:
+    case GL_R8UI: return 1;
+    case GL_RG8:
+    case GL_R16F:
+    case GL_DEPTH_COMPONENT16: return 2;
+    case GL_RGBA8:
+    case GL_SRGB8_ALPHA8:
+    case GL_R32F:
+    case GL_R32UI:
+    case GL_R32I:
+    case GL_RG16F:
+    case GL_DEPTH_COMPONENT24:
+    case GL_DEPTH_COMPONENT32F:
+    case GL_DEPTH24_STENCIL8:
+    case GL_RGB10_A2:
+    case GL_R11F_G11F_B10F:
+    case GL_RGBA8_SNORM: return 4;
+    case GL_DEPTH32F_STENCIL8:
+    case GL_RG32F:
+    case GL_RGBA16F:
+    case GL_RG32UI: return 8;
     case GL_RGB32F: return 12;
-    case GL_RGBA32F: case GL_RGBA32UI: return 16;
+    case GL_RGBA32F:
+    case GL_RGBA32UI: return 16;
     default: throw std::invalid_argument("bytesPerTexel: format not in the table");
     }
 }
@@ -45,8 +63,9 @@ int glLimit(unsigned pname)
 
 std::string describeSize(int w, int h, int layers, std::size_t bytes)
 {
-    return std::to_string(w) + "x" + std::to_string(h) + (layers > 1 ? " x " + std::to_string(layers) + " layers" : "") +
-           ", " + std::to_string((bytes + (1 << 20) - 1) >> 20) + " MiB";
+    return std::to_string(w) + "x" + std::to_string(h) +
+           (layers > 1 ? " x " + std::to_string(layers) + " layers" : "") + ", " +
+           std::to_string((bytes + (1 << 20) - 1) >> 20) + " MiB";
 }
 
 // Sizes over the driver's limits are refused before GL sees them (GL would answer GL_INVALID_VALUE and
@@ -70,10 +89,10 @@ void checkStorage(const Texture& t, const std::string& label, std::size_t bytes)
 {
     const GLenum e = glGetError();
     if (e == GL_NO_ERROR) return;
-    throw ResourceError(label, "texture '" + label + "' of " + describeSize(t.width(), t.height(), t.layers(), bytes) +
-                                   " could not be allocated: " +
-                                   (e == GL_OUT_OF_MEMORY ? std::string("GL_OUT_OF_MEMORY")
-                                                          : "GL error 0x" + std::to_string(e)));
+    throw ResourceError(
+        label, "texture '" + label + "' of " + describeSize(t.width(), t.height(), t.layers(), bytes) +
+                   " could not be allocated: " +
+                   (e == GL_OUT_OF_MEMORY ? std::string("GL_OUT_OF_MEMORY") : "GL error 0x" + std::to_string(e)));
 }
 
 } // namespace
@@ -108,7 +127,8 @@ Texture Texture::create2D(const std::string& label, unsigned f, int w, int h, in
 {
     Texture t = make(label, GL_TEXTURE_2D, f, w, h, levels, 1, bytesPerTexel(f));
     glTextureStorage2D(t.id(), levels, f, w, h);
-    checkStorage(t, label, std::size_t(t.width()) * std::size_t(t.height()) * std::size_t(t.layers()) * bytesPerTexel(f));
+    checkStorage(t, label,
+                 std::size_t(t.width()) * std::size_t(t.height()) * std::size_t(t.layers()) * bytesPerTexel(f));
     t.setFilter(levels > 1 ? GL_NEAREST_MIPMAP_NEAREST : GL_NEAREST, GL_NEAREST);
     t.setWrap(GL_CLAMP_TO_EDGE);
     return t;
@@ -118,7 +138,8 @@ Texture Texture::create2DArray(const std::string& label, unsigned f, int w, int 
 {
     Texture t = make(label, GL_TEXTURE_2D_ARRAY, f, w, h, 1, layers, bytesPerTexel(f));
     glTextureStorage3D(t.id(), 1, f, w, h, layers);
-    checkStorage(t, label, std::size_t(t.width()) * std::size_t(t.height()) * std::size_t(t.layers()) * bytesPerTexel(f));
+    checkStorage(t, label,
+                 std::size_t(t.width()) * std::size_t(t.height()) * std::size_t(t.layers()) * bytesPerTexel(f));
     t.setFilter(GL_NEAREST, GL_NEAREST);
     t.setWrap(GL_CLAMP_TO_EDGE);
     return t;
@@ -128,7 +149,8 @@ Texture Texture::createCube(const std::string& label, unsigned f, int size)
 {
     Texture t = make(label, GL_TEXTURE_CUBE_MAP, f, size, size, 1, 6, bytesPerTexel(f));
     glTextureStorage2D(t.id(), 1, f, size, size);
-    checkStorage(t, label, std::size_t(t.width()) * std::size_t(t.height()) * std::size_t(t.layers()) * bytesPerTexel(f));
+    checkStorage(t, label,
+                 std::size_t(t.width()) * std::size_t(t.height()) * std::size_t(t.layers()) * bytesPerTexel(f));
     t.setFilter(GL_NEAREST, GL_NEAREST);
     t.setWrap(GL_CLAMP_TO_EDGE);
     return t;
@@ -138,7 +160,8 @@ Texture Texture::createCubeArray(const std::string& label, unsigned f, int size,
 {
     Texture t = make(label, GL_TEXTURE_CUBE_MAP_ARRAY, f, size, size, 1, 6 * cubes, bytesPerTexel(f));
     glTextureStorage3D(t.id(), 1, f, size, size, 6 * cubes);
-    checkStorage(t, label, std::size_t(t.width()) * std::size_t(t.height()) * std::size_t(t.layers()) * bytesPerTexel(f));
+    checkStorage(t, label,
+                 std::size_t(t.width()) * std::size_t(t.height()) * std::size_t(t.layers()) * bytesPerTexel(f));
     t.setFilter(GL_NEAREST, GL_NEAREST);
     t.setWrap(GL_CLAMP_TO_EDGE);
     return t;
@@ -148,7 +171,8 @@ Texture Texture::create2DMultisample(const std::string& label, unsigned f, int w
 {
     Texture t = make(label, GL_TEXTURE_2D_MULTISAMPLE, f, w, h, 1, samples, bytesPerTexel(f));
     glTextureStorage2DMultisample(t.id(), samples, f, w, h, GL_TRUE);
-    checkStorage(t, label, std::size_t(t.width()) * std::size_t(t.height()) * std::size_t(t.layers()) * bytesPerTexel(f));
+    checkStorage(t, label,
+                 std::size_t(t.width()) * std::size_t(t.height()) * std::size_t(t.layers()) * bytesPerTexel(f));
     return t;
 }
 
@@ -158,8 +182,8 @@ Texture Texture::createBufferView(const std::string& label, unsigned f, const Bu
     GLint maxTexels = 0;
     glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &maxTexels);
     if (texels > std::size_t(std::max(maxTexels, 0)))
-        throw std::invalid_argument(label + ": " + std::to_string(texels) + " texels exceed GL_MAX_TEXTURE_BUFFER_SIZE (" +
-                                    std::to_string(maxTexels) + ")");
+        throw std::invalid_argument(label + ": " + std::to_string(texels) +
+                                    " texels exceed GL_MAX_TEXTURE_BUFFER_SIZE (" + std::to_string(maxTexels) + ")");
     Texture t = make(label, GL_TEXTURE_BUFFER, f, int(texels), 1, 1, 1, 0); // the buffer is counted already
     glTextureBuffer(t.id(), f, buffer.id());
     return t;
@@ -184,9 +208,15 @@ void Texture::setCompare(bool enabled)
     glTextureParameteri(id(), GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
 }
 
-void Texture::generateMipmap() { glGenerateTextureMipmap(id()); }
+void Texture::generateMipmap()
+{
+    glGenerateTextureMipmap(id());
+}
 
-void Texture::bind(unsigned unit) const { glBindTextureUnit(unit, id()); }
+void Texture::bind(unsigned unit) const
+{
+    glBindTextureUnit(unit, id());
+}
 
 void Texture::bindImage(unsigned unit, unsigned access, int level, unsigned format) const
 {
@@ -196,7 +226,8 @@ void Texture::bindImage(unsigned unit, unsigned access, int level, unsigned form
 
 void Texture::clear(int level, const float rgba[4])
 {
-    const bool depth = format_ == GL_DEPTH_COMPONENT32F || format_ == GL_DEPTH_COMPONENT24 || format_ == GL_DEPTH_COMPONENT16;
+    const bool depth =
+        format_ == GL_DEPTH_COMPONENT32F || format_ == GL_DEPTH_COMPONENT24 || format_ == GL_DEPTH_COMPONENT16;
     glClearTexImage(id(), level, depth ? GL_DEPTH_COMPONENT : GL_RGBA, GL_FLOAT, rgba);
 }
 
@@ -204,10 +235,10 @@ std::vector<float> Texture::readFloats(int level, int components) const
 {
     static const unsigned kFormats[] = {GL_RED, GL_RED, GL_RG, GL_RGB, GL_RGBA};
     const int w = std::max(1, width_ >> level), h = std::max(1, height_ >> level);
-    const unsigned baseFormat = (format_ == GL_DEPTH_COMPONENT32F || format_ == GL_DEPTH_COMPONENT24 ||
-                                 format_ == GL_DEPTH_COMPONENT16)
-                                    ? GL_DEPTH_COMPONENT
-                                    : kFormats[components];
+    const unsigned baseFormat =
+        (format_ == GL_DEPTH_COMPONENT32F || format_ == GL_DEPTH_COMPONENT24 || format_ == GL_DEPTH_COMPONENT16)
+            ? GL_DEPTH_COMPONENT
+            : kFormats[components];
     std::vector<float> out(std::size_t(w) * std::size_t(h) * std::size_t(layers_) * std::size_t(components));
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
     glGetTextureImage(id(), level, baseFormat, GL_FLOAT, GLsizei(out.size() * sizeof(float)), out.data());

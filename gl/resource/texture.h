@@ -10,7 +10,9 @@
 
 namespace bounce::gl {
 
-struct TextureDeleter { void operator()(unsigned id) const; };
+struct TextureDeleter {
+    void operator()(unsigned id) const;
+};
 
 class Texture {
 public:

@@ -72,7 +72,10 @@ void PassTimers::endFrame(bool keep)
     for (const Pending& p : pending_) {
         const std::uint64_t ns = pool_[p.query].result();
         const int i = pass(p.pass);
-        if (std::size_t(i) >= frame.size()) { frame.resize(i + 1, 0.0); seen.resize(i + 1, false); }
+        if (std::size_t(i) >= frame.size()) {
+            frame.resize(i + 1, 0.0);
+            seen.resize(i + 1, false);
+        }
         frame[i] += double(ns) * 1e-6;
         seen[i] = true;
     }

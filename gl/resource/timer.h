@@ -35,12 +35,11 @@ public:
         friend class PassTimers;
         Scope(PassTimers* owner, std::size_t query, bool serialize, bool grouped)
             : owner_(owner), query_(query), serialize_(serialize), grouped_(grouped)
-        {
-        }
+        {}
         PassTimers* owner_; // null once moved from
         std::size_t query_; // index into owner_->pool_ (stable while the pool grows)
-        bool serialize_; // wait for the pass's work before the next pass's query begins
-        bool grouped_;   // a debug group was pushed: pop it
+        bool serialize_;    // wait for the pass's work before the next pass's query begins
+        bool grouped_;      // a debug group was pushed: pop it
     };
 
     // Opens a timed scope for `pass` (queries cannot nest: one pass at a time), inside a debug group
@@ -55,7 +54,10 @@ public:
     void clear();
 
 private:
-    struct Pending { std::string pass; std::size_t query; };
+    struct Pending {
+        std::string pass;
+        std::size_t query;
+    };
     std::vector<Query> pool_;
     std::vector<Pending> pending_;
     std::vector<std::string> order_;

@@ -45,7 +45,10 @@ std::string ParamDecl::text(double value) const
 
 nlohmann::json ParamDecl::toJson() const
 {
-    nlohmann::json j = {{"name", name}, {"type", typeName()}, {"default", text(defaultValue)}, {"meaning", meaning},
+    nlohmann::json j = {{"name", name},
+                        {"type", typeName()},
+                        {"default", text(defaultValue)},
+                        {"meaning", meaning},
                         {"update", update == ParamUpdate::Uniform ? "uniform" : "rebuild"}};
     if ((type == ParamType::Int || type == ParamType::Float) && defaultValue != kAutoValue) j["default"] = defaultValue;
     if (type == ParamType::Int || type == ParamType::Float) {
@@ -89,10 +92,14 @@ nlohmann::json ParamValues::toJson(const std::vector<ParamDecl>& decls) const
         const ParamDecl* decl = nullptr;
         for (const ParamDecl& d : decls)
             if (d.name == name) decl = &d;
-        if (!decl) j[name] = v;
-        else if (decl->type == ParamType::Choice || (decl->allowAuto && v == kAutoValue)) j[name] = decl->text(v);
-        else if (decl->type == ParamType::Bool) j[name] = v != 0.0;
-        else j[name] = v;
+        if (!decl)
+            j[name] = v;
+        else if (decl->type == ParamType::Choice || (decl->allowAuto && v == kAutoValue))
+            j[name] = decl->text(v);
+        else if (decl->type == ParamType::Bool)
+            j[name] = v != 0.0;
+        else
+            j[name] = v;
     }
     return j;
 }
@@ -135,7 +142,8 @@ void ParamValues::set(const std::vector<ParamDecl>& decls, const std::string& na
     if (!decl) {
         std::string allowed;
         for (const ParamDecl& d : decls) allowed += "\n  " + describe(d);
-        throw std::invalid_argument("unknown parameter '" + name + "'; allowed:" + (allowed.empty() ? " none" : allowed));
+        throw std::invalid_argument("unknown parameter '" + name +
+                                    "'; allowed:" + (allowed.empty() ? " none" : allowed));
     }
     double v = 0.0;
     if (decl->allowAuto && text == "auto") {
@@ -146,12 +154,20 @@ void ParamValues::set(const std::vector<ParamDecl>& decls, const std::string& na
             throw std::invalid_argument("parameter " + describe(*decl) + ": '" + text + "' is not one of the choices");
         v = double(it - decl->choices.begin());
     } else if (decl->type == ParamType::Bool) {
-        if (text == "1" || text == "true" || text == "on") v = 1.0;
-        else if (text == "0" || text == "false" || text == "off") v = 0.0;
-        else throw std::invalid_argument("parameter '" + name + "' is a bool: give 0/1, true/false or on/off, not '" + text + "'");
+        if (text == "1" || text == "true" || text == "on")
+            v = 1.0;
+        else if (text == "0" || text == "false" || text == "off")
+            v = 0.0;
+        else
+            throw std::invalid_argument("parameter '" + name + "' is a bool: give 0/1, true/false or on/off, not '" +
+                                        text + "'");
     } else {
         std::size_t used = 0;
-        try { v = std::stod(text, &used); } catch (...) { used = 0; }
+        try {
+            v = std::stod(text, &used);
+        } catch (...) {
+            used = 0;
+        }
         if (used != text.size() || text.empty() || !std::isfinite(v))
             throw std::invalid_argument("parameter '" + name + "' needs a number, not '" + text + "'");
         if (decl->type == ParamType::Int && v != std::floor(v))
@@ -189,8 +205,11 @@ std::string gbufferChannelName(GBufferChannel c)
 
 nlohmann::json TechniqueInfo::toJson() const
 {
-    nlohmann::json j = {{"name", name},         {"paper", paper},           {"lightPaths", core::lightPathsName(lightPaths)},
-                        {"summary", summary},   {"progressive", progressive}};
+    nlohmann::json j = {{"name", name},
+                        {"paper", paper},
+                        {"lightPaths", core::lightPathsName(lightPaths)},
+                        {"summary", summary},
+                        {"progressive", progressive}};
     j["parameters"] = nlohmann::json::array();
     for (const ParamDecl& p : params) j["parameters"].push_back(p.toJson());
     j["passes"] = nlohmann::json::array();

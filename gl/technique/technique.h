@@ -29,16 +29,16 @@ enum class ParamUpdate { Rebuild, Uniform };
 inline constexpr double kAutoValue = -1e300;
 
 struct ParamDecl {
-    std::string name;       // "vpls", "depthThreshold"...
+    std::string name; // "vpls", "depthThreshold"...
     ParamType type = ParamType::Float;
     double defaultValue = 0.0; // Choice: the index of the default choice; kAutoValue: "auto"
     double min = 0.0;
     double max = 0.0;
-    std::string meaning;    // one line
+    std::string meaning;     // one line
     bool powerOfTwo = false; // Int only: the value must also be a power of two
     ParamUpdate update = ParamUpdate::Rebuild;
     std::vector<std::string> choices{}; // Choice only: the names, in index order
-    bool allowAuto = false; // Int/Float: "auto" is accepted too (instead of a sentinel number such as -1)
+    bool allowAuto = false;             // Int/Float: "auto" is accepted too (instead of a sentinel number such as -1)
 
     std::string typeName() const;
     // The value as a user writes it: "auto", a choice's name, "on"/"off", or the number.
@@ -76,7 +76,7 @@ private:
 };
 
 struct Counter {
-    std::string name;   // "vpls", "fragments.level0"...
+    std::string name; // "vpls", "fragments.level0"...
     double value = 0.0;
 };
 
@@ -111,12 +111,12 @@ struct PassDecl {
 
 struct TechniqueInfo {
     std::string name;
-    std::string paper;       // "Nichols, Shopf & Wyman 2009" or "-"
+    std::string paper;                                      // "Nichols, Shopf & Wyman 2009" or "-"
     core::LightPaths lightPaths = core::LightPaths::Direct; // the reference it claims
-    std::string summary;     // one line
+    std::string summary;                                    // one line
     std::vector<ParamDecl> params;
-    std::vector<PassDecl> passes;        // every pass it times, beyond the frame's own (framePasses())
-    std::vector<GBufferChannel> reads;   // the G-buffer channels its shaders read
+    std::vector<PassDecl> passes;      // every pass it times, beyond the frame's own (framePasses())
+    std::vector<GBufferChannel> reads; // the G-buffer channels its shaders read
     // Accumulates over frames (ray-bundle directions, progressive point projection): `--frames N` is N
     // accumulation steps, and it starts over when Frame::version() changes.
     bool progressive = false;

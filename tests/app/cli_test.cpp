@@ -50,7 +50,10 @@ fs::path outDir(const std::string& name)
     return d;
 }
 
-bool emptyDir(const fs::path& d) { return fs::is_empty(d); }
+bool emptyDir(const fs::path& d)
+{
+    return fs::is_empty(d);
+}
 
 TEST(Cli, HelpEverywhere)
 {
@@ -75,7 +78,9 @@ TEST(Cli, BadInputExitsTwoAndWritesNothing)
 {
     const fs::path d = outDir("bad");
     const std::string out = " --backend osmesa --out " + (d / "x.exr").string();
-    const struct { std::string args, says; } cases[] = {
+    const struct {
+        std::string args, says;
+    } cases[] = {
         {"render --bogus 1" + out, "unknown option"},
         {"render --size 12x" + out, "--size"},
         {"render --size 0x10" + out, "--size"},
@@ -109,7 +114,7 @@ TEST(Cli, RenderWritesExrPngAndJsonRecord)
 {
     const fs::path d = outDir("render");
     const CliRun r = run("render --scene cornell-spot --size 48x32 --frames 2 --warmup 1 --backend osmesa --out " +
-                      (d / "spot.png").string());
+                         (d / "spot.png").string());
     ASSERT_EQ(r.status, 0) << r.output;
     EXPECT_NE(r.output.find("GL renderer"), std::string::npos);
     ASSERT_TRUE(fs::exists(d / "spot.exr"));
@@ -136,9 +141,9 @@ TEST(Cli, RenderWritesExrPngAndJsonRecord)
 TEST(Cli, ReferenceWritesImageAndRecordThenHitsTheCache)
 {
     const fs::path d = outDir("reference");
-    const std::string args = "reference --scene cornell-spot --paths direct --size 24x16 --spp 8 --threads 2 --cache-dir " +
-                             (d / "cache").string() + " --out " + (d / "ref.exr").string() + " --json " +
-                             (d / "ref.json").string();
+    const std::string args =
+        "reference --scene cornell-spot --paths direct --size 24x16 --spp 8 --threads 2 --cache-dir " +
+        (d / "cache").string() + " --out " + (d / "ref.exr").string() + " --json " + (d / "ref.json").string();
     const CliRun first = run(args);
     ASSERT_EQ(first.status, 0) << first.output;
     EXPECT_NE(first.output.find("rays/s"), std::string::npos) << first.output;
@@ -179,8 +184,8 @@ TEST(Cli, CompareReportsFiguresAndRefusesDifferentSizes)
     EXPECT_NEAR(j["rmse"].get<double>(), 0.5, 1e-6) << j.dump();
     EXPECT_NEAR(j["relativeRmse"].get<double>(), 0.5 / 1.5, 1e-6) << j.dump();
     const fs::path before = d / "ac.json";
-    const CliRun different = run("compare " + (d / "a.exr").string() + " " + (d / "c.exr").string() + " --json " +
-                                 before.string());
+    const CliRun different =
+        run("compare " + (d / "a.exr").string() + " " + (d / "c.exr").string() + " --json " + before.string());
     EXPECT_EQ(different.status, 2) << different.output;
     EXPECT_NE(different.output.find("8x6"), std::string::npos) << different.output;
     EXPECT_NE(different.output.find("6x8"), std::string::npos) << different.output;
@@ -249,12 +254,13 @@ TEST(Cli, RenderAGltfByPath)
     const fs::path d = outDir("gltf");
     const std::string asset = std::string(BOUNCE_SOURCE_ROOT) + "/assets/cornell-spot.gltf";
     const CliRun a = run("render --scene " + asset + " --size 32x32 --frames 1 --warmup 0 --backend osmesa --out " +
-                      (d / "a.exr").string());
+                         (d / "a.exr").string());
     ASSERT_EQ(a.status, 0) << a.output;
     const CliRun b = run("render --scene cornell-spot --size 32x32 --frames 1 --warmup 0 --backend osmesa --out " +
-                      (d / "b.exr").string());
+                         (d / "b.exr").string());
     ASSERT_EQ(b.status, 0) << b.output;
-    const auto ia = bounce::core::readImage((d / "a.exr").string()), ib = bounce::core::readImage((d / "b.exr").string());
+    const auto ia = bounce::core::readImage((d / "a.exr").string()),
+               ib = bounce::core::readImage((d / "b.exr").string());
     ASSERT_EQ(ia.rgb.size(), ib.rgb.size());
     for (std::size_t i = 0; i < ia.rgb.size(); ++i) EXPECT_NEAR(ia.rgb[i], ib.rgb[i], 1e-5f + 1e-5f * ib.rgb[i]) << i;
 }
@@ -263,7 +269,9 @@ TEST(Cli, RenderAGltfByPath)
 // would fail with another message), each bad script exits 2 with a message naming the step.
 TEST(Cli, DemoScriptIsCheckedBeforeTheWindowOpens)
 {
-    const struct { std::string script, says; } cases[] = {
+    const struct {
+        std::string script, says;
+    } cases[] = {
         {"wait:1,technique:nosuch", "unknown technique 'nosuch'"},
         {"compare:nosuch,quit", "unknown technique 'nosuch'"},
         {"technique:isr,set:nokey=1", "unknown parameter 'nokey'"},
@@ -274,7 +282,8 @@ TEST(Cli, DemoScriptIsCheckedBeforeTheWindowOpens)
         {"fly:1", "unknown step"},
     };
     for (const auto& c : cases) {
-        const CliRun r = run("demo --scene cornell-spot --size 32x32 --script '" + c.script + "'", "env -u DISPLAY -u WAYLAND_DISPLAY ");
+        const CliRun r = run("demo --scene cornell-spot --size 32x32 --script '" + c.script + "'",
+                             "env -u DISPLAY -u WAYLAND_DISPLAY ");
         EXPECT_EQ(r.status, 2) << c.script << "\n" << r.output;
         EXPECT_NE(r.output.find(c.says), std::string::npos) << c.script << "\n" << r.output;
         EXPECT_NE(r.output.find("--script"), std::string::npos) << c.script << "\n" << r.output;
@@ -378,12 +387,15 @@ TEST(Cli, ListJsonIsTheWholeRegistry)
     ASSERT_TRUE(j["techniques"].is_array());
     bool sawRsm = false;
     for (const auto& t : j["techniques"]) {
-        for (const char* key : {"name", "paper", "lightPaths", "summary", "passes", "reads", "parameters", "progressive"})
+        for (const char* key :
+             {"name", "paper", "lightPaths", "summary", "passes", "reads", "parameters", "progressive"})
             EXPECT_TRUE(t.contains(key)) << t["name"] << " lacks " << key;
         EXPECT_NE(std::find(j["lightPaths"].begin(), j["lightPaths"].end(), t["lightPaths"]), j["lightPaths"].end());
         for (const auto& p : t["parameters"]) {
             for (const char* key : {"name", "type", "default", "meaning", "update"}) EXPECT_TRUE(p.contains(key));
-            if (p["type"] == "int" || p["type"] == "float") EXPECT_TRUE(p.contains("min") && p.contains("max"));
+            if (p["type"] == "int" || p["type"] == "float") {
+                EXPECT_TRUE(p.contains("min") && p.contains("max"));
+            }
         }
         if (t["name"] == "rsm") {
             sawRsm = true;
@@ -401,9 +413,12 @@ TEST(Cli, RenderReferenceGivesTheErrorInTheRecord)
 {
     const fs::path d = outDir("reference-error");
     ASSERT_EQ(run("render --backend osmesa --technique direct --size 16x16 --frames 1 --warmup 0 --out " +
-                  (d / "ref.exr").string()).status, 0);
-    const CliRun same = run("render --backend osmesa --technique direct --size 16x16 --frames 1 --warmup 0 --reference " +
-                            (d / "ref.exr").string() + " --out " + (d / "same.exr").string());
+                  (d / "ref.exr").string())
+                  .status,
+              0);
+    const CliRun same =
+        run("render --backend osmesa --technique direct --size 16x16 --frames 1 --warmup 0 --reference " +
+            (d / "ref.exr").string() + " --out " + (d / "same.exr").string());
     ASSERT_EQ(same.status, 0) << same.output;
     EXPECT_EQ(nlohmann::json::parse(std::ifstream(d / "same.json"))["relativeRmse"].get<double>(), 0.0)
         << "the same deterministic render";
@@ -421,8 +436,8 @@ TEST(Cli, RenderReferenceGivesTheErrorInTheRecord)
     EXPECT_NEAR(recorded, expected, 1e-6 * expected);
 
     const fs::path bad = outDir("reference-error-bad");
-    const CliRun r = run("render --backend osmesa --technique direct --size 30x30 --reference " + (d / "ref.exr").string() +
-                         " --out " + (bad / "x.exr").string());
+    const CliRun r = run("render --backend osmesa --technique direct --size 30x30 --reference " +
+                         (d / "ref.exr").string() + " --out " + (bad / "x.exr").string());
     EXPECT_EQ(r.status, 2) << r.output;
     EXPECT_NE(r.output.find("must divide"), std::string::npos) << r.output;
     EXPECT_TRUE(emptyDir(bad));
@@ -537,10 +552,11 @@ TEST(Cli, CommandLineLightEqualsTheSameLightInTheGltf)
     const bounce::core::Scene canonical = bounce::core::makeCornell("cornell-spot");
     const bounce::core::Light& l = canonical.lights.at(0);
     char light[512];
-    std::snprintf(light, sizeof light,
-                  "spot:position=%.9g,%.9g,%.9g;direction=%.9g,%.9g,%.9g;intensity=%.9g,%.9g,%.9g;outerDeg=%.9g;innerDeg=%.9g",
-                  l.position.x, l.position.y, l.position.z, l.direction.x, l.direction.y, l.direction.z, l.intensity.x,
-                  l.intensity.y, l.intensity.z, double(l.outerConeRad) * 180.0 / M_PI, double(l.innerConeRad) * 180.0 / M_PI);
+    std::snprintf(
+        light, sizeof light,
+        "spot:position=%.9g,%.9g,%.9g;direction=%.9g,%.9g,%.9g;intensity=%.9g,%.9g,%.9g;outerDeg=%.9g;innerDeg=%.9g",
+        l.position.x, l.position.y, l.position.z, l.direction.x, l.direction.y, l.direction.z, l.intensity.x,
+        l.intensity.y, l.intensity.z, double(l.outerConeRad) * 180.0 / M_PI, double(l.innerConeRad) * 180.0 / M_PI);
     const bounce::core::Camera& c = canonical.camera;
     char camera[256];
     const glm::vec3 target = c.position + c.forward;

@@ -44,7 +44,10 @@ TEST(DemoScript, SetFollowsTheSelectedTechnique)
 
 TEST(DemoScript, BadStepsAreRefusedWithTheReason)
 {
-    const struct { const char* script; const char* says; } cases[] = {
+    const struct {
+        const char* script;
+        const char* says;
+    } cases[] = {
         {"technique:nosuch", "unknown technique"},
         {"compare:nosuch", "unknown technique"},
         {"compare:", "unknown technique"},

@@ -154,7 +154,9 @@ TEST(Brdf, WhiteFurnaceMetalsNeverExceedOne)
             const Estimate e = albedo(p, n, direction(theta, 0), 40000, std::uint64_t(++config));
             EXPECT_LE(e.mean, 1.0 + 5.0 * e.stderr_ + 1e-4) << "roughness " << roughness << " theta " << theta;
             EXPECT_GT(e.mean, 0.3) << "roughness " << roughness << " theta " << theta;
-            if (theta <= 45.0f && roughness <= 0.3f) { EXPECT_GT(e.mean, 0.95) << roughness << " " << theta; }
+            if (theta <= 45.0f && roughness <= 0.3f) {
+                EXPECT_GT(e.mean, 0.95) << roughness << " " << theta;
+            }
         }
     }
 }
@@ -177,7 +179,9 @@ TEST(Brdf, WhiteFurnaceDielectric)
                         e.stderr_);
             worst = std::max(worst, e.mean);
             EXPECT_LE(e.mean, 1.0 + 5.0 * e.stderr_ + 1e-3) << roughness << " " << theta;
-            if (theta <= 60.0f) { EXPECT_GT(e.mean, 0.85) << roughness << " " << theta; }
+            if (theta <= 60.0f) {
+                EXPECT_GT(e.mean, 0.85) << roughness << " " << theta;
+            }
             EXPECT_GT(e.mean, 0.1) << roughness << " " << theta;
         }
     }

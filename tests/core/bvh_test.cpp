@@ -208,12 +208,24 @@ TEST(Bvh, DegenerateNanAndInfTrianglesAreLeftOut)
     Scene scene;
     scene.materials.emplace_back();
     // Triangle 0: good. 1: repeated vertex. 2: collinear. 3: NaN. 4: Inf. 5: good, behind 0.
-    scene.meshes.push_back(meshOf({{-1, -1, 1}, {1, -1, 1}, {0, 1, 1},
-                                   {0, 0, 2}, {0, 0, 2}, {1, 0, 2},
-                                   {-1, 0, 0.5f}, {0, 0, 0.5f}, {1, 0, 0.5f},
-                                   {nan, 0, 0.5f}, {1, 0, 0.5f}, {0, 1, 0.5f},
-                                   {-inf, -1, 0.7f}, {inf, -1, 0.7f}, {0, inf, 0.7f},
-                                   {-1, -1, 3}, {1, -1, 3}, {0, 1, 3}}));
+    scene.meshes.push_back(meshOf({{-1, -1, 1},
+                                   {1, -1, 1},
+                                   {0, 1, 1},
+                                   {0, 0, 2},
+                                   {0, 0, 2},
+                                   {1, 0, 2},
+                                   {-1, 0, 0.5f},
+                                   {0, 0, 0.5f},
+                                   {1, 0, 0.5f},
+                                   {nan, 0, 0.5f},
+                                   {1, 0, 0.5f},
+                                   {0, 1, 0.5f},
+                                   {-inf, -1, 0.7f},
+                                   {inf, -1, 0.7f},
+                                   {0, inf, 0.7f},
+                                   {-1, -1, 3},
+                                   {1, -1, 3},
+                                   {0, 1, 3}}));
     const Bvh bvh(scene);
     EXPECT_EQ(bvh.skippedTriangles(), 4u);
     EXPECT_EQ(bvh.triangles().size(), 2u);

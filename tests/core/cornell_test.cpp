@@ -35,7 +35,8 @@ glm::vec3 centroidOf(const Mesh& m)
 }
 
 // Calls f(a, b, c, n) for every triangle with its stored normal (flat: the same at its three corners).
-template <class F> void forEachTriangle(const Mesh& m, F f)
+template <class F>
+void forEachTriangle(const Mesh& m, F f)
 {
     for (std::size_t t = 0; t < m.indices.size(); t += 3) {
         const std::uint32_t i0 = m.indices[t], i1 = m.indices[t + 1], i2 = m.indices[t + 2];
@@ -226,7 +227,10 @@ TEST(Cornell, CameraSeesRedOnTheLeft)
     EXPECT_LT(glm::dot(c.rayDirection(0.5f, 0.5f * w, int(w), int(w)), right), 0.0f); // left column looks left
 }
 
-TEST(Cornell, UnknownVariantThrows) { EXPECT_THROW(makeCornell("cornell-banana"), SceneError); }
+TEST(Cornell, UnknownVariantThrows)
+{
+    EXPECT_THROW(makeCornell("cornell-banana"), SceneError);
+}
 
 TEST(SceneLoading, BuiltinNamesAndErrors)
 {

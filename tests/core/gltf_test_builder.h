@@ -20,7 +20,8 @@ struct GltfBuilder {
     std::string bin;
 
     // Appends raw values as one bufferView + accessor; returns the accessor index.
-    template <class T> int accessor(const std::vector<T>& values, const char* type, int componentType)
+    template <class T>
+    int accessor(const std::vector<T>& values, const char* type, int componentType)
     {
         while (bin.size() % 4) bin.push_back('\0');
         const std::size_t offset = bin.size();

@@ -44,8 +44,10 @@ TEST(ImageExpect, MetricsMatchClosedForms)
     EXPECT_EQ(testing::measureImages(got, want, ImageMetric::relativeRmse(), &mask), 0.0);
     EXPECT_EQ(testing::measureImages(got, want, ImageMetric::maxAbs(), &mask), 0.0);
     // 1x1 and 3x5 images.
-    EXPECT_NEAR(testing::measureImages(constant(1, 1, 3.0f), constant(1, 1, 2.0f), ImageMetric::relativeRmse()), 0.5, 1e-12);
-    EXPECT_NEAR(testing::measureImages(constant(3, 5, 1.0f), constant(3, 5, 2.0f), ImageMetric::blockMeans(2)), 0.5, 1e-12);
+    EXPECT_NEAR(testing::measureImages(constant(1, 1, 3.0f), constant(1, 1, 2.0f), ImageMetric::relativeRmse()), 0.5,
+                1e-12);
+    EXPECT_NEAR(testing::measureImages(constant(3, 5, 1.0f), constant(3, 5, 2.0f), ImageMetric::blockMeans(2)), 0.5,
+                1e-12);
     EXPECT_THROW(testing::measureImages(constant(3, 5, 1.0f), constant(5, 3, 1.0f), ImageMetric::maxAbs()),
                  std::runtime_error);
 }

@@ -11,7 +11,10 @@
 namespace bounce::core {
 namespace {
 
-std::size_t depthOf(const std::string& s) { return jsonNestingDepth(s.data(), s.data() + s.size()); }
+std::size_t depthOf(const std::string& s)
+{
+    return jsonNestingDepth(s.data(), s.data() + s.size());
+}
 
 TEST(JsonDepth, CountsArraysAndObjectsNotStrings)
 {
@@ -24,7 +27,10 @@ TEST(JsonDepth, CountsArraysAndObjectsNotStrings)
     EXPECT_EQ(depthOf("]]]]][[]"), 2u) << "stray closers never go below zero";
 }
 
-std::string nested(std::size_t depth) { return std::string(depth, '[') + std::string(depth, ']'); }
+std::string nested(std::size_t depth)
+{
+    return std::string(depth, '[') + std::string(depth, ']');
+}
 
 // The finding: depth 30,000 killed the process (exit 139). Refused with a message instead, by the
 // loader, before tinygltf sees it.
@@ -48,7 +54,8 @@ TEST(JsonDepth, ShallowExtrasStillLoad)
 {
     const test::fs::path dir = test::scratchDir();
     const std::string file = (dir / "shallow.gltf").string();
-    test::writeFile(file, "{\"asset\": {\"version\": \"2.0\", \"extras\": " + nested(20) + "}, \"scenes\": [{\"nodes\": []}], \"scene\": 0}");
+    test::writeFile(file, "{\"asset\": {\"version\": \"2.0\", \"extras\": " + nested(20) +
+                              "}, \"scenes\": [{\"nodes\": []}], \"scene\": 0}");
     try {
         loadGltf(file);
     } catch (const SceneError& e) {

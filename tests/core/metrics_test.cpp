@@ -155,7 +155,8 @@ TEST(Metrics, NonFiniteValuesAreCountedAndMakeEveryErrorInfinite)
     EXPECT_FALSE(m.allFinite());
     EXPECT_EQ(m.valuesCompared, 8u * 8u * 3u - 3u);
     // Every other value is identical, yet no figure may call the image perfect.
-    for (double e : {m.rmse, m.relativeRmse, m.relativeMse, m.mae, m.maxError}) EXPECT_EQ(e, std::numeric_limits<double>::infinity());
+    for (double e : {m.rmse, m.relativeRmse, m.relativeMse, m.mae, m.maxError})
+        EXPECT_EQ(e, std::numeric_limits<double>::infinity());
     EXPECT_EQ(m.ssim, 0.0);
     EXPECT_EQ(rmse(a, r2), std::numeric_limits<double>::infinity());
     EXPECT_EQ(relativeRmse(a, r), std::numeric_limits<double>::infinity()) << "a NaN in the image alone";

@@ -15,7 +15,10 @@ using namespace bounce::core;
 constexpr int kN = 200000;
 
 // 5 standard errors of a mean of kN samples of a quantity with variance `var`.
-double tol(double var) { return 5.0 * std::sqrt(var / kN); }
+double tol(double var)
+{
+    return 5.0 * std::sqrt(var / kN);
+}
 
 TEST(Pcg32, MatchesReferenceOutput)
 {

@@ -13,7 +13,10 @@ namespace bounce::core {
 namespace {
 
 // The project's own glTF of the canonical box, so that the tests need no downloaded asset.
-std::string cornellGltf() { return (test::repoRoot() / "assets" / "cornell-spot.gltf").string(); }
+std::string cornellGltf()
+{
+    return (test::repoRoot() / "assets" / "cornell-spot.gltf").string();
+}
 
 std::string writeSetup(const std::string& name, const std::string& text)
 {
@@ -69,7 +72,7 @@ TEST(SceneSetup, TransformMaterialsCameraAndLightsApply)
 TEST(SceneSetup, BaseSceneWithAnObjectKeepsTheBaseCamera)
 {
     const std::string setup = writeSetup("teapotlike.json", R"({"base": "cornell-area", "gltf": ")" + cornellGltf() +
-                                                              R"(", "transform": {"scale": 0.1}})");
+                                                                R"(", "transform": {"scale": 0.1}})");
     const Scene s = loadScene(setup);
     const Scene base = makeCornell("cornell-area");
     EXPECT_EQ(s.camera.position, base.camera.position);
@@ -81,26 +84,38 @@ TEST(SceneSetup, RefusalsNameTheProblem)
 {
     EXPECT_NE(expectRefused(writeSetup("a.json", R"({"gltf": "no/such/file.gltf"})")).find("no/such/file.gltf"),
               std::string::npos);
-    EXPECT_NE(expectRefused(writeSetup("b.json", R"({"base": "cornell-spot", "lihgts": []})")).find("unknown key 'lihgts'"),
-              std::string::npos);
+    EXPECT_NE(
+        expectRefused(writeSetup("b.json", R"({"base": "cornell-spot", "lihgts": []})")).find("unknown key 'lihgts'"),
+        std::string::npos);
     EXPECT_NE(expectRefused(writeSetup("c.json", R"({"base": "cornell-spot", "lights": [{"type": "laser"}]})"))
                   .find("unknown light type"),
               std::string::npos);
-    EXPECT_NE(expectRefused(writeSetup("d.json", R"({"base": "cornell-spot", "lights": [{"type": "point", "position": [0, 1, 0], "intensity": -1}]})"))
-                  .find("negative"),
-              std::string::npos);
-    EXPECT_NE(expectRefused(writeSetup("e.json", R"({"base": "cornell-spot", "lights": [{"type": "spot", "position": [0, 1, 0], "direction": [0, -1, 0], "intensity": 1, "outerDeg": 120}]})"))
-                  .find("outerDeg"),
-              std::string::npos);
-    EXPECT_NE(expectRefused(writeSetup("f.json", R"({"base": "cornell-spot", "camera": {"position": [0, 1, 0], "target": [0, 1, 0]}})"))
-                  .find("zero length"),
-              std::string::npos);
+    EXPECT_NE(
+        expectRefused(
+            writeSetup(
+                "d.json",
+                R"({"base": "cornell-spot", "lights": [{"type": "point", "position": [0, 1, 0], "intensity": -1}]})"))
+            .find("negative"),
+        std::string::npos);
+    EXPECT_NE(
+        expectRefused(
+            writeSetup(
+                "e.json",
+                R"({"base": "cornell-spot", "lights": [{"type": "spot", "position": [0, 1, 0], "direction": [0, -1, 0], "intensity": 1, "outerDeg": 120}]})"))
+            .find("outerDeg"),
+        std::string::npos);
+    EXPECT_NE(
+        expectRefused(
+            writeSetup("f.json", R"({"base": "cornell-spot", "camera": {"position": [0, 1, 0], "target": [0, 1, 0]}})"))
+            .find("zero length"),
+        std::string::npos);
     EXPECT_NE(expectRefused(writeSetup("g.json", R"({"comment": "nothing"})")).find("no geometry"), std::string::npos);
 }
 
 TEST(SceneSetup, CommandLineFormsMatchTheJsonForms)
 {
-    const nlohmann::json l = lightJsonFromArgument("spot:position=0.278,0.5,0.279;direction=0,-1,0;intensity=10;outerDeg=30");
+    const nlohmann::json l =
+        lightJsonFromArgument("spot:position=0.278,0.5,0.279;direction=0,-1,0;intensity=10;outerDeg=30");
     EXPECT_EQ(l["type"], "spot");
     EXPECT_EQ(l["position"], nlohmann::json::array({0.278, 0.5, 0.279}));
     EXPECT_EQ(l["intensity"], 10.0);

@@ -298,7 +298,8 @@ TEST(SurfacePoints, HugeAndTinyScenesGiveTheSameLayout)
         const std::vector<glm::vec3> p = positionsOf(big, s.points);
         EXPECT_GE(minPairDistance(p), s.minDistance * (1.0 - 1e-5)) << factor;
         const double spacing = meanNearestOverR(p, s.minDistance);
-        std::printf("[ measured ] x%g: mean nearest neighbour %.4f r (unscaled %.4f r)\n", factor, spacing, baseSpacing);
+        std::printf("[ measured ] x%g: mean nearest neighbour %.4f r (unscaled %.4f r)\n", factor, spacing,
+                    baseSpacing);
         EXPECT_NEAR(spacing, baseSpacing, 0.02 * baseSpacing) << factor;
         const std::vector<double> areas = core::triangleAreas(big);
         std::vector<int> counts(areas.size(), 0), baseCounts(areas.size(), 0);

@@ -96,8 +96,9 @@ void expectSameImage(const std::string& technique, const Sets& sets)
                 sum / double(osmesa.image.rgb.size()));
     // A black frame from both would agree trivially.
     EXPECT_GT(sum, 0.0) << technique << " rendered black";
-    testing::expectImagesClose(technique, egl.image, osmesa.image, testing::ImageMetric::valuesOutside(kAbsTol, kRelTol),
-                               0.0, "one rasteriser behind two front doors");
+    testing::expectImagesClose(technique, egl.image, osmesa.image,
+                               testing::ImageMetric::valuesOutside(kAbsTol, kRelTol), 0.0,
+                               "one rasteriser behind two front doors");
 }
 
 TEST(BackendTest, DirectSameOnOsMesaAndEgl)

@@ -68,21 +68,25 @@ std::map<std::string, int> table(const fs::path& p)
 TEST(Bindings, ShadersDeclareBlocksAndSamplersByName)
 {
     // Image units stay literal: each compute pass numbers its own images from 0 (bindings.glsl says so).
-    const std::regex literal(R"(layout\s*\((std140|std430)?[,\s]*binding\s*=\s*\d+\s*\)|layout\s*\(\s*binding\s*=\s*\d+)");
+    const std::regex literal(
+        R"(layout\s*\((std140|std430)?[,\s]*binding\s*=\s*\d+\s*\)|layout\s*\(\s*binding\s*=\s*\d+)");
     std::vector<std::string> hits;
     for (const char* dir : {"glsl/common", "glsl/frame", "glsl/technique"})
         for (const std::string& h : grep(root() / dir, {".glsl", ".vert", ".frag", ".comp", ".geom"}, literal))
             hits.push_back(h);
-    EXPECT_TRUE(hits.empty()) << "literal binding numbers (name them in a bindings.glsl):\n" << ::testing::PrintToString(hits);
+    EXPECT_TRUE(hits.empty()) << "literal binding numbers (name them in a bindings.glsl):\n"
+                              << ::testing::PrintToString(hits);
 }
 
 TEST(Bindings, CppBindsByName)
 {
-    const std::regex literal(R"((bindBase\(GL_(SHADER_STORAGE|UNIFORM)_BUFFER,\s*\d+\))|(\.bind\(\d+\))|(glBindBufferRange\(GL_\w+,\s*\d+,))");
+    const std::regex literal(
+        R"((bindBase\(GL_(SHADER_STORAGE|UNIFORM)_BUFFER,\s*\d+\))|(\.bind\(\d+\))|(glBindBufferRange\(GL_\w+,\s*\d+,))");
     std::vector<std::string> hits;
     for (const char* dir : {"gl/frame", "gl/technique", "app"})
         for (const std::string& h : grep(root() / dir, {".cpp", ".h"}, literal)) hits.push_back(h);
-    EXPECT_TRUE(hits.empty()) << "literal binding numbers in C++ (use gl/frame/bindings.h):\n" << ::testing::PrintToString(hits);
+    EXPECT_TRUE(hits.empty()) << "literal binding numbers in C++ (use gl/frame/bindings.h):\n"
+                              << ::testing::PrintToString(hits);
 }
 
 TEST(Bindings, NoTwoNamesShareASlot)
@@ -92,7 +96,8 @@ TEST(Bindings, NoTwoNamesShareASlot)
     ASSERT_FALSE(frame.empty());
     ASSERT_FALSE(isr.empty());
     // The passes that read no G-buffer (composite, tone map) reuse the first units on purpose.
-    const std::vector<std::string> passLocal{"UNIT_COMPOSITE_DIRECT", "UNIT_COMPOSITE_INDIRECT", "UNIT_TONEMAP_RADIANCE"};
+    const std::vector<std::string> passLocal{"UNIT_COMPOSITE_DIRECT", "UNIT_COMPOSITE_INDIRECT",
+                                             "UNIT_TONEMAP_RADIANCE"};
     // RSM and multires pyramid names are the first of six units each.
     auto span = [](const std::string& n) { return n == "UNIT_RSM_FIRST" || n == "UNIT_MULTIRES_FIRST" ? 6 : 1; };
     std::map<std::string, std::string> used; // "SSBO 4" -> name

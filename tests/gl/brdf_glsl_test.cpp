@@ -62,7 +62,8 @@ TEST_F(BrdfGlslTest, GlslMatchesCpp)
     int nonZero = 0;
     for (std::size_t i = 0; i < cases.size(); ++i) {
         const core::BrdfParams p = core::BrdfParams::fromMaterial(materials[i]);
-        const glm::vec3 cpu = core::evalBrdf(p, glm::vec3(cases[i].nRoughness), glm::vec3(cases[i].wo), glm::vec3(cases[i].wi));
+        const glm::vec3 cpu =
+            core::evalBrdf(p, glm::vec3(cases[i].nRoughness), glm::vec3(cases[i].wo), glm::vec3(cases[i].wi));
         for (int c = 0; c < 3; ++c) {
             // 1e-5 relative, with an absolute floor for values that cancel to almost nothing.
             ASSERT_NEAR(gpu[i][c], cpu[c], 1e-5f * std::abs(cpu[c]) + 1e-7f) << "case " << i << " channel " << c;

@@ -113,13 +113,13 @@ TEST_P(Conformance, Technique)
     gl::ParamValues frameValues(gl::frameParams());
     frameValues.setValue("shadow.size", 256); // small: the test checks behaviour, not shadow quality
     for (const std::string& sceneName : scenes) {
-        const core::Scene scene = sceneName == "furnace" ? furnaceBox(kFurnaceAlbedo, kFurnaceEmission)
-                                                         : core::makeCornell(sceneName);
+        const core::Scene scene =
+            sceneName == "furnace" ? furnaceBox(kFurnaceAlbedo, kFurnaceEmission) : core::makeCornell(sceneName);
         for (const auto& [w, h] : sizes) {
             SCOPED_TRACE(info.name + " on " + sceneName + " at " + std::to_string(w) + "x" + std::to_string(h));
             std::unique_ptr<gl::Renderer> r;
-            ASSERT_NO_THROW(r = std::make_unique<gl::Renderer>(scene, info.name, frameValues,
-                                                               gl::ParamValues(info.params), w, h));
+            ASSERT_NO_THROW(
+                r = std::make_unique<gl::Renderer>(scene, info.name, frameValues, gl::ParamValues(info.params), w, h));
             r->renderFrame(false);
             r->renderFrame(true);
             bounce::gl::checkGlError("the conformance frame");
@@ -131,15 +131,19 @@ TEST_P(Conformance, Technique)
                 for (int x = 0; x < w; ++x)
                     for (int c = 0; c < 3; ++c) {
                         const float v = indirect.at(x, y)[c];
-                        if (!std::isfinite(v) || v < 0.0f) ++bad;
-                        else maxIndirect = std::max(maxIndirect, double(v));
+                        if (!std::isfinite(v) || v < 0.0f)
+                            ++bad;
+                        else
+                            maxIndirect = std::max(maxIndirect, double(v));
                     }
             EXPECT_EQ(bad, 0) << "pixel channels of the indirect light that are NaN, infinite or negative";
 
             std::set<std::string> timed;
             for (const gl::PassStat& p : r->timers().stats()) timed.insert(p.pass);
-            for (const std::string& p : timed) EXPECT_TRUE(declared.count(p)) << "pass '" << p << "' is timed but not declared";
-            for (const std::string& p : required) EXPECT_TRUE(timed.count(p)) << "declared pass '" << p << "' was not timed";
+            for (const std::string& p : timed)
+                EXPECT_TRUE(declared.count(p)) << "pass '" << p << "' is timed but not declared";
+            for (const std::string& p : required)
+                EXPECT_TRUE(timed.count(p)) << "declared pass '" << p << "' was not timed";
 
             const std::vector<gl::Counter> counters = r->counters();
             for (const gl::Counter& c : counters)

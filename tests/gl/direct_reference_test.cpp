@@ -135,9 +135,9 @@ TEST_F(DirectPathTracerTest, GlDirectMatchesPathTracerDirect)
     ASSERT_GT(interiorCount, kSize * kSize * 3 / 4);
 
     const core::Image centres = renderGlDirect(1);
-    const double interiorError =
-        testing::expectImagesClose("interior", centres, want.image, testing::ImageMetric::relativeRmse(),
-                                   kInteriorRelRmse, "interior pixels: reference noise and half-float G-buffer", &interior);
+    const double interiorError = testing::expectImagesClose(
+        "interior", centres, want.image, testing::ImageMetric::relativeRmse(), kInteriorRelRmse,
+        "interior pixels: reference noise and half-float G-buffer", &interior);
     std::printf("[ measured ] interior relative RMSE %.4g over %lld pixels\n", interiorError, (long long)interiorCount);
 
     const core::Image boxed = renderGlDirect(kSuper);

@@ -58,9 +58,9 @@ TEST(DispatchGroups, CeilingOfSizeOverLocalSize)
 // cell exactly once, and the invocations outside exactly the rest of the groups launched.
 TEST_F(DispatchTest, EveryInvocationInsideOnceNothingElse)
 {
-    for (const auto& [size, local] : {std::pair{glm::ivec3(3, 5, 1), glm::ivec3(8, 8, 1)},
-                                      std::pair{glm::ivec3(1, 1, 1), glm::ivec3(8, 8, 1)},
-                                      std::pair{glm::ivec3(17, 9, 3), glm::ivec3(4, 4, 2)}}) {
+    for (const auto& [size, local] :
+         {std::pair{glm::ivec3(3, 5, 1), glm::ivec3(8, 8, 1)}, std::pair{glm::ivec3(1, 1, 1), glm::ivec3(8, 8, 1)},
+          std::pair{glm::ivec3(17, 9, 3), glm::ivec3(4, 4, 2)}}) {
         const auto [cells, outside] = run(size, local);
         std::size_t wrong = 0;
         for (std::uint32_t c : cells) wrong += c != 1u;

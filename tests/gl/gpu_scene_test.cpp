@@ -58,8 +58,9 @@ TEST_F(GpuSceneTest, TrianglesAndEmittersMatchTheCpuScene)
                 EXPECT_EQ(std::uint32_t(r.triangles[6 * t + 3].x), m.material) << "triangle " << t;
                 const glm::vec3 point = (1.0f - b.x - b.y) * p[0] + b.x * p[1] + b.y * p[2];
                 EXPECT_LT(glm::length(glm::vec3(r.triangles[6 * t + 4]) - point), 1e-5f) << "triangle " << t;
-                const glm::vec3 n = glm::normalize((1.0f - b.x - b.y) * m.normals[m.indices[i]] +
-                                                   b.x * m.normals[m.indices[i + 1]] + b.y * m.normals[m.indices[i + 2]]);
+                const glm::vec3 n =
+                    glm::normalize((1.0f - b.x - b.y) * m.normals[m.indices[i]] + b.x * m.normals[m.indices[i + 1]] +
+                                   b.y * m.normals[m.indices[i + 2]]);
                 EXPECT_LT(glm::length(glm::vec3(r.triangles[6 * t + 5]) - n), 1e-5f) << "triangle " << t;
                 const core::Material& mat = scene.materials[m.material];
                 if (mat.isEmissive()) {

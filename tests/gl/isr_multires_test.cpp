@@ -80,11 +80,16 @@ void expectFinite(const core::Image& img, const std::string& what)
 }
 
 // The VPL cache's layout (glsl/technique/isr/vpl.glsl) and the VPL tree's (vpl_tree.glsl).
-struct GpuVpl { glm::vec4 positionArea, normal, flux; };
-struct Node { glm::vec4 positionArea, normal, flux, range; };
+struct GpuVpl {
+    glm::vec4 positionArea, normal, flux;
+};
+struct Node {
+    glm::vec4 positionArea, normal, flux, range;
+};
 
 // A frame of `scene` at w x h (256^2 shadow maps), begun, with its G-buffer rendered unless `gbuffer` is false.
-std::unique_ptr<gl::Frame> testFrame(const core::Scene& scene, int w, int h, gl::PassTimers& timers, bool gbuffer = true)
+std::unique_ptr<gl::Frame> testFrame(const core::Scene& scene, int w, int h, gl::PassTimers& timers,
+                                     bool gbuffer = true)
 {
     gl::FrameSettings fs;
     fs.width = w;
@@ -237,10 +242,12 @@ TEST_F(IsrMultiresTest, ZeroThresholdsEqualFullResolutionGather)
     const core::Scene scene = core::makeCornell("cornell-spot");
     for (const auto& [w, h] : {std::pair{64, 64}, std::pair{333, 200}}) {
         const std::string size = std::to_string(w) + "x" + std::to_string(h);
-        const Rendered m = render(scene, "multires-gather",
-                                  {{"vpls", "64"}, {"rsmSize", "32"}, {"depthThreshold", "0"}, {"normalThreshold", "0"}}, w, h);
+        const Rendered m =
+            render(scene, "multires-gather",
+                   {{"vpls", "64"}, {"rsmSize", "32"}, {"depthThreshold", "0"}, {"normalThreshold", "0"}}, w, h);
         const Rendered r = render(scene, "rsm", {{"vpls", "64"}, {"rsmSize", "32"}}, w, h);
-        testing::expectImagesClose("multires-zero-vs-rsm-" + size, m.indirect, r.indirect, testing::ImageMetric::relativeRmse(), 1e-3,
+        testing::expectImagesClose("multires-zero-vs-rsm-" + size, m.indirect, r.indirect,
+                                   testing::ImageMetric::relativeRmse(), 1e-3,
                                    "the issue's bound: only the float summation order differs");
         EXPECT_EQ(counter(m.counters, "fragments.level0"), geometryPixels(m.position)) << size;
         EXPECT_EQ(counter(m.counters, "fragments.total"), geometryPixels(m.position)) << size;
@@ -283,7 +290,8 @@ TEST_F(IsrMultiresTest, ZeroThresholdsEqualCpuGather)
             for (int x = 0; x < w; ++x) {
                 const std::size_t i = (std::size_t(y) * w + x) * 4;
                 if (P[i + 3] == 0.0f) continue;
-                const glm::dvec3 p(P[i], P[i + 1], P[i + 2]), n(N[i], N[i + 1], N[i + 2]), rho(D[i], D[i + 1], D[i + 2]);
+                const glm::dvec3 p(P[i], P[i + 1], P[i + 2]), n(N[i], N[i + 1], N[i + 2]),
+                    rho(D[i], D[i + 1], D[i + 2]);
                 glm::dvec3 sum(0.0);
                 for (const GpuVpl& v : vpls) {
                     const glm::dvec3 d = glm::dvec3(v.positionArea) - p;
@@ -296,7 +304,8 @@ TEST_F(IsrMultiresTest, ZeroThresholdsEqualCpuGather)
                 want.set(x, h - 1 - y, glm::vec3(sum));
             }
         const std::string size = std::to_string(w) + "x" + std::to_string(h);
-        testing::expectImagesClose("multires-zero-vs-cpu-" + size, frame.read(frame.indirect()), want, testing::ImageMetric::relativeRmse(), 1e-3,
+        testing::expectImagesClose("multires-zero-vs-cpu-" + size, frame.read(frame.indirect()), want,
+                                   testing::ImageMetric::relativeRmse(), 1e-3,
                                    "the issue's bound: float on the GPU against double on the CPU");
         const std::vector<int> perLevel = gather.fragmentsPerLevel();
         int geometry = 0;
@@ -311,13 +320,13 @@ TEST_F(IsrMultiresTest, ZeroThresholdsEqualCpuGather)
 TEST_F(IsrMultiresTest, HisrTauZeroEqualsRsmFull)
 {
     const core::Scene scene = core::makeCornell("cornell-spot");
-    const Rendered hisr = render(scene, "hisr",
-                                 {{"rsmSize", "32"}, {"tau", "0"}, {"topGrid", "8"}, {"depthThreshold", "0"},
-                                  {"normalThreshold", "0"}},
-                                 48, 48);
+    const Rendered hisr = render(
+        scene, "hisr",
+        {{"rsmSize", "32"}, {"tau", "0"}, {"topGrid", "8"}, {"depthThreshold", "0"}, {"normalThreshold", "0"}}, 48, 48);
     const Rendered full = render(scene, "rsm-full", {{"rsmSize", "32"}}, 48, 48);
-    testing::expectImagesClose("hisr-tau0-vs-rsm-full", hisr.indirect, full.indirect, testing::ImageMetric::relativeRmse(), 1e-3,
-                                   "the same sum over single texels in another order, float");
+    testing::expectImagesClose("hisr-tau0-vs-rsm-full", hisr.indirect, full.indirect,
+                               testing::ImageMetric::relativeRmse(), 1e-3,
+                               "the same sum over single texels in another order, float");
     // Every fragment gathered every lit texel: no more clusters than texels, and at least some of them.
     const double perFragment = counter(hisr.counters, "clusters.perFragment");
     EXPECT_LE(perFragment, 32.0 * 32.0);
@@ -330,8 +339,11 @@ TEST_F(IsrMultiresTest, HisrClustersDropAsTauGrows)
 {
     const core::Scene scene = core::makeCornell("cornell-spot");
     // The paper's tree (no light-space discontinuity departures), every pixel a fragment.
-    const Sets eye = {{"rsmSize", "64"}, {"depthThreshold", "0"}, {"normalThreshold", "0"},
-                      {"lightDepthThreshold", "1e30"}, {"lightNormalThreshold", "1e30"}};
+    const Sets eye = {{"rsmSize", "64"},
+                      {"depthThreshold", "0"},
+                      {"normalThreshold", "0"},
+                      {"lightDepthThreshold", "1e30"},
+                      {"lightNormalThreshold", "1e30"}};
     double previous = 1e30;
     const Rendered full = render(scene, "rsm-full", {{"rsmSize", "64"}}, 32, 32);
     for (const char* tau : {"0", "1e-5", "1e-4", "1e-3", "1"}) {
@@ -362,8 +374,12 @@ TEST_F(IsrMultiresTest, HisrTraversalMatchesCpuTraversal)
     constexpr int kSize = 24, kRsm = 32;
     const double tau = 1e-3;
     const Rendered gpu = render(scene, "hisr",
-                                {{"rsmSize", std::to_string(kRsm)}, {"tau", "1e-3"}, {"topGrid", "4"},
-                                 {"depthThreshold", "0"}, {"normalThreshold", "0"}, {"lightRefineLevel", "1"}},
+                                {{"rsmSize", std::to_string(kRsm)},
+                                 {"tau", "1e-3"},
+                                 {"topGrid", "4"},
+                                 {"depthThreshold", "0"},
+                                 {"normalThreshold", "0"},
+                                 {"lightRefineLevel", "1"}},
                                 kSize, kSize);
 
     // The same RSM and tree, built again (both are deterministic), and the frame's G-buffer.
@@ -400,13 +416,15 @@ TEST_F(IsrMultiresTest, HisrTraversalMatchesCpuTraversal)
                 const Node& c = nodes[std::size_t(root * tree.subtreeNodes() + tree.levelOffset(m) + code)];
                 if (std::max({c.flux.x, c.flux.y, c.flux.z}) <= 0.0f) return;
                 const glm::vec3 d = glm::vec3(c.positionArea) - p;
-                const bool refine = m > 0 && (glm::dot(d, d) <= T * c.normal.w * c.normal.w || (m > 1 && c.normal.w < 0.0f));
+                const bool refine =
+                    m > 0 && (glm::dot(d, d) <= T * c.normal.w * c.normal.w || (m > 1 && c.normal.w < 0.0f));
                 if (refine) {
                     for (int k = 0; k < 4; ++k) walk(root, m - 1, 4 * code + k);
                     return;
                 }
-                const glm::dvec3 dd(d), nj = glm::length(glm::dvec3(c.normal)) > 0.0 ? glm::normalize(glm::dvec3(c.normal))
-                                                                                     : glm::dvec3(0.0);
+                const glm::dvec3 dd(d), nj = glm::length(glm::dvec3(c.normal)) > 0.0
+                                                 ? glm::normalize(glm::dvec3(c.normal))
+                                                 : glm::dvec3(0.0);
                 const double r2 = glm::dot(dd, dd), r = std::sqrt(r2);
                 const double cosI = std::max(glm::dot(n, dd / r), 0.0), cosJ = std::max(-glm::dot(nj, dd / r), 0.0);
                 sum += glm::dvec3(c.flux) / kPi * (cosI * cosJ / (kPi * r2 + double(c.positionArea.w)));
@@ -416,7 +434,7 @@ TEST_F(IsrMultiresTest, HisrTraversalMatchesCpuTraversal)
             want.set(x, kSize - 1 - y, glm::vec3(sum * glm::dvec3(D[i], D[i + 1], D[i + 2])));
         }
     testing::expectImagesClose("hisr-vs-cpu-traversal", gpu.indirect, want, testing::ImageMetric::relativeRmse(), 1e-3,
-                                   "float sums; an Eq. 8 tie in float may go either way");
+                               "float sums; an Eq. 8 tie in float may go either way");
     EXPECT_NEAR(counter(gpu.counters, "clusters.gathered"), clusters, 1e-3 * clusters);
     EXPECT_EQ(counter(gpu.counters, "fragments.level0"), double(fragments));
     // Some clusters were refined and some were not: the test exercised both branches of Eq. 8.
@@ -429,12 +447,12 @@ TEST_F(IsrMultiresTest, FragmentsDropAsThresholdsGrow)
 {
     const core::Scene scene = core::makeCornell("cornell-spot");
     double previous = 1e30;
-    for (const auto& [d, n] : {std::pair{"0", "0"}, std::pair{"0.005", "0.05"}, std::pair{"0.03", "0.15"},
-                               std::pair{"0.2", "0.5"}}) {
-        const Rendered r = render(scene, "multires-gather",
-                                  {{"vpls", "16"}, {"rsmSize", "32"}, {"depthThreshold", d}, {"normalThreshold", n},
-                                   {"coarsestLevel", "4"}},
-                                  96, 96);
+    for (const auto& [d, n] :
+         {std::pair{"0", "0"}, std::pair{"0.005", "0.05"}, std::pair{"0.03", "0.15"}, std::pair{"0.2", "0.5"}}) {
+        const Rendered r = render(
+            scene, "multires-gather",
+            {{"vpls", "16"}, {"rsmSize", "32"}, {"depthThreshold", d}, {"normalThreshold", n}, {"coarsestLevel", "4"}},
+            96, 96);
         const double total = counter(r.counters, "fragments.total");
         EXPECT_LT(total, previous) << "thresholds " << d << ", " << n;
         previous = total;
@@ -455,7 +473,8 @@ TEST_F(IsrMultiresTest, RefineAndSplatEqualStencilAndGather)
     std::vector<GpuVpl> vpls;
     for (int i = 0; i < 40; ++i) // a spread of VPLs on the floor, the walls and the ceiling
         vpls.push_back({{0.05f + 0.0113f * i, i % 3 == 0 ? 0.0f : 0.02f * i, 0.1f + 0.009f * i, 1e-3f},
-                        {0.0f, i % 2 ? 1.0f : -1.0f, 0.0f, 0.0f}, {0.01f, 0.005f * (i % 4), 0.002f, 0.0f}});
+                        {0.0f, i % 2 ? 1.0f : -1.0f, 0.0f, 0.0f},
+                        {0.01f, 0.005f * (i % 4), 0.002f, 0.0f}});
     for (const auto& [w, h, coarsest] : {std::tuple{64, 64, 4}, std::tuple{333, 200, -1}, std::tuple{1, 1, -1}}) {
         const std::string size = std::to_string(w) + "x" + std::to_string(h);
         gl::PassTimers timers;
@@ -489,14 +508,17 @@ TEST_F(IsrMultiresTest, RefineAndSplatEqualStencilAndGather)
                 ADD_FAILURE() << size << ": texel " << i / 4 << " marked " << splatted[i + 3] << " by the refinement, "
                               << stenciled[i + 3] << " by the stencil pass";
             for (int c = 0; c < 3; ++c)
-                if (std::abs(splatted[i + c] - stenciled[i + c]) > 1e-5f * std::abs(stenciled[i + c]) + 1e-12f && ++light <= 3)
+                if (std::abs(splatted[i + c] - stenciled[i + c]) > 1e-5f * std::abs(stenciled[i + c]) + 1e-12f &&
+                    ++light <= 3)
                     ADD_FAILURE() << size << ": texel " << i / 4 << " splatted " << splatted[i + c] << ", gathered "
                                   << stenciled[i + c];
         }
         EXPECT_EQ(marks, 0) << size;
         EXPECT_EQ(light, 0) << size;
-        if (total > 1) testing::expectImagesClose("splat-vs-gather-" + size, frame.read(frame.indirect()), gathered, testing::ImageMetric::relativeRmse(), 1e-5,
-                                   "the same float terms summed in another order");
+        if (total > 1)
+            testing::expectImagesClose("splat-vs-gather-" + size, frame.read(frame.indirect()), gathered,
+                                       testing::ImageMetric::relativeRmse(), 1e-5,
+                                       "the same float terms summed in another order");
     }
 }
 
@@ -557,16 +579,17 @@ TEST_F(IsrMultiresTest, VplTreeMatchesCpuClusters)
                                 flux += glm::dvec3(F[i], F[i + 1], F[i + 2]);
                                 omega += F[i + 3];
                                 if (P[i + 3] != 0.0f)
-                                    dist = std::max(dist, double(glm::length(glm::vec3(P[i], P[i + 1], P[i + 2]) - origin)));
+                                    dist = std::max(dist,
+                                                    double(glm::length(glm::vec3(P[i], P[i + 1], P[i + 2]) - origin)));
                                 if (m == 0) rsmFlux += glm::dvec3(F[i], F[i + 1], F[i + 2]);
                             }
                         const int subtree = ty * 4 + tx;
-                        const Node& n = got[std::size_t(subtree * tree.subtreeNodes() + tree.levelOffset(m) +
-                                                        interleave(cx, cy))];
+                        const Node& n =
+                            got[std::size_t(subtree * tree.subtreeNodes() + tree.levelOffset(m) + interleave(cx, cy))];
                         const std::string where = "top " + std::to_string(tx) + "," + std::to_string(ty) + " level " +
-                                                  std::to_string(m) + " node " + std::to_string(cx) + "," + std::to_string(cy);
-                        for (int c = 0; c < 3; ++c)
-                            ASSERT_NEAR(n.flux[c], flux[c], 1e-4 * flux[c] + 1e-12) << where;
+                                                  std::to_string(m) + " node " + std::to_string(cx) + "," +
+                                                  std::to_string(cy);
+                        for (int c = 0; c < 3; ++c) ASSERT_NEAR(n.flux[c], flux[c], 1e-4 * flux[c] + 1e-12) << where;
                         ASSERT_NEAR(n.flux.w, omega, 1e-4 * omega + 1e-12) << where;
                         ASSERT_NEAR(n.positionArea.w, area, 1e-4 * area + 1e-12) << where;
                         ASSERT_NEAR(std::abs(n.normal.w), dist, 1e-5) << where;
@@ -582,7 +605,8 @@ TEST_F(IsrMultiresTest, VplTreeMatchesCpuClusters)
                     }
             }
     EXPECT_EQ(checked, tree.nodeCount());
-    for (int c = 0; c < 3; ++c) EXPECT_NEAR(rootFlux[c], rsmFlux[c], 1e-4 * rsmFlux[c]) << "the roots hold the RSM's flux";
+    for (int c = 0; c < 3; ++c)
+        EXPECT_NEAR(rootFlux[c], rsmFlux[c], 1e-4 * rsmFlux[c]) << "the roots hold the RSM's flux";
     EXPECT_GT(rsmFlux.x, 0.0);
 }
 

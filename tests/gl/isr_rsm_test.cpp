@@ -7,8 +7,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstdio>
 #include <cstdint>
+#include <cstdio>
 #include <string>
 #include <utility>
 #include <vector>
@@ -143,8 +143,7 @@ glm::dvec3 vplTotalFlux(const gl::Buffer& cache, int count)
 
 void expectRelNear(const glm::dvec3& got, const glm::dvec3& want, double tol, const std::string& what)
 {
-    for (int c = 0; c < 3; ++c)
-        EXPECT_NEAR(got[c], want[c], tol * std::abs(want[c])) << what << ", channel " << c;
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(got[c], want[c], tol * std::abs(want[c])) << what << ", channel " << c;
 }
 
 // Every value finite; returns the largest.
@@ -153,8 +152,10 @@ float expectFinite(const core::Image& img, const std::string& what)
     float largest = 0.0f;
     std::size_t bad = 0;
     for (float v : img.rgb) {
-        if (!std::isfinite(v)) ++bad;
-        else largest = std::max(largest, std::abs(v));
+        if (!std::isfinite(v))
+            ++bad;
+        else
+            largest = std::max(largest, std::abs(v));
     }
     EXPECT_EQ(bad, 0u) << what << ": non-finite values";
     return largest;
@@ -165,8 +166,8 @@ struct Rendered {
     std::vector<gl::Counter> counters;
 };
 
-Rendered render(const core::Scene& scene, const std::string& technique, const std::vector<std::pair<std::string, std::string>>& sets,
-                int w, int h)
+Rendered render(const core::Scene& scene, const std::string& technique,
+                const std::vector<std::pair<std::string, std::string>>& sets, int w, int h)
 {
     const gl::TechniqueInfo& info = gl::findTechnique(technique);
     gl::ParamValues frameValues(gl::frameParams()), values(info.params);
@@ -307,7 +308,8 @@ TEST_F(IsrRsmTest, RsmTotalFluxMatchesSpotOnPlane)
             expectRelNear(total, rhoI * exactInCone, 1e-4, "exact solid angles vs the CPU texel sum");
         } else {
             const double eq4 = gl::RsmPass::equalTexelSolidAngle(2.0 * cone, kRsm);
-            EXPECT_NEAR(eq4 * kRsm * kRsm, 2.0 * kPi / 3.0, 1e-6) << "a 90-degree frustum spans 4 pi / 6 sr (float cone)";
+            EXPECT_NEAR(eq4 * kRsm * kRsm, 2.0 * kPi / 3.0, 1e-6)
+                << "a 90-degree frustum spans 4 pi / 6 sr (float cone)";
             expectRelNear(total, rhoI * (inCone * eq4), 1e-4, "Eq. 4 vs texels in cone x omega_frustum / size^2");
         }
 
@@ -468,8 +470,12 @@ TEST_F(IsrRsmTest, IsrWithZeroThresholdsEqualsRsmFull)
     const core::Scene scene = core::makeCornell("cornell-spot");
     const Rendered full = render(scene, "rsm-full", {{"rsmSize", "32"}}, 32, 32);
     const Rendered isr = render(scene, "isr",
-                                {{"rsmSize", "32"}, {"lightDepthThreshold", "0"}, {"lightNormalThreshold", "0"}, {"minLevel", "0"}, {"multires", "0"}}, 32,
-                                32);
+                                {{"rsmSize", "32"},
+                                 {"lightDepthThreshold", "0"},
+                                 {"lightNormalThreshold", "0"},
+                                 {"minLevel", "0"},
+                                 {"multires", "0"}},
+                                32, 32);
     testing::expectImagesClose("isr_zero_thresholds_vs_rsm_full", isr.indirect, full.indirect,
                                testing::ImageMetric::relativeRmse(), 1e-3, "the same VPLs gathered in another order");
 }
@@ -484,13 +490,16 @@ TEST_F(IsrRsmTest, IsrWithZeroThresholdsEqualsRsmFull)
 // with no visibility between x and the patches, as the paper's Eq. 1 without the + A_j term.
 core::Image cpuOneBounceNoVis(const core::Scene& scene, int size, double patch)
 {
-    struct Patch { glm::dvec3 p, n, radiosityTimesArea; };
+    struct Patch {
+        glm::dvec3 p, n, radiosityTimesArea;
+    };
     std::vector<Patch> patches;
     const core::Light& light = scene.lights.at(0);
     for (const core::Mesh& m : scene.meshes) {
         const glm::dvec3 rho(scene.materials[m.material].baseColor);
         for (std::size_t t = 0; t + 2 < m.indices.size(); t += 3) {
-            const glm::dvec3 a(m.positions[m.indices[t]]), b(m.positions[m.indices[t + 1]]), c(m.positions[m.indices[t + 2]]);
+            const glm::dvec3 a(m.positions[m.indices[t]]), b(m.positions[m.indices[t + 1]]),
+                c(m.positions[m.indices[t + 2]]);
             const glm::dvec3 cr = glm::cross(b - a, c - a);
             const double area = 0.5 * glm::length(cr);
             const glm::dvec3 n = cr / (2.0 * area);
@@ -499,13 +508,16 @@ core::Image cpuOneBounceNoVis(const core::Scene& scene, int size, double patch)
             for (int i = 0; i < k; ++i)
                 for (int j = 0; i + j < k; ++j)
                     for (int inverted = 0; inverted < (i + j + 1 < k ? 2 : 1); ++inverted) {
-                        const double u = (i + (inverted ? 2.0 : 1.0) / 3.0) / k, v = (j + (inverted ? 2.0 : 1.0) / 3.0) / k;
+                        const double u = (i + (inverted ? 2.0 : 1.0) / 3.0) / k,
+                                     v = (j + (inverted ? 2.0 : 1.0) / 3.0) / k;
                         const glm::dvec3 y = a + (b - a) * u + (c - a) * v;
                         const glm::dvec3 toLight = glm::dvec3(light.position) - y;
                         const double r2 = glm::dot(toLight, toLight);
                         const glm::dvec3 wi = toLight / std::sqrt(r2);
                         const double cosY = glm::dot(n, wi);
-                        if (cosY <= 0.0 || glm::dot(-wi, glm::dvec3(light.direction)) < std::cos(double(light.outerConeRad))) continue;
+                        if (cosY <= 0.0 ||
+                            glm::dot(-wi, glm::dvec3(light.direction)) < std::cos(double(light.outerConeRad)))
+                            continue;
                         if (!test::visible(scene, glm::vec3(y), glm::vec3(n), light.position)) continue;
                         patches.push_back({y, n, rho * glm::dvec3(light.intensity) * (cosY / r2) * (area / (k * k))});
                     }
@@ -581,11 +593,11 @@ TEST_F(IsrRsmTest, VplsOnReceiverAndInCornersStayFinite)
     const glm::vec4 flux(1.0f, 1.0f, 1.0f, 0.0f);
     std::vector<GpuVpl> vpls = {
         {{P[centre], P[centre + 1], P[centre + 2], area}, {N[centre], N[centre + 1], N[centre + 2], 0}, flux},
-        {{0.0f, 0.0f, 0.0f, area}, {0, 1, 0, 0}, flux},          // floor / right wall / front corner
-        {{0.0f, 0.0f, 0.5592f, area}, {1, 0, 0, 0}, flux},       // right wall at the floor and back wall
-        {{0.5496f, 0.0f, 0.5592f, area}, {0, 0, -1, 0}, flux},   // back wall at the floor and left wall
-        {{0.0f, 0.5488f, 0.5592f, area}, {0, -1, 0, 0}, flux},   // ceiling corner
-        {{0.2f, 0.0f, 0.5592f, area}, {0, 1, 0, 0}, flux},       // floor along the back wall
+        {{0.0f, 0.0f, 0.0f, area}, {0, 1, 0, 0}, flux},        // floor / right wall / front corner
+        {{0.0f, 0.0f, 0.5592f, area}, {1, 0, 0, 0}, flux},     // right wall at the floor and back wall
+        {{0.5496f, 0.0f, 0.5592f, area}, {0, 0, -1, 0}, flux}, // back wall at the floor and left wall
+        {{0.0f, 0.5488f, 0.5592f, area}, {0, -1, 0, 0}, flux}, // ceiling corner
+        {{0.2f, 0.0f, 0.5592f, area}, {0, 1, 0, 0}, flux},     // floor along the back wall
     };
     gl::Buffer cache("test.vpl", gl::vplCacheBytes(int(vpls.size())));
     cache.update(0, vpls.size() * sizeof(GpuVpl), vpls.data());
@@ -619,7 +631,8 @@ TEST_F(IsrRsmTest, CornellCornersFiniteAndBounded)
         const float indirect = expectFinite(r.indirect, technique);
         expectFinite(r.result, technique);
         float direct = 0.0f;
-        for (std::size_t i = 0; i < r.result.rgb.size(); ++i) direct = std::max(direct, r.result.rgb[i] - r.indirect.rgb[i]);
+        for (std::size_t i = 0; i < r.result.rgb.size(); ++i)
+            direct = std::max(direct, r.result.rgb[i] - r.indirect.rgb[i]);
         EXPECT_GT(indirect, 0.0f) << technique;
         EXPECT_LT(indirect, 10.0f * direct) << technique;
     }
@@ -646,7 +659,8 @@ TEST_F(IsrRsmTest, SurfaceEdgeOnToLight)
 {
     core::Scene scene;
     scene.materials = {lambertian(glm::vec3(0.7f))};
-    scene.meshes = {square(1.0f, 0.0f, true, 0), polygon({{1, 0, -1}, {1, 1, -1}, {1, 1, 1}, {1, 0, 1}}, {-1, 0, 0}, 0)};
+    scene.meshes = {square(1.0f, 0.0f, true, 0),
+                    polygon({{1, 0, -1}, {1, 1, -1}, {1, 1, 1}, {1, 0, 1}}, {-1, 0, 0}, 0)};
     core::Light spot = spotDown({-0.5f, 0.0f, 0.0f}, glm::vec3(1.0f), float(kPi / 4.0));
     spot.direction = {1.0f, 0.0f, 0.0f};
     scene.lights = {spot};

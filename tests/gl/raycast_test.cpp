@@ -35,7 +35,9 @@ std::vector<gl::BatchRay> testRays(const core::Scene& scene, int count, unsigned
     std::uniform_real_distribution<float> u(0.0f, 1.0f);
     const core::Bounds b = scene.bounds();
     const glm::vec3 size = b.extent();
-    struct Tri { glm::vec3 p[3]; };
+    struct Tri {
+        glm::vec3 p[3];
+    };
     std::vector<Tri> tris;
     for (const core::Mesh& m : scene.meshes)
         for (std::size_t i = 0; i + 2 < m.indices.size(); i += 3)
@@ -56,20 +58,30 @@ std::vector<gl::BatchRay> testRays(const core::Scene& scene, int count, unsigned
         r.origin = outside ? b.centre() + (randomDir() * 2.0f) * glm::length(size)
                            : b.lo + size * glm::vec3(u(rng), u(rng), u(rng));
         switch (i % 6) {
-        case 0: r.dir = randomDir(); break;                                              // anywhere
-        case 1: r.dir = anyTri().p[int(u(rng) * 3) % 3] - r.origin; break;                  // through a vertex
-        case 2: { const Tri& t = anyTri(); r.dir = glm::mix(t.p[0], t.p[1], u(rng)) - r.origin; break; } // an edge
+        case 0: r.dir = randomDir(); break;                                // anywhere
+        case 1: r.dir = anyTri().p[int(u(rng) * 3) % 3] - r.origin; break; // through a vertex
+        case 2: {
+            const Tri& t = anyTri();
+            r.dir = glm::mix(t.p[0], t.p[1], u(rng)) - r.origin;
+            break;
+        }         // an edge
         case 3: { // grazing: from a point just off a triangle, almost along its plane
             const Tri& t = anyTri();
             const glm::vec3 n = glm::cross(t.p[1] - t.p[0], t.p[2] - t.p[0]);
-            if (glm::length(n) == 0.0f) { r.dir = randomDir(); break; }
+            if (glm::length(n) == 0.0f) {
+                r.dir = randomDir();
+                break;
+            }
             const glm::vec3 nn = glm::normalize(n);
             const glm::vec3 inPlane = glm::normalize(t.p[1] - t.p[0]);
             r.origin = t.p[0] - inPlane * (0.1f * glm::length(size)) + nn * (1e-3f * u(rng));
             r.dir = inPlane - nn * (0.02f * u(rng));
             break;
         }
-        case 4: r.dir = b.centre() - r.origin; if (outside) r.dir = -r.dir; break; // mostly misses from outside
+        case 4:
+            r.dir = b.centre() - r.origin;
+            if (outside) r.dir = -r.dir;
+            break; // mostly misses from outside
         default: { // cut short: tMin/tMax around the scene
             r.dir = randomDir();
             r.tMin = 0.2f * u(rng) * glm::length(size);
@@ -175,8 +187,7 @@ void compareWithEmbree(const core::Scene& scene, const std::vector<gl::BatchRay>
         // 1e-5 relative, or for grazing rays what rounding the hit point along the plane gives.
         Exact ex;
         const bool embreeExact = embreeHit && exact(et, ex);
-        const double tTolerance =
-            1e-5 * e.t + (embreeExact ? ex.tolerance / double(glm::length(r.dir)) : 0.0);
+        const double tTolerance = 1e-5 * e.t + (embreeExact ? ex.tolerance / double(glm::length(r.dir)) : 0.0);
         const bool sameT = g.closest && embreeHit && std::abs(double(g.t) - e.t) <= tTolerance;
         // Two hit points that should be one: 1e-5 relative to the coordinates, more for grazing rays.
         const auto pointTolerance = [&](const glm::dvec3& p) {
@@ -216,7 +227,8 @@ void compareWithEmbree(const core::Scene& scene, const std::vector<gl::BatchRay>
             << where() << ": the nearer hit (" << (gpuNearer ? "GPU" : "Embree") << ", triangle "
             << (gpuNearer ? g.triangle : et) << ") is not on the ray; " << x.outside << " outside";
         const bool atEdge = x.edge <= 10.0 * x.tolerance;
-        const bool atLimit = std::abs(x.t - r.tMin) <= 1e-5 * std::abs(x.t) || std::abs(x.t - r.tMax) <= 1e-5 * std::abs(x.t);
+        const bool atLimit =
+            std::abs(x.t - r.tMin) <= 1e-5 * std::abs(x.t) || std::abs(x.t - r.tMax) <= 1e-5 * std::abs(x.t);
         ASSERT_TRUE(atEdge || atLimit) << where() << ": GPU " << (g.closest ? std::to_string(g.t) : "miss")
                                        << ", Embree " << (embreeHit ? std::to_string(e.t) : "miss")
                                        << ", the nearer hit is not at an edge (" << x.edge << " from one)";
@@ -248,7 +260,8 @@ void runScene(const core::Scene& scene, gl::RayStage stage, int count, unsigned 
 
 TEST_F(RaycastTest, ComputeShaderMatchesEmbreeOnCornellVariants)
 {
-    for (const std::string& name : core::builtinSceneNames()) runScene(core::makeCornell(name), gl::RayStage::Compute, 3000, 1);
+    for (const std::string& name : core::builtinSceneNames())
+        runScene(core::makeCornell(name), gl::RayStage::Compute, 3000, 1);
 }
 
 TEST_F(RaycastTest, FragmentShaderMatchesEmbreeOnCornellVariants)

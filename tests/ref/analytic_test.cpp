@@ -77,8 +77,8 @@ void expectMatches(const ref::RenderResult& r, const Expected& e, const char* wh
             }
     EXPECT_EQ(bad, 0) << what;
     const std::string name = std::string("analytic-") + what;
-    const double meanError = bounce::testing::expectImagesClose(name, r.image, e.mean, bounce::testing::ImageMetric::meanRelative(),
-                                                        0.005, "the midpoint rule's 0.5%");
+    const double meanError = bounce::testing::expectImagesClose(
+        name, r.image, e.mean, bounce::testing::ImageMetric::meanRelative(), 0.005, "the midpoint rule's 0.5%");
     // The per-pixel bound above is the test's own; the images on its failure come from the same place.
     if (bad > 0 && meanError <= 0.005) bounce::testing::writeComparisonImages(name, r.image, e.mean);
 }

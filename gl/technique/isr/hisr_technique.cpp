@@ -8,11 +8,11 @@
 #include <stdexcept>
 #include <string>
 
-#include "gl/technique/isr/bindings.h"
+#include "gl/frame/rsm.h"
 #include "gl/gl.h"
+#include "gl/technique/isr/bindings.h"
 #include "gl/technique/isr/multires_gather.h"
 #include "gl/technique/isr/multires_technique.h"
-#include "gl/frame/rsm.h"
 #include "gl/technique/isr/vpl_tree.h"
 
 namespace bounce::gl {
@@ -23,7 +23,8 @@ double hisrPeakIntensity(const std::vector<LightSource>& lights)
     std::map<int, glm::dvec3> areaLobes; // per emitting mesh: sum of L_k A_k
     for (const LightSource& l : lights) {
         if (l.type == kLightArea) {
-            const double a = 0.5 * glm::length(glm::cross(l.triangle[1] - l.triangle[0], l.triangle[2] - l.triangle[0]));
+            const double a =
+                0.5 * glm::length(glm::cross(l.triangle[1] - l.triangle[0], l.triangle[2] - l.triangle[0]));
             areaLobes[l.group] += glm::dvec3(l.intensity) * a;
         } else {
             peak = std::max(peak, double(std::max({l.intensity.x, l.intensity.y, l.intensity.z})));
@@ -45,12 +46,14 @@ class Hisr final : public Technique {
 public:
     Hisr(Frame& frame, const RsmSettings& rsm, double tau, int topGrid, float lightDepthThreshold,
          float lightNormalThreshold, int discontinuityLevel, const MultiresSettings& multires)
-        : rsm_(rsm), tree_(topGrid, lightDepthThreshold, lightNormalThreshold), tau_(tau),
-          discontinuityLevel_(discontinuityLevel), gather_(frame, multires),
+        : rsm_(rsm),
+          tree_(topGrid, lightDepthThreshold, lightNormalThreshold),
+          tau_(tau),
+          discontinuityLevel_(discontinuityLevel),
+          gather_(frame, multires),
           program_(MultiresGather::gatherProgram("hisr.gather", "technique/isr/hisr_gather.frag")),
           stats_("hisr.stats", 4 * sizeof(unsigned))
-    {
-    }
+    {}
 
     void render(Frame& frame, PassTimers& timers) override
     {
@@ -130,7 +133,8 @@ TechniqueInfo hisrTechniqueInfo()
     info.summary = "hierarchical image-space radiosity: per-fragment VPL clusters from a VPL tree of the full RSM";
     info.params = {
         {"tau", ParamType::Float, 1e-4, 0, 1e30,
-         "Eq. 8 error threshold tau (W/sr, as the light's intensity I): larger, coarser clusters; 0: every texel (rsm-full)",
+         "Eq. 8 error threshold tau (W/sr, as the light's intensity I): larger, coarser clusters; 0: every texel "
+         "(rsm-full)",
          false, ParamUpdate::Uniform},
         {"topGrid", ParamType::Int, 16, 1, 1024,
          "top patches per side of each view where the traversal starts, a power of two (the paper: 16)", true},
@@ -138,10 +142,11 @@ TechniqueInfo hisrTechniqueInfo()
          "departure: clusters whose relative light-distance range exceeds this are always refined; 1e30: the paper",
          false, ParamUpdate::Uniform},
         {"lightNormalThreshold", ParamType::Float, 0.01, 0, 1e30,
-         "departure: clusters with 1 - |mean unit normal| above this are always refined; 1e30: the paper",
-         false, ParamUpdate::Uniform},
+         "departure: clusters with 1 - |mean unit normal| above this are always refined; 1e30: the paper", false,
+         ParamUpdate::Uniform},
         {"lightRefineLevel", ParamType::Int, kAutoValue, 0, VplTree::kMaxDepth,
-         "departure: clusters spanning a light-space discontinuity are always refined down to this level; auto: log2(rsmSize / 128)"},
+         "departure: clusters spanning a light-space discontinuity are always refined down to this level; auto: "
+         "log2(rsmSize / 128)"},
     };
     info.params.back().allowAuto = true;
     for (const ParamDecl& p : rsmParams()) info.params.push_back(p);
@@ -151,8 +156,9 @@ TechniqueInfo hisrTechniqueInfo()
         requireRsmSize("hisr", rsm.size, true, 1024); // the VPL tree is a quadtree over each view
         int level = v.isAuto("lightRefineLevel") ? -1 : v.getInt("lightRefineLevel");
         if (level < 0) level = std::max(0, int(std::bit_width(unsigned(rsm.size))) - 8); // log2(size / 128)
-        return std::make_unique<Hisr>(frame, rsm, v.get("tau"), v.getInt("topGrid"), float(v.get("lightDepthThreshold")),
-                                      float(v.get("lightNormalThreshold")), level, multiresSettingsFrom(v));
+        return std::make_unique<Hisr>(frame, rsm, v.get("tau"), v.getInt("topGrid"),
+                                      float(v.get("lightDepthThreshold")), float(v.get("lightNormalThreshold")), level,
+                                      multiresSettingsFrom(v));
     };
     return info;
 }

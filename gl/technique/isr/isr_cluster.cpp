@@ -4,8 +4,8 @@
 #include <cstdint>
 #include <stdexcept>
 
-#include "gl/technique/isr/bindings.h"
 #include "gl/gl.h"
+#include "gl/technique/isr/bindings.h"
 #include "gl/technique/isr/vpl_sample.h"
 
 namespace bounce::gl {
@@ -13,8 +13,7 @@ namespace bounce::gl {
 IsrCluster::IsrCluster()
     : program_(Program::compute("isr.cluster", "technique/isr/isr_cluster.comp")),
       counter_("isr.vplCount", (1 + kMaxLevels) * sizeof(std::uint32_t))
-{
-}
+{}
 
 int IsrCluster::capacity(const RsmPass& rsm, int minLevel)
 {

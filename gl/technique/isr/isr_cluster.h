@@ -7,18 +7,18 @@
 
 #include <vector>
 
+#include "gl/frame/rsm.h"
 #include "gl/resource/buffer.h"
 #include "gl/resource/program.h"
 #include "gl/resource/timer.h"
-#include "gl/frame/rsm.h"
 
 namespace bounce::gl {
 
 struct IsrClusterSettings {
-    int minLevel = 2;              // finest patch: 2^minLevel texels per side (the paper's dense sampling)
-    int maxLevel = 4;              // coarsest patch: 2^maxLevel texels per side
-    float depthThreshold = 0.05f;  // relative light-space depth range (max d - min d) / min d of a patch
-    float normalThreshold = 0.2f;  // largest range of any normal component over a patch
+    int minLevel = 2;             // finest patch: 2^minLevel texels per side (the paper's dense sampling)
+    int maxLevel = 4;             // coarsest patch: 2^maxLevel texels per side
+    float depthThreshold = 0.05f; // relative light-space depth range (max d - min d) / min d of a patch
+    float normalThreshold = 0.2f; // largest range of any normal component over a patch
 };
 
 class IsrCluster {

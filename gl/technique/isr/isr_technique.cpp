@@ -4,10 +4,10 @@
 #include <memory>
 #include <string>
 
+#include "gl/frame/rsm.h"
 #include "gl/technique/isr/isr_cluster.h"
 #include "gl/technique/isr/multires_gather.h"
 #include "gl/technique/isr/multires_technique.h"
-#include "gl/frame/rsm.h"
 #include "gl/technique/isr/vpl_gather.h"
 #include "gl/technique/isr/vpl_sample.h"
 
@@ -22,8 +22,10 @@ public:
     Isr(Frame& frame, const RsmSettings& rsm, const IsrClusterSettings& cluster, const MultiresSettings* multires)
         : rsm_(rsm), settings_(cluster)
     {
-        if (multires) multires_ = std::make_unique<MultiresGather>(frame, *multires);
-        else gather_ = std::make_unique<VplGather>();
+        if (multires)
+            multires_ = std::make_unique<MultiresGather>(frame, *multires);
+        else
+            gather_ = std::make_unique<VplGather>();
     }
 
     void render(Frame& frame, PassTimers& timers) override
@@ -31,8 +33,10 @@ public:
         rsm_.render(frame, timers);
         reserveVplCache(cache_, IsrCluster::capacity(rsm_, settings_.minLevel));
         count_ = cluster_.cluster(rsm_, cache_, settings_, timers);
-        if (multires_) multires_->run(frame, cache_, count_, timers);
-        else gather_->gather(frame, cache_, count_, timers);
+        if (multires_)
+            multires_->run(frame, cache_, count_, timers);
+        else
+            gather_->gather(frame, cache_, count_, timers);
     }
 
     void setUniforms(const ParamValues& values) override
@@ -85,11 +89,11 @@ TechniqueInfo isrTechniqueInfo()
                    "gathered at multiresolution eye-space patches";
     info.params = {
         {"lightDepthThreshold", ParamType::Float, 0.05, 0, 100,
-         "light-space discontinuity: largest relative depth range (max d - min d) / min d of one VPL's patch",
-         false, ParamUpdate::Uniform},
+         "light-space discontinuity: largest relative depth range (max d - min d) / min d of one VPL's patch", false,
+         ParamUpdate::Uniform},
         {"lightNormalThreshold", ParamType::Float, 0.2, 0, 4,
-         "light-space discontinuity: largest range of any normal component over one VPL's patch",
-         false, ParamUpdate::Uniform},
+         "light-space discontinuity: largest range of any normal component over one VPL's patch", false,
+         ParamUpdate::Uniform},
         {"maxLevel", ParamType::Int, 4, 0, 11, "coarsest VPL patch: 2^maxLevel RSM texels per side"},
         {"minLevel", ParamType::Int, 2, 0, 11,
          "finest VPL patch: 2^minLevel RSM texels per side (the initial dense sampling of Fig. 7)"},

@@ -2,21 +2,23 @@
 
 #include <algorithm>
 #include <limits>
-#include <string>
 #include <stdexcept>
+#include <string>
 
-#include "gl/technique/isr/bindings.h"
 #include "gl/context/context.h"
 #include "gl/gl.h"
 #include "gl/resource/pass_state.h"
+#include "gl/technique/isr/bindings.h"
 #include "gl/technique/isr/vpl_gather.h"
 
 namespace bounce::gl {
 
 MultiresGather::MultiresGather(Frame& frame, const MultiresSettings& settings)
-    : pyramid_(frame.width(), frame.height(), settings), fbo_("multires.fbo"),
+    : pyramid_(frame.width(), frame.height(), settings),
+      fbo_("multires.fbo"),
       counts_("multires.fragmentCounts", sizeof(unsigned) * kMaxLevels),
-      stencilSetup_(Program::graphics("multires.stencil", "frame/fullscreen.vert", "technique/isr/multires_stencil.frag")),
+      stencilSetup_(
+          Program::graphics("multires.stencil", "frame/fullscreen.vert", "technique/isr/multires_stencil.frag")),
       cacheGather_(gatherProgram("multires.gather", "technique/isr/multires_gather.frag", vplBlockDefines()))
 {
     allocate();
@@ -95,7 +97,10 @@ int MultiresGather::loopBudget()
     return softwareRasterizer() ? 60000 : std::numeric_limits<int>::max(); // 65535 less the shader's other loops
 }
 
-void MultiresGather::upsample(Frame& frame, PassTimers& timers) { pyramid_.upsample(frame, illumination_, timers); }
+void MultiresGather::upsample(Frame& frame, PassTimers& timers)
+{
+    pyramid_.upsample(frame, illumination_, timers);
+}
 
 void MultiresGather::run(Frame& frame, const Buffer& vpls, int vplCount, PassTimers& timers)
 {
@@ -115,8 +120,8 @@ int MultiresGather::refine(Frame& frame, PassTimers& timers)
     if (!splatVertices_ || splatVertices_.bytes() < pixels * kVertexBytes) {
         // Work lists and vertices for the worst case, every pixel a fragment.
         refine_ = Program::compute("multires.refine", "technique/isr/multires_refine.comp");
-        splat_ = Program::graphics("multires.splat", "technique/isr/multires_splat.vert", "technique/isr/multires_splat.frag",
-                                   vplBlockDefines());
+        splat_ = Program::graphics("multires.splat", "technique/isr/multires_splat.vert",
+                                   "technique/isr/multires_splat.frag", vplBlockDefines());
         workLists_[0] = Buffer("multires.refine.work0", pixels * sizeof(unsigned));
         workLists_[1] = Buffer("multires.refine.work1", pixels * sizeof(unsigned));
         refineCounts_ = Buffer("multires.refine.counts", 2 * sizeof(unsigned));

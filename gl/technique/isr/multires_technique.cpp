@@ -2,8 +2,8 @@
 
 #include <algorithm>
 
-#include "gl/technique/isr/multires_gather.h"
 #include "gl/frame/rsm.h"
+#include "gl/technique/isr/multires_gather.h"
 #include "gl/technique/isr/vpl_gather.h"
 #include "gl/technique/isr/vpl_sample.h"
 
@@ -18,8 +18,7 @@ class MultiresTechnique final : public Technique {
 public:
     MultiresTechnique(Frame& frame, const RsmSettings& rsm, int vpls, const MultiresSettings& multires, bool splat)
         : rsm_(rsm), vpls_(vpls), gather_(frame, multires), splat_(splat)
-    {
-    }
+    {}
 
     void render(Frame& frame, PassTimers& timers) override
     {
@@ -70,7 +69,8 @@ std::vector<ParamDecl> multiresTechniqueParams()
 
 std::unique_ptr<Technique> createMultires(Frame& frame, const ParamValues& v, bool splat)
 {
-    return std::make_unique<MultiresTechnique>(frame, rsmSettingsFrom(v), v.getInt("vpls"), multiresSettingsFrom(v), splat);
+    return std::make_unique<MultiresTechnique>(frame, rsmSettingsFrom(v), v.getInt("vpls"), multiresSettingsFrom(v),
+                                               splat);
 }
 
 } // namespace

@@ -3,14 +3,13 @@
 #include <algorithm>
 #include <stdexcept>
 
-#include "gl/technique/isr/bindings.h"
 #include "gl/gl.h"
+#include "gl/technique/isr/bindings.h"
 #include "gl/technique/isr/vpl_sample.h"
 
 namespace bounce::gl {
 
-namespace {
-}
+namespace {}
 
 int vplsPerBlock()
 {
@@ -24,9 +23,15 @@ int vplsPerBlock()
     return perBlock;
 }
 
-std::vector<Define> vplBlockDefines() { return {{"VPL_BLOCK_SIZE", std::to_string(vplsPerBlock())}}; }
+std::vector<Define> vplBlockDefines()
+{
+    return {{"VPL_BLOCK_SIZE", std::to_string(vplsPerBlock())}};
+}
 
-int vplBlockCount(int count) { return count <= 0 ? 0 : (count + vplsPerBlock() - 1) / vplsPerBlock(); }
+int vplBlockCount(int count)
+{
+    return count <= 0 ? 0 : (count + vplsPerBlock() - 1) / vplsPerBlock();
+}
 
 std::size_t vplCacheBytes(int vpls)
 {
@@ -50,7 +55,8 @@ int bindVplBlock(const Buffer& cache, int block, int count)
     return std::clamp(count - block * vplsPerBlock(), 0, vplsPerBlock());
 }
 
-VplGather::VplGather() : program_(Program::compute("vpl.gather", "technique/isr/vpl_gather.comp", vplBlockDefines())) {}
+VplGather::VplGather() : program_(Program::compute("vpl.gather", "technique/isr/vpl_gather.comp", vplBlockDefines()))
+{}
 
 void VplGather::gather(Frame& frame, const Buffer& vpls, int count, PassTimers& timers, const std::string& pass)
 {

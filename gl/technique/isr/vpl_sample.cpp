@@ -4,12 +4,13 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "gl/technique/isr/bindings.h"
 #include "gl/gl.h"
+#include "gl/technique/isr/bindings.h"
 
 namespace bounce::gl {
 
-VplSampler::VplSampler() : program_(Program::compute("vpl.sample", "technique/isr/vpl_sample.comp")) {}
+VplSampler::VplSampler() : program_(Program::compute("vpl.sample", "technique/isr/vpl_sample.comp"))
+{}
 
 int VplSampler::sideFor(int vpls, int views, int size)
 {

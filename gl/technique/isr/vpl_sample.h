@@ -4,10 +4,10 @@
 // its lit texels'; area: Eq. 3). Pass timed as "vpl-sample".
 #pragma once
 
+#include "gl/frame/rsm.h"
 #include "gl/resource/buffer.h"
 #include "gl/resource/program.h"
 #include "gl/resource/timer.h"
-#include "gl/frame/rsm.h"
 
 namespace bounce::gl {
 

@@ -5,13 +5,15 @@
 #include <stdexcept>
 #include <string>
 
-#include "gl/technique/isr/bindings.h"
 #include "gl/gl.h"
+#include "gl/technique/isr/bindings.h"
 
 namespace bounce::gl {
 
 VplTree::VplTree(int topGrid, float lightDepthThreshold, float lightNormalThreshold)
-    : requestedGrid_(topGrid), lightDepthThreshold_(lightDepthThreshold), lightNormalThreshold_(lightNormalThreshold),
+    : requestedGrid_(topGrid),
+      lightDepthThreshold_(lightDepthThreshold),
+      lightNormalThreshold_(lightNormalThreshold),
       leaves_(Program::compute("vpl-tree.leaves", "technique/isr/vpl_tree_leaves.comp")),
       reduce_(Program::compute("vpl-tree.reduce", "technique/isr/vpl_tree_reduce.comp"))
 {
@@ -19,9 +21,15 @@ VplTree::VplTree(int topGrid, float lightDepthThreshold, float lightNormalThresh
         throw std::invalid_argument("VPL tree: the top grid must be a power of two, not " + std::to_string(topGrid));
 }
 
-void VplTree::bind() const { nodes_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_ISR_VPL_TREE); }
+void VplTree::bind() const
+{
+    nodes_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_ISR_VPL_TREE);
+}
 
-void VplTree::bindTexels() const { texels_.bind(UNIT_ISR_VPL_TREE_TEXELS); }
+void VplTree::bindTexels() const
+{
+    texels_.bind(UNIT_ISR_VPL_TREE_TEXELS);
+}
 
 void VplTree::setUniforms(Program& program) const
 {
@@ -39,7 +47,8 @@ void VplTree::build(const RsmPass& rsm, PassTimers& timers)
         throw std::invalid_argument("VPL tree: the RSM size must be a power of two, not " + std::to_string(size));
     grid_ = std::min(requestedGrid_, size);
     depth_ = std::bit_width(unsigned(size / grid_)) - 1; // log2 of the top patch side
-    if (depth_ > kMaxDepth) throw std::invalid_argument("VPL tree deeper than " + std::to_string(kMaxDepth) + " levels");
+    if (depth_ > kMaxDepth)
+        throw std::invalid_argument("VPL tree deeper than " + std::to_string(kMaxDepth) + " levels");
     // Level m of a subtree has 4^(depth - m) nodes; the coarsest level comes first.
     offsets_.assign(std::size_t(depth_) + 1, 0);
     int offset = 0;

@@ -8,17 +8,17 @@
 
 #include <vector>
 
+#include "gl/frame/rsm.h"
 #include "gl/resource/buffer.h"
 #include "gl/resource/program.h"
 #include "gl/resource/texture.h"
 #include "gl/resource/timer.h"
-#include "gl/frame/rsm.h"
 
 namespace bounce::gl {
 
 class VplTree {
 public:
-    static constexpr int kMaxDepth = 10;   // glsl: VPL_TREE_MAX_DEPTH
+    static constexpr int kMaxDepth = 10; // glsl: VPL_TREE_MAX_DEPTH
     static constexpr std::size_t kNodeBytes = 64;
 
     // topGrid: top patches per side of each view (the paper: 16); at most the RSM size. The thresholds
@@ -40,9 +40,9 @@ public:
     // Sets the layout uniforms of glsl/technique/isr/vpl_tree.glsl on `program`.
     void setUniforms(Program& program) const;
 
-    int depth() const { return depth_; }             // T: levels above the texels
-    int topGrid() const { return grid_; }            // top patches per side actually used
-    int rootCount() const { return roots_; }         // views x topGrid^2
+    int depth() const { return depth_; }     // T: levels above the texels
+    int topGrid() const { return grid_; }    // top patches per side actually used
+    int rootCount() const { return roots_; } // views x topGrid^2
     int subtreeNodes() const { return subtreeNodes_; }
     int nodeCount() const { return roots_ * subtreeNodes_; }
     int levelOffset(int m) const { return offsets_.at(std::size_t(m)); }
