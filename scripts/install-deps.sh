@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages Bounce builds and tests with (only those missing), and the npm
 # packages of package.json (the Khronos glTF validator used by a test). Needs root for apt-get.
+# clang-14 builds the glTF fuzz target (scripts/fuzz.sh); libclang-rt-14-dev holds its libFuzzer and
+# sanitizer runtimes, which apt does not install with clang-14 when recommends are off.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -10,6 +12,7 @@ packages=(
   libtinygltf-dev nlohmann-json3-dev libstb-dev libtinyexr-dev libimgui-dev libgtest-dev
   libembree-dev libtbb-dev
   xvfb xauth python3-matplotlib python3-numpy
+  clang-14 libclang-rt-14-dev
 )
 missing=()
 for p in "${packages[@]}"; do
