@@ -12,6 +12,7 @@ namespace bounce::gl {
 
 IsrCluster::IsrCluster()
     : program_(Program::compute("isr.cluster", "technique/isr/isr_cluster.comp")),
+      scan_(Program::compute("isr.clusterScan", "technique/isr/isr_cluster_scan.comp")),
       counter_("isr.vplCount", (1 + kMaxLevels) * sizeof(std::uint32_t))
 {}
 
@@ -27,6 +28,8 @@ int IsrCluster::cluster(const RsmPass& rsm, Buffer& cache, const IsrClusterSetti
         throw std::logic_error("IsrCluster: levels out of the RSM pyramid's range");
     const int cap = capacity(rsm, s.minLevel);
     if (cache.bytes() < std::size_t(cap) * VplSampler::kVplBytes) throw std::logic_error("VPL cache too small");
+    const std::size_t slotBytes = std::size_t(cap) * sizeof(std::uint32_t);
+    if (!slots_ || slots_.bytes() < slotBytes) slots_ = Buffer("isr.clusterSlots", slotBytes);
     {
         auto t = timers.scope("vpl-cluster");
         counter_.clearToZero();
@@ -34,15 +37,27 @@ int IsrCluster::cluster(const RsmPass& rsm, Buffer& cache, const IsrClusterSetti
             rsm.bind();
             cache.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_ISR_VPL_CACHE);
             counter_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_ISR_VPL_COUNT);
+            slots_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_ISR_CLUSTER_SLOTS);
             program_.set("rsmSize", rsm.size());
             program_.set("minLevel", s.minLevel);
             program_.set("maxLevel", s.maxLevel);
             program_.set("depthThreshold", s.depthThreshold);
             program_.set("normalThreshold", s.normalThreshold);
             program_.set("capacity", unsigned(cap));
-            program_.use();
             const int finest = rsm.size() >> s.minLevel;
-            glDispatchCompute(GLuint((finest + 7) / 8), GLuint((finest + 7) / 8), GLuint(rsm.viewCount()));
+            // Mark, scan, write (isr_cluster.comp): VPLs in patch order, the same cache in every run.
+            for (int pass = 0; pass < 2; ++pass) {
+                if (pass == 1) {
+                    scan_.set("patches", unsigned(cap));
+                    scan_.use();
+                    glDispatchCompute(1, 1, 1);
+                    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+                }
+                program_.set("writePass", pass);
+                program_.use();
+                glDispatchCompute(GLuint((finest + 7) / 8), GLuint((finest + 7) / 8), GLuint(rsm.viewCount()));
+                glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+            }
         }
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
     }

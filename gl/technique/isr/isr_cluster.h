@@ -1,8 +1,8 @@
 // Per-frame multiresolution VPL clusters of basic image-space radiosity (Nichols, Shopf & Wyman 2009,
 // §3.4): from the RSM's light-space depth and normal min-max pyramid, each VPL is the coarsest patch
 // (between minLevel and maxLevel) without a discontinuity, with the summed flux and solid angle of its
-// 4^level texels; the survivors are appended to the VPL cache through an atomic counter (the paper
-// used a geometry shader). Pass timed as "vpl-cluster".
+// 4^level texels; the survivors are compacted into the VPL cache in patch order (the paper used a geometry
+// shader), so that the cache, and the image, are the same in every run. Pass timed as "vpl-cluster".
 #pragma once
 
 #include <vector>
@@ -36,7 +36,9 @@ public:
 
 private:
     Program program_;
+    Program scan_;
     Buffer counter_;
+    Buffer slots_; // one uint per finest-level patch: marks, then cache indices
     std::vector<int> perLevel_;
 };
 

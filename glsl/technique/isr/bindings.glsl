@@ -5,6 +5,7 @@
 #define BOUNCE_ISR_BINDINGS_GLSL
 
 #define UBO_ISR_VPL_BLOCK 0          // vpl.glsl: one block of the VPL cache per gather draw
+#define SSBO_ISR_CLUSTER_SLOTS 7     // isr_cluster*.comp: emit marks, then their prefix sums
 #define SSBO_ISR_VPL_CACHE 8         // vpl_write.glsl: the VPL cache written by sampling and clustering
 #define SSBO_ISR_VPL_COUNT 9         // isr_cluster.comp: VPLs written, per level
 #define SSBO_ISR_FRAGMENT_COUNTS 11  // multires_stencil.frag, multires_refine.comp: valid fragments per level
