@@ -56,9 +56,8 @@ void checkWritable(const std::string& path, const Image& image)
                        std::to_string(image.height) + " RGB");
 }
 
-Image readExr(const std::string& path)
+Image decodeExr(const std::string& path, const std::string& bytes)
 {
-    const std::string bytes = readWholeFile(path);
     float* rgba = nullptr;
     int width = 0, height = 0;
     const char* err = nullptr;
@@ -85,9 +84,8 @@ Image readExr(const std::string& path)
 
 // PFM (Portable Float Map): "PF" (RGB) or "Pf" (grey), width height, scale (negative: little-endian),
 // then rows from the bottom up.
-Image readPfm(const std::string& path)
+Image decodePfm(const std::string& path, const std::string& bytes)
 {
-    const std::string bytes = readWholeFile(path);
     std::istringstream header(bytes);
     std::string magic;
     long long width = 0, height = 0;
@@ -159,12 +157,19 @@ void appendToString(void* context, void* data, int size)
 
 } // namespace
 
+Image decodeImage(const std::string& path, const std::string& bytes)
+{
+    const std::string ext = lowerExtension(path);
+    if (ext == ".exr") return decodeExr(path, bytes);
+    if (ext == ".pfm") return decodePfm(path, bytes);
+    fail(path, "unknown image extension '" + ext + "' (readable: .exr, .pfm)");
+}
+
 Image readImage(const std::string& path)
 {
     const std::string ext = lowerExtension(path);
-    if (ext == ".exr") return readExr(path);
-    if (ext == ".pfm") return readPfm(path);
-    fail(path, "unknown image extension '" + ext + "' (readable: .exr, .pfm)");
+    if (ext != ".exr" && ext != ".pfm") fail(path, "unknown image extension '" + ext + "' (readable: .exr, .pfm)");
+    return decodeImage(path, readWholeFile(path));
 }
 
 std::string encodeExr(const std::string& path, const Image& image)
@@ -251,9 +256,11 @@ void writeImage(const std::string& path, const Image& image, float exposureStops
 }
 
 namespace {
+// Unique to the process and the thread: concurrent writers of one path (two bench runs filling the same
+// reference cache entry, two threads of one) each write their own temporary, and the last rename wins whole.
 std::string temporaryName(const std::string& path)
 {
-    return path + ".tmp-" + std::to_string(::getpid());
+    return path + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(::gettid());
 }
 
 // Writes bytes to temporaryName(path); on failure removes it and throws.

@@ -38,7 +38,9 @@ struct ImageError : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
-Image readImage(const std::string& path);                   // .exr (float/half RGB(A)) or .pfm
+Image readImage(const std::string& path); // .exr (float/half RGB(A)) or .pfm
+// Decodes bytes as readImage would decode them from a file named path (by extension); path names errors.
+Image decodeImage(const std::string& path, const std::string& bytes);
 void writeExr(const std::string& path, const Image& image); // 32-bit float RGB, atomic
 // Tone map (radiance x 2^exposureStops, clamped, sRGB-encoded) and write an 8-bit PNG, atomically.
 void writePng(const std::string& path, const Image& image, float exposureStops = 0.0f);

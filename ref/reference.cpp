@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
@@ -15,10 +16,6 @@
 namespace bounce::ref {
 
 namespace {
-
-// Bump when the estimators or the BRDF (core/brdf.h) change what they compute (or fix a bias): old cache
-// entries then miss. 2: the diffuse part weighted by the transmission in and out.
-constexpr int kEstimatorVersion = 2;
 
 struct Fnv1a {
     std::uint64_t h = 1469598103934665603ull;
@@ -37,9 +34,76 @@ struct Fnv1a {
         pod(s.size());
         bytes(s.data(), s.size());
     }
+    std::string hex() const
+    {
+        char out[17];
+        std::snprintf(out, sizeof out, "%016llx", static_cast<unsigned long long>(h));
+        return out;
+    }
 };
 
+// What an entry's sidecar vouches for: the EXR's bytes and the sidecar's own record (everything but the
+// checksum, in nlohmann's canonical dump: sorted keys, numbers that read back exactly).
+std::string entryChecksum(const std::string& exrBytes, const nlohmann::json& record)
+{
+    Fnv1a f;
+    f.text(exrBytes);
+    f.text(record.dump());
+    return f.hex();
+}
+
+std::string readWholeFile(const std::filesystem::path& path)
+{
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream bytes;
+    bytes << in.rdbuf();
+    if (!in) throw std::runtime_error("cannot read " + path.string());
+    return bytes.str();
+}
+
+// The cached result when <key>.exr and <key>.json form a complete, intact entry for this key and size;
+// nothing when they are absent; throws when they are present but do not check out.
+std::optional<RenderResult> readEntry(const std::filesystem::path& exr, const std::filesystem::path& sidecar,
+                                      const std::string& key, const RenderSettings& settings)
+{
+    if (!std::filesystem::exists(sidecar) || !std::filesystem::exists(exr)) return std::nullopt;
+    // Read while another writer replaces the entry, the two files may come from different renders: the
+    // checksum refuses such a pair unless the EXR bytes are the same (a deterministic render).
+    const std::string exrBytes = readWholeFile(exr);
+    nlohmann::json record = nlohmann::json::parse(readWholeFile(sidecar));
+    const std::string checksum = record.at("checksum").get<std::string>();
+    record.erase("checksum");
+    if (checksum != entryChecksum(exrBytes, record)) throw std::runtime_error("checksum mismatch");
+    if (record.at("key").get<std::string>() != key) throw std::runtime_error("sidecar of another key");
+    RenderResult r;
+    r.image = core::decodeImage(exr.string(), exrBytes);
+    if (r.image.width != settings.width || r.image.height != settings.height)
+        throw std::runtime_error("image of another size");
+    r.spp = record.at("spp").get<int>();
+    const nlohmann::json& noise = record.at("relativeNoise"); // null: not finite (1 spp)
+    r.relativeNoise = noise.is_number() ? noise.get<double>() : std::numeric_limits<double>::infinity();
+    r.seconds = record.at("seconds").get<double>();
+    r.rays = record.at("rays").get<std::uint64_t>();
+    r.nonFiniteSamples = record.value("nonFiniteSamples", std::uint64_t(0));
+    r.reachedTarget = record.value("reachedTarget", false);
+    r.fromCache = true;
+    return r;
+}
+
 } // namespace
+
+std::string sourceHash()
+{
+    return BOUNCE_REF_SOURCE_HASH;
+}
+
+std::vector<std::string> sourceFiles()
+{
+    std::vector<std::string> files;
+    std::istringstream list(BOUNCE_REF_SOURCE_FILES);
+    for (std::string f; list >> f;) files.push_back(f);
+    return files;
+}
 
 nlohmann::json runRecord(const RenderSettings& settings, const RenderResult& r)
 {
@@ -73,10 +137,11 @@ std::string defaultCacheDir()
     return ".bounce-cache/references";
 }
 
-std::string cacheKey(const core::Scene& scene, const core::Camera& camera, const RenderSettings& settings)
+std::string cacheKey(const core::Scene& scene, const core::Camera& camera, const RenderSettings& settings,
+                     const std::string& codeVersion)
 {
     Fnv1a f;
-    f.pod(kEstimatorVersion);
+    f.text(codeVersion);
     f.pod(scene.contentHash());
     f.pod(camera.position);
     f.pod(camera.forward);
@@ -90,10 +155,8 @@ std::string cacheKey(const core::Scene& scene, const core::Camera& camera, const
     f.pod(settings.targetNoise > 0.0 ? settings.minSpp : 0);
     f.pod(settings.seed);
     f.pod(settings.paths == LightPaths::Full ? settings.maxDepth : 0);
-    char hex[17];
-    std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(f.h));
     return lightPathsName(settings.paths) + "-" + std::to_string(settings.width) + "x" +
-           std::to_string(settings.height) + "-" + hex;
+           std::to_string(settings.height) + "-" + f.hex();
 }
 
 RenderResult cachedReference(const core::Scene& scene, const core::Camera& camera, const RenderSettings& settings,
@@ -105,38 +168,25 @@ RenderResult cachedReference(const core::Scene& scene, const core::Camera& camer
     const std::string key = cacheKey(scene, camera, settings);
     const fs::path exr = dir / (key + ".exr"), sidecar = dir / (key + ".json");
 
-    if (cacheable && fs::exists(sidecar) && fs::exists(exr)) {
-        // A sidecar that does not parse or does not match, or an EXR that does not read, is a miss:
-        // the entry is rendered again and overwritten.
+    if (cacheable) {
         try {
-            std::ifstream in(sidecar);
-            const nlohmann::json j = nlohmann::json::parse(in);
-            if (j.at("key").get<std::string>() == key) {
-                RenderResult r;
-                r.image = core::readImage(exr.string());
-                if (r.image.width == settings.width && r.image.height == settings.height) {
-                    r.spp = j.at("spp").get<int>();
-                    const nlohmann::json& noise = j.at("relativeNoise"); // null: not finite (1 spp)
-                    r.relativeNoise = noise.is_number() ? noise.get<double>() : std::numeric_limits<double>::infinity();
-                    r.seconds = j.at("seconds").get<double>();
-                    r.rays = j.at("rays").get<std::uint64_t>();
-                    r.nonFiniteSamples = j.value("nonFiniteSamples", std::uint64_t(0));
-                    r.reachedTarget = j.value("reachedTarget", false);
-                    r.fromCache = true;
-                    return r;
-                }
-            }
-        } catch (const std::exception&) {}
+            if (std::optional<RenderResult> cached = readEntry(exr, sidecar, key, settings)) return *cached;
+        } catch (const std::exception& e) {
+            std::fprintf(stderr, "reference cache: entry %s is damaged (%s); rendering it again\n",
+                         exr.string().c_str(), e.what());
+        }
     }
 
     RenderResult r = render(scene, camera, settings);
     if (!cacheable) return r;
     fs::create_directories(dir);
-    core::writeExr(exr.string(), r.image);
+    const std::string exrBytes = core::encodeImage(exr.string(), r.image);
     nlohmann::json j = runRecord(settings, r);
     j["key"] = key;
     j["scene"] = scene.name;
-    j["estimatorVersion"] = kEstimatorVersion;
+    j["sourceHash"] = sourceHash();
+    j["checksum"] = entryChecksum(exrBytes, j);
+    core::writeFileAtomic(exr.string(), exrBytes);
     core::writeFileAtomic(sidecar.string(), j.dump(2) + "\n");
     return r;
 }

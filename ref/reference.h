@@ -67,15 +67,26 @@ nlohmann::json runRecord(const RenderSettings& settings, const RenderResult& res
 // $HOME/.cache/bounce/references, else ./.bounce-cache/references.
 std::string defaultCacheDir();
 
-// The key under which a render is cached: scene.contentHash(), the camera, the size, the light paths,
-// spp, the noise target (and minSpp), the seed, maxDepth and the estimator version (bumped whenever
-// the path tracer changes what it computes). Threads are not part of it: they change nothing.
-std::string cacheKey(const core::Scene& scene, const core::Camera& camera, const RenderSettings& settings);
+// The path tracer's code version: what `sha256sum FILES | sha256sum` prints in the source root for the
+// files sourceFiles() names (ref/ and the core/ files it computes with), taken when CMake configures,
+// which it does again whenever one of them changes. Part of every cache key, so that an edited path
+// tracer never reuses old entries.
+std::string sourceHash();
+std::vector<std::string> sourceFiles(); // relative to the source root, sorted
 
-// Looks for <cacheDir>/<key>.exr with its <key>.json sidecar; renders and stores both (atomically,
-// EXR first, then the JSON that marks the entry complete) when absent. A cached result has no variance
-// image; image, spp, relativeNoise, seconds and rays come from the files. Runs with a time limit are
-// never cached. An empty cacheDir means defaultCacheDir().
+// The key under which a render is cached: scene.contentHash(), the camera, the size, the light paths,
+// spp, the noise target (and minSpp), the seed, maxDepth and the code version (sourceHash() unless a
+// test passes another). Threads are not part of it: they change nothing.
+std::string cacheKey(const core::Scene& scene, const core::Camera& camera, const RenderSettings& settings,
+                     const std::string& codeVersion = sourceHash());
+
+// Looks for <cacheDir>/<key>.exr with its <key>.json sidecar; renders and stores both when absent. Each
+// file goes through a temporary name unique to the writing thread and a rename, EXR first, then the JSON
+// that completes the entry, so that concurrent writers of one entry (two bench runs) never mix bytes.
+// The JSON holds a checksum over the EXR's bytes and its own record: an entry that is truncated,
+// corrupted, or whose files are not one render's is a miss, rendered again and overwritten, never trusted.
+// A cached result has no variance image; image, spp, relativeNoise, seconds and rays come from the files.
+// Runs with a time limit are never cached. An empty cacheDir means defaultCacheDir().
 RenderResult cachedReference(const core::Scene& scene, const core::Camera& camera, const RenderSettings& settings,
                              const std::string& cacheDir = {});
 
