@@ -1,0 +1,39 @@
+#!/usr/bin/env bash
+# The test suite built with AddressSanitizer and UndefinedBehaviorSanitizer (gcc, RelWithDebInfo) into
+# build-asan/ and run there; any report fails the test it comes from (halt_on_error, no recovery), so the
+# run fails. .ci/run runs it after ./test.sh: every test, about 15 minutes on 2 cores from a clean clone.
+#
+#   scripts/sanitize.sh            build, then run the suite
+#   scripts/sanitize.sh -R Cache   extra arguments go to ctest
+#
+# Leak checking is on for the suites that load no GL driver (labels core and ref, the fuzz corpus replay)
+# and off for gl and app (detect_leaks=0): Mesa's llvmpipe keeps allocations to process exit (in
+# libOSMesa and in its LLVM JIT's code, which has no module name a suppression could match), so
+# LeakSanitizer reports the driver in every GL test. Nothing else is suppressed: neither sanitizer reports
+# anything in Mesa (its libraries are not instrumented). The fuzz test (gltf_fuzz) is left out: it has
+# its own clang build under the same sanitizers (scripts/fuzz.sh), and runs in ./test.sh.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+flags="-fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer"
+launcher=()
+command -v ccache >/dev/null 2>&1 && launcher=(-DCMAKE_C_COMPILER_LAUNCHER=ccache -DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+
+# abort_on_error: a report ends the test with SIGABRT, which ctest counts as a failure.
+asan="halt_on_error=1:abort_on_error=1:strict_string_checks=1:detect_stack_use_after_return=1"
+export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
+# The test binaries run while building (to list their tests): the options are needed from here on.
+export ASAN_OPTIONS="$asan:detect_leaks=0"
+
+cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo "${launcher[@]}" \
+    -DCMAKE_C_FLAGS="$flags" -DCMAKE_CXX_FLAGS="$flags" -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" \
+    >/dev/null
+cmake --build build-asan -j "$(nproc)"
+
+cd build-asan
+status=0
+ASAN_OPTIONS="$asan:detect_leaks=1" ctest --output-on-failure -j "$(nproc)" --timeout 900 -L '^(core|ref)$' \
+    -E '^gltf_fuzz$' "$@" || status=1
+xvfb-run -a -s "-screen 0 1280x1024x24" ctest --output-on-failure -j "$(nproc)" --timeout 900 -LE '^(core|ref)$' \
+    -E '^gltf_fuzz$' "$@" || status=1
+exit "$status"
