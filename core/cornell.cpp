@@ -62,6 +62,18 @@ Material lambertian(const std::string& name, const glm::vec3& albedo)
     return m;
 }
 
+// cornell-glossy's tall block: a rough white metal (cornell-box.md). baseColor 1 and metallic 1 give
+// F0 = 1, so the Fresnel term is 1 at every angle and f = D Vis with GGX alpha = 0.3^2.
+Material roughWhiteMetal()
+{
+    Material m;
+    m.name = "rough white metal";
+    m.baseColor = glm::vec3(1.0f);
+    m.metallic = 1.0f;
+    m.roughness = 0.3f;
+    return m;
+}
+
 // Which way a triangle's normal must point, given the triangle's centroid.
 using Facing = std::function<glm::dvec3(const glm::dvec3& centroid)>;
 
@@ -175,7 +187,8 @@ void addSlatsAndShelf(Scene& scene, std::uint32_t material)
 
 std::vector<std::string> builtinSceneNames()
 {
-    return {"cornell-area", "cornell-spot", "cornell-point", "cornell-point-ceiling", "cornell-slats"};
+    return {"cornell-area",          "cornell-spot",  "cornell-point",
+            "cornell-point-ceiling", "cornell-slats", "cornell-glossy"};
 }
 
 Scene makeCornell(std::string_view variant)
@@ -183,7 +196,8 @@ Scene makeCornell(std::string_view variant)
     const std::vector<std::string> names = builtinSceneNames();
     if (std::find(names.begin(), names.end(), variant) == names.end())
         throw SceneError(std::string(variant) + ": not a Cornell box variant (cornell-area, cornell-spot, "
-                                                "cornell-point, cornell-point-ceiling, cornell-slats)");
+                                                "cornell-point, cornell-point-ceiling, cornell-slats, "
+                                                "cornell-glossy)");
 
     Scene scene;
     scene.name = std::string(variant);
@@ -198,10 +212,15 @@ Scene makeCornell(std::string_view variant)
     scene.meshes.push_back(quadMesh("left wall", red, {kLeftWall}, intoRoom));
     scene.meshes.push_back(
         quadMesh("short block", white, {kShortBlock.begin(), kShortBlock.end()}, awayFrom(centreOf(kShortBlock))));
+    std::uint32_t tallBlock = white;
+    if (variant == "cornell-glossy") {
+        scene.materials.push_back(roughWhiteMetal());
+        tallBlock = std::uint32_t(scene.materials.size() - 1);
+    }
     scene.meshes.push_back(
-        quadMesh("tall block", white, {kTallBlock.begin(), kTallBlock.end()}, awayFrom(centreOf(kTallBlock))));
+        quadMesh("tall block", tallBlock, {kTallBlock.begin(), kTallBlock.end()}, awayFrom(centreOf(kTallBlock))));
 
-    if (variant == "cornell-area") {
+    if (variant == "cornell-area" || variant == "cornell-glossy") {
         // Emits from its front face (down) only and reflects nothing.
         Material emitter = lambertian("light", glm::vec3(0.0f));
         emitter.emission = kAreaRadiance;

@@ -12,8 +12,9 @@ namespace bounce::core {
 
 // "cornell-area", "cornell-spot", "cornell-point", the hard variant "cornell-point-ceiling" (the point
 // light 1 mm under the ceiling) and "cornell-slats" (cornell-spot with a row of slats and a shelf: more
-// depth complexity; the project's own, not cornell-box.md's). Throws SceneError (gltf_io.h) for any
-// other name.
+// depth complexity; the project's own, not cornell-box.md's) and "cornell-glossy" (cornell-area with the
+// tall block a rough white metal: glossy transfer and glossy final gathering). Throws SceneError
+// (gltf_io.h) for any other name.
 Scene makeCornell(std::string_view variant);
 
 // The names makeCornell accepts, canonical variants first.

@@ -53,6 +53,27 @@ TEST(Cornell, TriangleCounts)
         EXPECT_EQ(makeCornell(v).triangleCount(), 30u) << v;
     // Seven open-bottomed slats (5 quads) and a closed shelf (6 quads) on top of cornell-spot's 30.
     EXPECT_EQ(makeCornell("cornell-slats").triangleCount(), 30u + 2u * (7 * 5 + 6));
+    EXPECT_EQ(makeCornell("cornell-glossy").triangleCount(), makeCornell("cornell-area").triangleCount());
+}
+
+// cornell-box.md's glossy variant: cornell-area with the tall block's five faces a rough white metal
+// (baseColor 1, metallic 1, roughness 0.3), everything else unchanged.
+TEST(Cornell, GlossyVariantIsTheAreaBoxWithAMetalTallBlock)
+{
+    const Scene glossy = makeCornell("cornell-glossy"), area = makeCornell("cornell-area");
+    const Material& metal = glossy.materials[meshNamed(glossy, "tall block").material];
+    EXPECT_EQ(metal.baseColor, glm::vec3(1.0f));
+    EXPECT_EQ(metal.metallic, 1.0f);
+    EXPECT_EQ(metal.roughness, 0.3f);
+    EXPECT_TRUE(metal.isGlossy());
+    for (const Mesh& m : glossy.meshes) {
+        if (m.name == "tall block") continue;
+        const Mesh& a = meshNamed(area, m.name);
+        EXPECT_EQ(m.positions, a.positions) << m.name;
+        EXPECT_EQ(glossy.materials[m.material].baseColor, area.materials[a.material].baseColor) << m.name;
+        EXPECT_EQ(glossy.materials[m.material].emission, area.materials[a.material].emission) << m.name;
+        EXPECT_FALSE(glossy.materials[m.material].isGlossy()) << m.name;
+    }
 }
 
 TEST(Cornell, AllVariantsAreValid)
@@ -234,7 +255,7 @@ TEST(Cornell, UnknownVariantThrows)
 
 TEST(SceneLoading, BuiltinNamesAndErrors)
 {
-    EXPECT_EQ(builtinSceneNames().size(), 5u);
+    EXPECT_EQ(builtinSceneNames().size(), 6u);
     EXPECT_EQ(loadScene("cornell-spot").contentHash(), makeCornell("cornell-spot").contentHash());
     try {
         loadScene("no-such-scene");
