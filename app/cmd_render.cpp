@@ -161,7 +161,7 @@ int cmdRender(const Args& args)
 
     std::printf("%s on %s, %dx%d, %d timed frames after %d warm-up:\n", techniqueName.c_str(), sceneArg.c_str(), width,
                 height, frames, warmup);
-    printPassTable(renderer);
+    printPassTable(renderer, context->info().renderer);
     for (const gl::Counter& c : renderer.counters()) std::printf("  %s = %g\n", c.name.c_str(), c.value);
     std::printf("wrote %s\n      %s\n      %s\n", exr.string().c_str(), png.string().c_str(), json.string().c_str());
     return 0;

@@ -22,5 +22,6 @@ int cmdReference(const Args& args);
 int cmdCompare(const Args& args);
 int cmdBench(const Args& args);
 int cmdRays(const Args& args);
+int cmdProbe(const Args& args);
 
 } // namespace bounce::app

@@ -19,7 +19,8 @@ const char* kUsage = "bounce - a real-time global-illumination laboratory\n"
                      "  reference  render the ground truth with the CPU path tracer (cached)\n"
                      "  compare    error metrics between two images (RMSE, relative RMSE, SSIM...)\n"
                      "  bench      sweep scenes x techniques x parameters, report speed against error\n"
-                     "  rays       GPU ray casting against Embree: rays per second, coherent and incoherent\n";
+                     "  rays       GPU ray casting against Embree: rays per second, coherent and incoherent\n"
+                     "  probe      this machine's ceilings (FLOP/s, fetches, bandwidth) for every pass's bound\n";
 
 // The parameter that lowers a GL resource that could not be had, by the resource's label.
 std::string lowerWith(const std::string& label)
@@ -54,6 +55,7 @@ int main(int argc, char** argv)
         if (cmd == "compare") return cmdCompare(args);
         if (cmd == "bench") return cmdBench(args);
         if (cmd == "rays") return cmdRays(args);
+        if (cmd == "probe") return cmdProbe(args);
         std::fprintf(stderr, "bounce: unknown command '%s'\n\n%s", cmd.c_str(), kUsage);
         return 2;
     } catch (const UsageError& e) {

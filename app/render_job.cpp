@@ -4,6 +4,7 @@
 #include <ctime>
 
 #include "app/commands.h"
+#include "app/roofline.h"
 #include "core/cornell.h"
 #include "core/gltf_io.h"
 #include "core/scene_setup.h"
@@ -104,12 +105,17 @@ nlohmann::json runRecord(const gl::ContextInfo& ctx, const std::string& scene, g
     j["frameParameters"] = r.frameValues().toJson(gl::frameParams());
     double total = 0.0;
     nlohmann::json passes = nlohmann::json::array();
+    // Bounds when `bounce probe` has measured this renderer's ceilings (app/roofline.h).
+    const std::optional<gl::Ceilings> ceilings = cachedCeilings(ctx.renderer);
     for (const gl::PassStat& p : r.timers().stats()) {
-        passes.push_back(
-            {{"pass", p.pass}, {"medianMs", p.medianMs}, {"minMs", p.minMs}, {"maxMs", p.maxMs}, {"frames", p.frames}});
+        nlohmann::json pass = {
+            {"pass", p.pass}, {"medianMs", p.medianMs}, {"minMs", p.minMs}, {"maxMs", p.maxMs}, {"frames", p.frames}};
+        pass.update(passWorkJson(p, ceilings ? &*ceilings : nullptr));
+        passes.push_back(pass);
         total += p.medianMs;
     }
     j["passes"] = passes;
+    if (ceilings) j["ceilings"] = ceilings->toJson();
     j["totalMs"] = total;
     nlohmann::json counters = nlohmann::json::object();
     for (const gl::Counter& c : r.counters()) counters[c.name] = c.value;
@@ -120,15 +126,26 @@ nlohmann::json runRecord(const gl::ContextInfo& ctx, const std::string& scene, g
     return j;
 }
 
-void printPassTable(gl::Renderer& r)
+void printPassTable(gl::Renderer& r, const std::string& renderer)
 {
     double total = 0.0;
-    std::printf("%-22s %10s %10s %10s\n", "pass", "median ms", "min ms", "max ms");
+    const std::optional<gl::Ceilings> ceilings = cachedCeilings(renderer);
+    std::printf("%-22s %10s %10s %10s", "pass", "median ms", "min ms", "max ms");
+    if (ceilings) std::printf(" %10s %10s  %s", "bound ms", "efficiency", "limit");
+    std::printf("\n");
     for (const gl::PassStat& p : r.timers().stats()) {
-        std::printf("%-22s %10.3f %10.3f %10.3f\n", p.pass.c_str(), p.medianMs, p.minMs, p.maxMs);
+        std::printf("%-22s %10.3f %10.3f %10.3f", p.pass.c_str(), p.medianMs, p.minMs, p.maxMs);
+        if (ceilings) {
+            if (const auto b = passBound(p, *ceilings))
+                std::printf(" %10.3f %10.3f  %s", b->boundMs, b->efficiency, b->limiter.c_str());
+            else
+                std::printf(" %10s %10s", "-", "-");
+        }
+        std::printf("\n");
         total += p.medianMs;
     }
     std::printf("%-22s %10.3f\n", "total", total);
+    if (!ceilings) std::printf("(`bounce probe` measures this machine's ceilings: then each pass shows its bound)\n");
 }
 
 } // namespace bounce::app

@@ -34,7 +34,8 @@ std::unique_ptr<gl::Context> createContextForCli(const std::string& backend, boo
 // The run's record: backend, renderer, size, technique, parameters, per-pass GPU ms, counters, bytes.
 nlohmann::json runRecord(const gl::ContextInfo& context, const std::string& scene, gl::Renderer& renderer);
 
-// Prints the per-pass table (median ms over the timed frames) to stdout.
-void printPassTable(gl::Renderer& renderer);
+// Prints the per-pass table (median ms over the timed frames) to stdout, with each pass's bound and
+// efficiency when this renderer's ceilings are cached (`bounce probe`).
+void printPassTable(gl::Renderer& renderer, const std::string& glRenderer);
 
 } // namespace bounce::app

@@ -1,5 +1,6 @@
 #include "gl/context/context.h"
 
+#include <cstring>
 #include <stdexcept>
 
 #include "gl/context/context_internal.h"
@@ -31,6 +32,17 @@ bool softwareRasterizer()
     const char* r = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
     const std::string renderer = r ? r : "";
     return renderer.find("llvmpipe") != std::string::npos || renderer.find("softpipe") != std::string::npos;
+}
+
+bool hasGlExtension(const char* name)
+{
+    GLint count = 0;
+    glGetIntegerv(GL_NUM_EXTENSIONS, &count);
+    for (GLint i = 0; i < count; ++i) {
+        const char* e = reinterpret_cast<const char*>(glGetStringi(GL_EXTENSIONS, GLuint(i)));
+        if (e && std::strcmp(e, name) == 0) return true;
+    }
+    return false;
 }
 
 std::unique_ptr<Context> Context::create(Backend backend, const ContextOptions& options)

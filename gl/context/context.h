@@ -72,4 +72,7 @@ protected:
 // work is rasterised later than its draw call, so timer scopes wait for it (PassTimers).
 bool softwareRasterizer();
 
+// Whether the current context exposes the GL extension `name` (glGetStringi(GL_EXTENSIONS, i)).
+bool hasGlExtension(const char* name);
+
 } // namespace bounce::gl

@@ -101,15 +101,42 @@ void Frame::beginFrame()
     ++frameIndex_;
 }
 
+// What the frame's passes do per invocation (PassCost, timer.h), counted from their shaders. Bytes are
+// render-target and G-buffer traffic; material blocks and uniforms stay in cache and are not counted.
+namespace {
+
+constexpr double kVertexBytes = sizeof(GpuVertex);
+
+PassCost shadowCost(const GpuScene& scene, const ShadowMaps& shadows)
+{
+    PassCost c;
+    c.bytesRead = 4; // depth test
+    c.bytesWritten = 4;
+    const double views = double(shadows.views().size());
+    c.triangles = views * double(scene.triangleCount());
+    c.bytesFixed = views * (double(shadows.size()) * shadows.size() * 4 + 3.0 * scene.triangleCount() * kVertexBytes);
+    return c;
+}
+
+} // namespace
+
 void Frame::renderShadowMaps(PassTimers& timers)
 {
-    auto t = timers.scope("shadow");
+    auto t = timers.scope("shadow", shadowCost(gpu_, shadows_));
     shadows_.render(gpu_);
 }
 
 void Frame::renderGBuffer(PassTimers& timers)
 {
-    auto t = timers.scope("gbuffer");
+    PassCost cost;
+    cost.flops = 40;                           // gbuffer.frag: normalize, brdfParams, the back-face case
+    cost.fetches = gpu_.hasTextures() ? 4 : 0; // one bilinear base-colour sample
+    cost.bytesRead = 4;                        // depth test
+    cost.bytesWritten = 5 * 16 + 4;            // five RGBA32F targets and depth
+    const double pixels = double(settings_.width) * settings_.height;
+    cost.bytesFixed = pixels * (5 * 16 + 4) + 3.0 * gpu_.triangleCount() * kVertexBytes; // clears, vertices
+    cost.triangles = double(gpu_.triangleCount());
+    auto t = timers.scope("gbuffer", cost);
     PassState state = PassState::fullscreen(gbufferFbo_, settings_.width, settings_.height);
     state.depthTest = true; // no culling: back faces of one-sided surfaces are drawn black (gbuffer.frag)
     state.apply();          // before the clears, which obey the write masks
@@ -148,7 +175,18 @@ void Frame::drawFullscreen() const
 
 void Frame::renderDirect(PassTimers& timers)
 {
-    auto t = timers.scope("direct");
+    // direct.frag per pixel: five G-buffer texels, one target; per punctual light about 60 flops and
+    // (2r+1)^2 shadow taps (four texels each when filtered), per emitting triangle about 250 flops (the
+    // clipped polygon's form factor) and its shadow taps.
+    const double taps =
+        double((2 * settings_.pcfRadius + 1) * (2 * settings_.pcfRadius + 1)) * (settings_.pcfLinear ? 4.0 : 1.0);
+    const double punctual = gpu_.punctualLightCount(), area = shadows_.lightCount() - punctual;
+    PassCost cost;
+    cost.flops = 30 + punctual * (60 + 10 * taps) + area * (250 + 10 * taps);
+    cost.fetches = 5 + (punctual + area) * taps;
+    cost.bytesRead = 5 * 16 + (punctual + area) * taps * 4;
+    cost.bytesWritten = 16;
+    auto t = timers.scope("direct", cost);
     PassState::fullscreen(directFbo_, settings_.width, settings_.height).apply();
     bindGBuffer();
     bindSceneData();
@@ -168,7 +206,12 @@ void Frame::clearIndirect()
 
 void Frame::composite(PassTimers& timers)
 {
-    auto t = timers.scope("composite");
+    PassCost cost;
+    cost.flops = 4;
+    cost.fetches = 2;
+    cost.bytesRead = 32;
+    cost.bytesWritten = 16;
+    auto t = timers.scope("composite", cost);
     PassState::fullscreen(compositeFbo_, settings_.width, settings_.height).apply();
     direct_.bind(UNIT_COMPOSITE_DIRECT);
     indirect_.bind(UNIT_COMPOSITE_INDIRECT);

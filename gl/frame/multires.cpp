@@ -139,7 +139,14 @@ void MultiresPyramid::bind() const
 void MultiresPyramid::build(Frame& frame, PassTimers& timers)
 {
     resize(frame.width(), frame.height());
-    auto t = timers.scope("minmax-mipmap");
+    // multires_minmax.comp per patch: four children (three G-buffer texels at level 1, six pyramid
+    // texels above), six image stores.
+    PassCost cost;
+    cost.flops = 60;
+    cost.fetches = 4 * 4;
+    cost.bytesRead = 4 * 52;
+    cost.bytesWritten = 16 + 5 * 8;
+    auto t = timers.scope("minmax-mipmap", cost);
     if (levels_ == 0) return; // a 1x1 image, or coarsestLevel 0: the pixels are the only level
     frame.bindGBuffer();
     bind();
@@ -161,7 +168,14 @@ void MultiresPyramid::build(Frame& frame, PassTimers& timers)
 
 void MultiresPyramid::upsample(Frame& frame, const Texture& illumination, PassTimers& timers)
 {
-    auto t = timers.scope("upsample");
+    // multires_upsample.comp per pixel: its position, the levels up to its fragment's, four neighbours
+    // and the diffuse colour; one image store.
+    PassCost cost;
+    cost.flops = 40;
+    cost.fetches = 2 + 2 + 4;
+    cost.bytesRead = 16 + 16 + 2 * 16 + 4 * 16;
+    cost.bytesWritten = 16;
+    auto t = timers.scope("upsample", cost);
     frame.bindGBuffer();
     bind();
     illumination.bind(UNIT_MULTIRES_ILLUMINATION);

@@ -63,6 +63,7 @@ public:
 private:
     Handle<QueryDeleter> handle_;
     unsigned target_ = 0;
+    std::string label_; // set at the first begin() (pipeline-statistics queries)
     bool active_ = false;
     bool ended_ = false;
 };

@@ -1,6 +1,7 @@
 #include "gl/resource/timer.h"
 
 #include <algorithm>
+#include <chrono>
 #include <stdexcept>
 
 #include "gl/context/context.h"
@@ -8,16 +9,42 @@
 
 namespace bounce::gl {
 
+namespace {
+
+// GL_ARB_pipeline_statistics_query (core in 4.6; glad generates the 4.5 core loader, so named here).
+constexpr unsigned kFragmentShaderInvocations = 0x82F4;
+constexpr unsigned kComputeShaderInvocations = 0x82F5;
+
+} // namespace
+
 PassTimers::Scope::~Scope()
 {
     if (!owner_) return;
-    owner_->pool_[query_].end();
+    Queries& q = owner_->pool_[query_];
+    q.time.end();
+    if (q.fragment) q.fragment.end();
+    if (q.compute) q.compute.end();
     // llvmpipe rasterises a pass's draws later than the calls, often inside the next pass's query (a
-    // compute pass that reads the result flushes them there): the upsampling after a 240 ms gather read
-    // 27 ms instead of 20. Waiting here keeps each pass's work inside its own interval. A GPU's queries
-    // are ordered with its work, and there the wait would only add bubbles.
-    if (serialize_) glFinish();
+    // compute pass that reads the result flushes them there), and its GL_TIME_ELAPSED misses most of a
+    // long fragment pass: the probe's FMA kernel read 20 ms against 780 ms of wall-clock time, while short
+    // passes agreed within a few percent. On a software rasteriser the work runs on this machine's cores
+    // between two glFinish calls, so the wall-clock time between them is the pass's time. A GPU's
+    // queries are ordered with its work, and there the waits would only add bubbles.
+    if (serialize_) {
+        glFinish();
+        q.wallMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - q.wallStart).count();
+    }
     if (grouped_) glPopDebugGroup();
+}
+
+void PassTimers::Scope::addWork(const PassCost& fixed)
+{
+    if (!owner_) return;
+    PassCost& c = owner_->pending_[query_].cost; // scope q of a frame is pending entry q (scope())
+    c.bytesFixed += fixed.bytesFixed;
+    c.flopsFixed += fixed.flopsFixed;
+    c.fetchesFixed += fixed.fetchesFixed;
+    c.triangles += fixed.triangles;
 }
 
 int PassTimers::pass(const std::string& name)
@@ -29,15 +56,16 @@ int PassTimers::pass(const std::string& name)
     return int(order_.size() - 1);
 }
 
-PassTimers::Scope PassTimers::scope(const std::string& name)
+PassTimers::Scope PassTimers::scope(const std::string& name, const PassCost& cost)
 {
     const std::size_t q = pending_.size();
     if (pool_.empty()) {
         serialize_ = softwareRasterizer();
+        statistics_ = hasGlExtension("GL_ARB_pipeline_statistics_query");
         // llvmpipe answers the first TIME_ELAPSED query of a context with a timestamp (minutes to hours)
         // instead of an interval, also when nothing ran inside it; a query around a clear of a 1x1
         // framebuffer, read at once, takes that answer before any pass does (harmless elsewhere).
-        pool_.emplace_back(GL_TIME_ELAPSED, "pass-timer.0");
+        pool_.push_back({Query(GL_TIME_ELAPSED, "pass-timer.0"), {}, {}});
         GLuint tex = 0, fbo = 0;
         GLint previous = 0;
         glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &previous);
@@ -47,40 +75,64 @@ PassTimers::Scope PassTimers::scope(const std::string& name)
         glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, tex, 0);
         glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo);
         {
-            auto first = pool_.front().scope();
+            auto first = pool_.front().time.scope();
             glClear(GL_COLOR_BUFFER_BIT);
         }
-        (void)pool_.front().result();
+        (void)pool_.front().time.result();
         glBindFramebuffer(GL_DRAW_FRAMEBUFFER, GLuint(previous));
         glDeleteFramebuffers(1, &fbo);
         glDeleteTextures(1, &tex);
     }
-    if (q == pool_.size()) pool_.emplace_back(GL_TIME_ELAPSED, "pass-timer." + std::to_string(q));
-    pending_.push_back({name, q});
+    if (q == pool_.size()) pool_.push_back({Query(GL_TIME_ELAPSED, "pass-timer." + std::to_string(q)), {}, {}});
+    if (statistics_ && !pool_[q].fragment) {
+        pool_[q].fragment = Query(kFragmentShaderInvocations, "pass-fragments." + std::to_string(q));
+        pool_[q].compute = Query(kComputeShaderInvocations, "pass-computes." + std::to_string(q));
+    }
+    pending_.push_back({name, q, cost});
     // The group opens before the query and closes after it, so the capture's group holds the whole
     // timed interval. Present in every GL 4.3+ context; a message only with KHR_debug output enabled.
     const bool grouped = glPushDebugGroup != nullptr;
     if (grouped) glPushDebugGroup(GL_DEBUG_SOURCE_APPLICATION, 0, GLsizei(name.size()), name.c_str());
-    pool_[q].begin();
+    if (serialize_) {
+        glFinish(); // nothing issued before the scope is counted in it
+        pool_[q].wallStart = std::chrono::steady_clock::now();
+    }
+    pool_[q].time.begin();
+    if (pool_[q].fragment) pool_[q].fragment.begin();
+    if (pool_[q].compute) pool_[q].compute.begin();
     return Scope(this, q, serialize_, grouped);
 }
 
 void PassTimers::endFrame(bool keep)
 {
-    std::vector<double> frame(order_.size(), 0.0);
+    std::vector<Sample> frame(order_.size());
     std::vector<bool> seen(order_.size(), false);
     for (const Pending& p : pending_) {
-        const std::uint64_t ns = pool_[p.query].result();
+        const Queries& q = pool_[p.query];
         const int i = pass(p.pass);
         if (std::size_t(i) >= frame.size()) {
-            frame.resize(i + 1, 0.0);
+            frame.resize(i + 1);
             seen.resize(i + 1, false);
         }
-        frame[i] += double(ns) * 1e-6;
+        Sample& s = frame[i];
+        if (!seen[i]) s.work.costDeclared = true;
+        const double queryMs = double(q.time.result()) * 1e-6;
+        s.ms += serialize_ ? q.wallMs : queryMs;
+        const double fragments = q.fragment ? double(q.fragment.result()) : 0.0;
+        const double computes = q.compute ? double(q.compute.result()) : 0.0;
+        const double invocations = fragments + computes;
+        s.work.fragmentInvocations += fragments;
+        s.work.computeInvocations += computes;
+        s.work.flops += invocations * p.cost.flops + p.cost.flopsFixed;
+        s.work.fetches += invocations * p.cost.fetches + p.cost.fetchesFixed;
+        s.work.bytes += invocations * (p.cost.bytesRead + p.cost.bytesWritten) + p.cost.bytesFixed;
+        s.work.triangles += p.cost.triangles;
+        s.work.costDeclared = s.work.costDeclared && p.cost.declared();
         seen[i] = true;
     }
     pending_.clear();
-    last_ = frame;
+    last_.assign(frame.size(), 0.0);
+    for (std::size_t i = 0; i < frame.size(); ++i) last_[i] = frame[i].ms;
     if (!keep) return;
     for (std::size_t i = 0; i < frame.size(); ++i)
         if (seen[i]) samples_[i].push_back(frame[i]);
@@ -90,12 +142,13 @@ std::vector<PassStat> PassTimers::stats() const
 {
     std::vector<PassStat> out;
     for (std::size_t i = 0; i < order_.size(); ++i) {
-        std::vector<double> s = samples_[i];
+        std::vector<Sample> s = samples_[i];
         if (s.empty()) continue;
-        std::sort(s.begin(), s.end());
+        std::sort(s.begin(), s.end(), [](const Sample& a, const Sample& b) { return a.ms < b.ms; });
         const std::size_t n = s.size();
-        const double median = n % 2 ? s[n / 2] : 0.5 * (s[n / 2 - 1] + s[n / 2]);
-        out.push_back({order_[i], median, s.front(), s.back(), int(n)});
+        const double median = n % 2 ? s[n / 2].ms : 0.5 * (s[n / 2 - 1].ms + s[n / 2].ms);
+        // The work of the median frame (the lower of the two middle ones when n is even).
+        out.push_back({order_[i], median, s.front().ms, s.back().ms, int(n), s[(n - 1) / 2].work});
     }
     return out;
 }
@@ -104,7 +157,7 @@ std::vector<PassStat> PassTimers::lastFrame() const
 {
     std::vector<PassStat> out;
     for (std::size_t i = 0; i < last_.size() && i < order_.size(); ++i)
-        out.push_back({order_[i], last_[i], last_[i], last_[i], 1});
+        out.push_back({order_[i], last_[i], last_[i], last_[i], 1, {}});
     return out;
 }
 

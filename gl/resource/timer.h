@@ -1,9 +1,13 @@
-// Per-pass GPU time from GL_TIME_ELAPSED timer queries (query.h). A frame opens one scope per pass;
+// Per-pass GPU time from GL_TIME_ELAPSED timer queries (query.h); on a software rasteriser (llvmpipe),
+// whose queries miss work, the wall-clock time between glFinish calls around the scope (timer.cpp).
+// The driver also counts the pass's shader invocations (GL_ARB_pipeline_statistics_query), which with
+// the pass's declared PassCost give the work it did (app/roofline.h). A frame opens one scope per pass;
 // endFrame() reads the results back (blocking: the benchmark wants exact figures, not last frame's)
 // and keeps them, so stats() can give the median over the timed frames. Each scope is also a KHR_debug
 // group named after the pass, so a capture (RenderDoc, apitrace) shows the frame pass by pass.
 #pragma once
 
+#include <chrono>
 #include <string>
 #include <vector>
 
@@ -11,12 +15,45 @@
 
 namespace bounce::gl {
 
+// What one shader invocation of a pass does, counted from the shader's own loops: a pass declares it when
+// it opens its timed scope, and the invocations that ran are counted by the driver (pipeline statistics:
+// fragment and compute shader invocations), so work = invocations x cost per invocation. A pass opened
+// several times in a frame (per level, per light) declares each scope's own cost. `bytesFixed` is work
+// that does not scale with invocations (a clear, a buffer copy, vertex streams).
+struct PassCost {
+    double flops = 0.0;        // arithmetic per invocation (an FMA counts 2, per component)
+    double fetches = 0.0;      // texel fetches / texture samples / image loads per invocation
+    double bytesRead = 0.0;    // memory read per invocation (textures, images, buffers, framebuffer)
+    double bytesWritten = 0.0; // memory written per invocation (render targets, images, buffers)
+    double bytesFixed = 0.0;   // per scope, not per invocation
+    double flopsFixed = 0.0;   // per scope: work counted by the pass itself (a tree walk's visited nodes)
+    double fetchesFixed = 0.0;
+    double triangles = 0.0; // per scope: triangles the rasteriser sets up (drawn geometry)
+    bool declared() const
+    {
+        return flops > 0.0 || fetches > 0.0 || bytesRead > 0.0 || bytesWritten > 0.0 || bytesFixed > 0.0 ||
+               flopsFixed > 0.0 || fetchesFixed > 0.0 || triangles > 0.0;
+    }
+};
+
+// The work a pass did in one frame: invocations from the driver, the rest from PassCost.
+struct PassWork {
+    double fragmentInvocations = 0.0;
+    double computeInvocations = 0.0;
+    double flops = 0.0;
+    double fetches = 0.0;
+    double bytes = 0.0;        // read + written
+    double triangles = 0.0;    // set up by the rasteriser
+    bool costDeclared = false; // every scope of the pass declared a PassCost
+};
+
 struct PassStat {
     std::string pass;
     double medianMs = 0.0;
     double minMs = 0.0;
     double maxMs = 0.0;
     int frames = 0;
+    PassWork work; // of the median frame (by time); invocations are 0 where the driver cannot count them
 };
 
 class PassTimers {
@@ -28,6 +65,8 @@ public:
             o.owner_ = nullptr;
         }
         ~Scope();
+        // Work of this scope known only once it ran (counters the pass reads back), added to its cost.
+        void addWork(const PassCost& fixed);
         Scope(const Scope&) = delete;
         Scope& operator=(const Scope&) = delete;
 
@@ -36,6 +75,7 @@ public:
         Scope(PassTimers* owner, std::size_t query, bool serialize, bool grouped)
             : owner_(owner), query_(query), serialize_(serialize), grouped_(grouped)
         {}
+        // The pending entry is the one whose query is query_ (scopes of a frame use queries 0, 1, ...).
         PassTimers* owner_; // null once moved from
         std::size_t query_; // index into owner_->pool_ (stable while the pool grows)
         bool serialize_;    // wait for the pass's work before the next pass's query begins
@@ -43,8 +83,9 @@ public:
     };
 
     // Opens a timed scope for `pass` (queries cannot nest: one pass at a time), inside a debug group
-    // named `pass` (glPushDebugGroup, GL_DEBUG_SOURCE_APPLICATION).
-    Scope scope(const std::string& pass);
+    // named `pass` (glPushDebugGroup, GL_DEBUG_SOURCE_APPLICATION). `cost`: what one invocation of the
+    // pass's shader does (PassCost), for its bound (app/roofline.h); the invocations are counted here.
+    Scope scope(const std::string& pass, const PassCost& cost = {});
     // Collects this frame's query results; when `keep` is false (warm-up frames) they are dropped.
     void endFrame(bool keep = true);
     // Passes in the order first seen, with statistics over the kept frames.
@@ -57,13 +98,25 @@ private:
     struct Pending {
         std::string pass;
         std::size_t query;
+        PassCost cost;
     };
-    std::vector<Query> pool_;
+    // One scope's queries: elapsed time, and the shader invocations when the driver counts them.
+    struct Queries {
+        Query time, fragment, compute;
+        std::chrono::steady_clock::time_point wallStart{};
+        double wallMs = 0.0;
+    };
+    struct Sample {
+        double ms = 0.0;
+        PassWork work;
+    };
+    std::vector<Queries> pool_;
     std::vector<Pending> pending_;
     std::vector<std::string> order_;
-    std::vector<std::vector<double>> samples_; // per pass, per kept frame (ms, summed within a frame)
+    std::vector<std::vector<Sample>> samples_; // per pass, per kept frame (summed within a frame)
     std::vector<double> last_;
-    bool serialize_ = false; // llvmpipe: each scope waits for its work (timer.cpp)
+    bool serialize_ = false;  // llvmpipe: each scope waits for its work (timer.cpp)
+    bool statistics_ = false; // GL_ARB_pipeline_statistics_query: invocations are counted
     int pass(const std::string& name);
 };
 

@@ -58,7 +58,7 @@ bool emptyDir(const fs::path& d)
 TEST(Cli, HelpEverywhere)
 {
     for (const char* cmd : {"--help", "render --help", "list --help", "demo --help", "reference --help",
-                            "compare --help", "bench --help"}) {
+                            "compare --help", "bench --help", "probe --help"}) {
         const CliRun r = run(cmd);
         EXPECT_EQ(r.status, 0) << cmd << "\n" << r.output;
         EXPECT_NE(r.output.find("usage"), std::string::npos) << cmd;
@@ -135,6 +135,52 @@ TEST(Cli, RenderWritesExrPngAndJsonRecord)
     // No temporary files survive.
     for (const auto& e : fs::directory_iterator(d))
         EXPECT_EQ(e.path().string().find(".tmp"), std::string::npos) << e.path();
+}
+
+// `bounce probe` measures the ceilings and caches them per renderer; a render then gives every pass with a
+// declared cost its bound and efficiency in the record. Figures are only checked for being positive and
+// finite: their size is the machine's, not a property of the code.
+TEST(Cli, ProbeCachesCeilingsAndRenderRecordsBounds)
+{
+    const fs::path d = outDir("probe");
+    const std::string env = "env BOUNCE_CACHE=" + (d / "cache").string() + " ";
+    const CliRun bad = run("probe --size 5 --backend osmesa", env);
+    EXPECT_EQ(bad.status, 2) << bad.output;
+    const CliRun probe = run("probe --size 64 --repeats 1 --backend osmesa --json " + (d / "c.json").string(), env);
+    ASSERT_EQ(probe.status, 0) << probe.output;
+    std::ifstream cin(d / "c.json");
+    const nlohmann::json c = nlohmann::json::parse(cin);
+    for (const char* key : {"fragmentGflops", "computeGflops", "fragmentGBps", "computeImageGBps", "computeBufferGBps",
+                            "fragmentGfetches", "computeGfetches", "mtrianglesPerSecond"})
+        EXPECT_GT(c[key].get<double>(), 0.0) << key;
+    bool cached = false;
+    for (const auto& e : fs::directory_iterator(d / "cache"))
+        cached |= e.path().filename().string().rfind("probe-", 0) == 0;
+    ASSERT_TRUE(cached) << "the measured ceilings are cached under the renderer";
+    const CliRun render = run("render --scene cornell-spot --size 32x32 --frames 1 --warmup 0 --backend osmesa --out " +
+                                  (d / "r.exr").string(),
+                              env);
+    ASSERT_EQ(render.status, 0) << render.output;
+    std::ifstream rin(d / "r.json");
+    const nlohmann::json j = nlohmann::json::parse(rin);
+    bool anyBound = false;
+    for (const auto& p : j["passes"]) {
+        EXPECT_TRUE(p.contains("costDeclared")) << p["pass"];
+        if (p.contains("boundMs")) {
+            anyBound = true;
+            EXPECT_GT(p["boundMs"].get<double>(), 0.0) << p["pass"];
+            EXPECT_TRUE(std::isfinite(p["efficiency"].get<double>())) << p["pass"];
+        }
+    }
+    EXPECT_TRUE(anyBound) << render.output;
+    // Without cached ceilings the record has the work but no bounds.
+    fs::remove_all(d / "cache");
+    const CliRun plain = run("render --scene cornell-spot --size 32x32 --frames 1 --warmup 0 --backend osmesa --out " +
+                                 (d / "p.exr").string(),
+                             env);
+    ASSERT_EQ(plain.status, 0) << plain.output;
+    std::ifstream pin(d / "p.json");
+    for (const auto& p : nlohmann::json::parse(pin)["passes"]) EXPECT_FALSE(p.contains("boundMs")) << p["pass"];
 }
 
 // `bounce reference`: the image and its record, rendered and then served from the cache.

@@ -71,7 +71,7 @@ TEST(Bindings, ShadersDeclareBlocksAndSamplersByName)
     const std::regex literal(
         R"(layout\s*\((std140|std430)?[,\s]*binding\s*=\s*\d+\s*\)|layout\s*\(\s*binding\s*=\s*\d+)");
     std::vector<std::string> hits;
-    for (const char* dir : {"glsl/common", "glsl/frame", "glsl/technique"})
+    for (const char* dir : {"glsl/common", "glsl/frame", "glsl/technique", "glsl/probe"})
         for (const std::string& h : grep(root() / dir, {".glsl", ".vert", ".frag", ".comp", ".geom"}, literal))
             hits.push_back(h);
     EXPECT_TRUE(hits.empty()) << "literal binding numbers (name them in a bindings.glsl):\n"

@@ -9,9 +9,12 @@
 #include <gtest/gtest.h>
 
 #include "core/cornell.h"
+#include "gl/context/context.h"
 #include "gl/debug.h"
 #include "gl/gl.h"
 #include "gl/renderer.h"
+#include "gl/resource/buffer.h"
+#include "gl/resource/program.h"
 #include "tests/gl/gl_test_fixture.h"
 
 namespace bounce {
@@ -73,6 +76,65 @@ TEST_F(TimerTest, EveryTimedPassIsADebugGroupNamedAfterIt)
     std::vector<std::string> groups = pushedGroups();
     groups.erase(std::unique(groups.begin(), groups.end()), groups.end()); // a pass may run per light
     EXPECT_EQ(groups, passes);
+}
+
+// A pass's work is its counted invocations times its declared cost: a compute dispatch of exactly N
+// invocations (no partial groups) gives N and N x cost; a full-screen fragment pass over W x H pixels
+// gives at least W x H fragment invocations (a rasteriser may count helper or masked lanes too, never fewer).
+TEST_F(TimerTest, PassWorkIsCountedInvocationsTimesDeclaredCost)
+{
+    if (!gl::hasGlExtension("GL_ARB_pipeline_statistics_query"))
+        GTEST_SKIP() << "the driver counts no invocations (GL_ARB_pipeline_statistics_query)";
+    gl::Program compute = gl::Program::compute("test.cover", "test/dispatch_cover.comp",
+                                               {{"LOCAL_X", "8"}, {"LOCAL_Y", "8"}, {"LOCAL_Z", "1"}});
+    gl::Buffer marks("test.marks", (1 + 4096) * sizeof(unsigned));
+    marks.clearToZero();
+    gl::PassTimers timers;
+    gl::PassCost cost;
+    cost.flops = 3;
+    cost.bytesWritten = 4;
+    cost.bytesFixed = 100;
+    {
+        auto t = timers.scope("count", cost);
+        marks.bindBase(GL_SHADER_STORAGE_BUFFER, 0);
+        compute.set("size", glm::ivec3(64, 64, 1));
+        compute.use();
+        glDispatchCompute(8, 8, 1); // local size 8x8x1: 4096 invocations
+        glMemoryBarrier(GL_ALL_BARRIER_BITS);
+        gl::PassCost later;
+        later.flopsFixed = 1000;
+        t.addWork(later);
+    }
+    timers.endFrame();
+    const std::vector<gl::PassStat> stats = timers.stats();
+    ASSERT_EQ(stats.size(), 1u);
+    const gl::PassWork& w = stats[0].work;
+    EXPECT_EQ(w.computeInvocations, 4096.0);
+    EXPECT_EQ(w.fragmentInvocations, 0.0);
+    EXPECT_TRUE(w.costDeclared);
+    EXPECT_EQ(w.flops, 4096.0 * 3 + 1000);
+    EXPECT_EQ(w.bytes, 4096.0 * 4 + 100);
+}
+
+TEST_F(TimerTest, FragmentPassCountsAtLeastItsPixels)
+{
+    if (!gl::hasGlExtension("GL_ARB_pipeline_statistics_query"))
+        GTEST_SKIP() << "the driver counts no invocations (GL_ARB_pipeline_statistics_query)";
+    const core::Scene scene = core::makeCornell("cornell-spot");
+    gl::ParamValues frameValues(gl::frameParams());
+    frameValues.setValue("shadow.size", 64);
+    gl::Renderer r(scene, "direct", frameValues, gl::ParamValues(), 37, 23); // not a multiple of 2, 4 or 8
+    r.renderFrame(true);
+    bool sawComposite = false;
+    for (const gl::PassStat& p : r.timers().stats()) {
+        if (p.pass != "composite") continue;
+        sawComposite = true;
+        EXPECT_GE(p.work.fragmentInvocations, 37.0 * 23.0);
+        EXPECT_LE(p.work.fragmentInvocations, 2.0 * 40 * 24) << "a full-screen pass counts about its pixels";
+        EXPECT_TRUE(p.work.costDeclared);
+        EXPECT_GT(p.work.bytes, 0.0);
+    }
+    EXPECT_TRUE(sawComposite);
 }
 
 } // namespace

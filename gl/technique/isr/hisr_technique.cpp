@@ -13,6 +13,7 @@
 #include "gl/technique/isr/bindings.h"
 #include "gl/technique/isr/multires_gather.h"
 #include "gl/technique/isr/multires_technique.h"
+#include "gl/technique/isr/vpl_gather.h"
 #include "gl/technique/isr/vpl_tree.h"
 
 namespace bounce::gl {
@@ -75,11 +76,35 @@ public:
         const long long perRoot = 2LL * (tree_.subtreeNodes() + 1);
         const int perDraw = int(std::clamp<long long>(MultiresGather::loopBudget() / perRoot, 1, std::max(roots, 1)));
         const int draws = std::max(1, (roots + perDraw - 1) / perDraw);
-        gather_.gather(frame, program_, timers, draws, [&](Program& p, int i) {
-            p.set("rootBegin", i * perDraw);
-            p.set("rootEnd", std::min(roots, (i + 1) * perDraw));
-        });
+        // hisr_gather.frag per fragment: its patch, and per cluster gathered three tree texels and one
+        // VPL's contribution (with the normal's normalisation); a walk visits about 4/3 nodes per cluster
+        // gathered (every refined node has four children). The clusters per fragment are the walk's own
+        // count, from the frame before (the same scene and view walk the same tree).
+        PassCost cost;
+        const double visited = clustersPerFragment_ * 4.0 / 3.0;
+        cost.flops = (20 + clustersPerFragment_ * (kFlopsPerVpl + 12) + visited * 10) / draws;
+        cost.fetches = (3 + visited * 3) / draws;
+        cost.bytesRead = (16 + 8 + 8 + visited * 48) / draws + 16;
+        cost.bytesWritten = 16;
+        gather_.gather(
+            frame, program_, timers, draws,
+            [&](Program& p, int i) {
+                p.set("rootBegin", i * perDraw);
+                p.set("rootEnd", std::min(roots, (i + 1) * perDraw));
+            },
+            cost);
+        clustersPerFragment_ = gatheredPerFragment();
         gather_.upsample(frame, timers);
+    }
+
+    // Clusters gathered per fragment by the last gather (its SSBO_ISR_TREE_STATS counters).
+    double gatheredPerFragment() const
+    {
+        unsigned s[4] = {0, 0, 0, 0};
+        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+        stats_.download(0, sizeof(s), s);
+        const double gathered = double(s[0]) + 4294967296.0 * double(s[1]);
+        return s[2] > 0 ? gathered / double(s[2]) : 0.0;
     }
 
     void setUniforms(const ParamValues& values) override
@@ -111,6 +136,7 @@ private:
     MultiresGather gather_;
     Program program_;
     Buffer stats_;
+    double clustersPerFragment_ = 0.0;
 };
 
 } // namespace

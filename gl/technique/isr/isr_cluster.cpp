@@ -31,7 +31,12 @@ int IsrCluster::cluster(const RsmPass& rsm, Buffer& cache, const IsrClusterSetti
     const std::size_t slotBytes = std::size_t(cap) * sizeof(std::uint32_t);
     if (!slots_ || slots_.bytes() < slotBytes) slots_ = Buffer("isr.clusterSlots", slotBytes);
     {
-        auto t = timers.scope("vpl-cluster");
+        PassCost cost; // isr_cluster.comp per patch and pass: its pyramid texels at every level it tests
+        cost.flops = 60;
+        cost.fetches = 8;
+        cost.bytesRead = 8 * 16;
+        cost.bytesWritten = 8;
+        auto t = timers.scope("vpl-cluster", cost);
         counter_.clearToZero();
         if (rsm.viewCount() > 0) {
             rsm.bind();

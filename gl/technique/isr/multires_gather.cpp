@@ -50,7 +50,16 @@ void MultiresGather::buildPyramid(Frame& frame, PassTimers& timers)
 
 void MultiresGather::markValidFragments(Frame& frame, PassTimers& timers)
 {
-    auto t = timers.scope("stencil-setup");
+    // multires_stencil.frag per texel of the flattened buffer: locate the level, two patch states, and for
+    // a valid fragment its eight neighbours' states and ranges (three texels each).
+    PassCost cost;
+    cost.flops = 150;
+    cost.fetches = 2 + 8 * 5;
+    cost.bytesRead = 2 * 8 + 8 * 5 * 8;
+    cost.bytesWritten = 16 + 4; // marks and stencil
+    const double flattened = double(illumination_.width()) * illumination_.height();
+    cost.bytesFixed = flattened * (16 + 4); // the clears
+    auto t = timers.scope("stencil-setup", cost);
     counts_.clearToZero();
     PassState state = PassState::fullscreen(fbo_, illumination_.width(), illumination_.height());
     state.stencil.test = true;
@@ -69,9 +78,22 @@ void MultiresGather::markValidFragments(Frame& frame, PassTimers& timers)
 }
 
 void MultiresGather::gather(Frame& frame, Program& program, PassTimers& timers, int draws,
-                            const std::function<void(Program&, int)>& setupDraw)
+                            const std::function<void(Program&, int)>& setupDraw, const PassCost& perFragment)
 {
-    auto t = timers.scope("gather");
+    // The stencil test masks the shader of every fragment that is not valid, but the driver may count
+    // those as invocations (llvmpipe counts the whole flattened buffer): the work is the valid
+    // fragments' (the stencil pass's own counts), and each invocation only blends.
+    PassCost perInvocation;
+    perInvocation.bytesRead = 16;
+    perInvocation.bytesWritten = 16;
+    auto t = timers.scope("gather", perInvocation);
+    double valid = 0.0;
+    for (int n : fragmentsPerLevel()) valid += n;
+    PassCost work;
+    work.flopsFixed = valid * draws * perFragment.flops;
+    work.fetchesFixed = valid * draws * perFragment.fetches;
+    work.bytesFixed = valid * draws * (perFragment.bytesRead + perFragment.bytesWritten);
+    t.addWork(work);
     PassState state = PassState::fullscreen(fbo_, illumination_.width(), illumination_.height());
     state.stencil.test = true;
     state.stencil.func = GL_EQUAL; // only the valid multiresolution fragments (§3.2.1)
@@ -107,14 +129,28 @@ void MultiresGather::run(Frame& frame, const Buffer& vpls, int vplCount, PassTim
     buildPyramid(frame, timers);
     markValidFragments(frame, timers);
     // One additive draw per uniform block of the cache (vpl_gather.h); one with no VPLs clears nothing.
-    gather(frame, cacheGather_, timers, std::max(vplBlockCount(vplCount), 1),
-           [&](Program& p, int block) { p.set("vplCount", bindVplBlock(vpls, block, vplCount)); });
+    // multires_gather.frag per valid fragment and draw: its patch (three texels), the block's VPLs, an
+    // additive RGBA32F write.
+    const int draws = std::max(vplBlockCount(vplCount), 1);
+    PassCost cost;
+    cost.flops = 20 + double(vplCount) * kFlopsPerVpl / draws;
+    cost.fetches = 3;
+    cost.bytesRead = 16 + 8 + 8 + 16; // patch texels, blending's read
+    cost.bytesWritten = 16;
+    gather(
+        frame, cacheGather_, timers, draws,
+        [&](Program& p, int block) { p.set("vplCount", bindVplBlock(vpls, block, vplCount)); }, cost);
     upsample(frame, timers);
 }
 
 int MultiresGather::refine(Frame& frame, PassTimers& timers)
 {
-    auto t = timers.scope("refine");
+    PassCost cost; // multires_refine.comp per patch tested: its state and ranges, one work item or vertex out
+    cost.flops = 40;
+    cost.fetches = 4;
+    cost.bytesRead = 4 * 8;
+    cost.bytesWritten = 32;
+    auto t = timers.scope("refine", cost);
     const std::size_t pixels = std::size_t(pyramid_.width()) * std::size_t(pyramid_.height());
     constexpr std::size_t kVertexBytes = 32; // glsl/technique/isr/multires_refine.comp: SplatVertex
     if (!splatVertices_ || splatVertices_.bytes() < pixels * kVertexBytes) {
@@ -177,7 +213,12 @@ int MultiresGather::refine(Frame& frame, PassTimers& timers)
 
 void MultiresGather::splat(Frame& frame, const Buffer& vpls, int vplCount, PassTimers& timers)
 {
-    auto t = timers.scope("splat");
+    // multires_splat.frag per fragment of a splat: one VPL's contribution, an additive write.
+    PassCost cost;
+    cost.flops = kFlopsPerVpl + 10;
+    cost.bytesRead = 16;
+    cost.bytesWritten = 16;
+    auto t = timers.scope("splat", cost);
     PassState state = PassState::fullscreen(fbo_, illumination_.width(), illumination_.height());
     state.colorMask = {true, true, true, false}; // alpha keeps the refinement's marks
     state.blend = true;                          // additive

@@ -59,8 +59,9 @@ public:
     // Draws the stenciled quad `draws` times with additive blending (rgb), calling setupDraw(program, i)
     // before draw i: gathers are split into blocks of the VPL cache (vpl_gather.h) or ranges of top
     // patches of the VPL tree (see loopBudget()).
+    // perFragment: what one fragment of one draw does (PassCost), for the pass's bound.
     void gather(Frame& frame, Program& program, PassTimers& timers, int draws = 1,
-                const std::function<void(Program&, int)>& setupDraw = {});
+                const std::function<void(Program&, int)>& setupDraw = {}, const PassCost& perFragment = {});
     void upsample(Frame& frame, PassTimers& timers);
     // [NW09]'s path, after buildPyramid(): refine() selects the valid fragments by iterative subdivision
     // (the same set, counts and neighbour marks as markValidFragments()) and keeps them as a vertex list;

@@ -60,7 +60,15 @@ VplGather::VplGather() : program_(Program::compute("vpl.gather", "technique/isr/
 
 void VplGather::gather(Frame& frame, const Buffer& vpls, int count, PassTimers& timers, const std::string& pass)
 {
-    auto t = timers.scope(pass);
+    // vpl_gather.comp per pixel: three G-buffer texels, every VPL of every block, one image load (after
+    // the first block) and store per block.
+    const int blocks = vplBlockCount(count);
+    PassCost cost;
+    cost.flops = double(count) * kFlopsPerVpl / std::max(blocks, 1); // invocations are counted per dispatch
+    cost.fetches = 3;
+    cost.bytesRead = 3 * 16 + (blocks > 1 ? 16 : 0);
+    cost.bytesWritten = 16;
+    auto t = timers.scope(pass, cost);
     if (count <= 0) return; // the frame's indirect texture stays cleared
     frame.bindGBuffer();
     frame.indirect().bindImage(0, GL_READ_WRITE, 0, GL_RGBA32F);

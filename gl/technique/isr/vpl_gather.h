@@ -33,6 +33,10 @@ int vplBlockCount(int count);
 // Binds block `block` of `cache` to vpl.glsl's VplBlock; returns how many of its VPLs are below `count`.
 int bindVplBlock(const Buffer& cache, int block, int count);
 
+// vpl.glsl's vplContribution, counted: the offset, two dot products, r^2, Eq. 5's denominator, one
+// division and the rgb products and sum (PassCost of every gather).
+inline constexpr double kFlopsPerVpl = 38.0;
+
 class VplGather {
 public:
     VplGather();

@@ -20,7 +20,12 @@ int VplSampler::sideFor(int vpls, int views, int size)
 
 int VplSampler::sample(const RsmPass& rsm, Buffer& cache, int side, PassTimers& timers)
 {
-    auto t = timers.scope("vpl-sample");
+    PassCost cost; // vpl_sample.comp per VPL: four RSM texels of its texel's mip level, one 48-byte VPL
+    cost.flops = 30;
+    cost.fetches = 4;
+    cost.bytesRead = 4 * 16;
+    cost.bytesWritten = double(kVplBytes);
+    auto t = timers.scope("vpl-sample", cost);
     const int count = side * side * rsm.viewCount();
     if (count <= 0) return 0;
     if (cache.bytes() < std::size_t(count) * kVplBytes) throw std::logic_error("VPL cache too small");

@@ -41,7 +41,12 @@ void VplTree::setUniforms(Program& program) const
 
 void VplTree::build(const RsmPass& rsm, PassTimers& timers)
 {
-    auto t = timers.scope("vpl-tree");
+    PassCost cost; // vpl_tree_leaves/reduce.comp per node: its four children (or RSM texels), one node out
+    cost.flops = 60;
+    cost.fetches = 4 * 4;
+    cost.bytesRead = 4 * 64;
+    cost.bytesWritten = 64;
+    auto t = timers.scope("vpl-tree", cost);
     const int size = rsm.size();
     if (!std::has_single_bit(unsigned(size)))
         throw std::invalid_argument("VPL tree: the RSM size must be a power of two, not " + std::to_string(size));

@@ -1,0 +1,12 @@
+#version 450 core
+// Probe: compute-pass image bandwidth. One RGBA32F texelFetch and one imageStore per invocation: 32 bytes.
+#include "probe/bindings.glsl"
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(binding = UNIT_PROBE_FIRST) uniform sampler2D source;
+layout(rgba32f, binding = 0) uniform writeonly image2D target;
+void main()
+{
+    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(p, imageSize(target)))) return;
+    imageStore(target, p, texelFetch(source, p, 0) * 0.5);
+}
