@@ -1,5 +1,7 @@
 #include "app/bench_report.h"
 
+#include "app/bench_roofline.h"
+
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -163,6 +165,10 @@ void writeBenchReport(const std::filesystem::path& out, const BenchConfig& confi
             j.push_back(scene);
         }
         core::writeFileAtomic((out / "rays.json").string(), j.dump(2) + "\n");
+    }
+    if (hasRoofline(rows)) {
+        md += rooflineMarkdown(rows);
+        core::writeFileAtomic((out / "roofline.csv").string(), rooflineCsv(rows));
     }
     core::writeFileAtomic((out / "report.md").string(), md);
 }

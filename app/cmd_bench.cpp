@@ -8,10 +8,12 @@
 
 #include "app/bench_config.h"
 #include "app/bench_report.h"
+#include "app/bench_roofline.h"
 #include "app/bench_run.h"
 #include "app/commands.h"
 #include "app/options.h"
 #include "app/render_job.h"
+#include "app/roofline.h"
 
 namespace bounce::app {
 
@@ -36,13 +38,17 @@ const char* kUsage =
     "\"onebounce\"). A reference \"size\" that divides every run's size compares box-downsampled images\n"
     "against references of that size: less noise for the same cost. The top-level \"rays\": N also casts N\n"
     "rays per scene with the GPU ray caster and with Embree (coherent and incoherent, as `bounce rays`) into\n"
-    "a table of report.md and DIR/rays.json. Timings compare only within one run.\n";
+    "a table of report.md and DIR/rays.json. Timings compare only within one run.\n"
+    "\n"
+    "  --roofline  measure this machine's ceilings first when they are not cached (bounce probe); with\n"
+    "              cached ceilings report.md gives every pass's bound and efficiency, and DIR/roofline.csv\n"
+    "              and DIR/roofline.png (achieved GFLOP/s against flop/byte under the ceilings)\n";
 
 } // namespace
 
 int cmdBench(const Args& args)
 {
-    const Options o(args, {{"config"}, {"out"}, {"backend"}, {"cache"}}, kUsage);
+    const Options o(args, {{"config"}, {"out"}, {"backend"}, {"cache"}, {"roofline", false}}, kUsage);
     if (o.helpRequested()) {
         std::fputs(kUsage, stdout);
         return 0;
@@ -55,6 +61,10 @@ int cmdBench(const Args& args)
     std::filesystem::create_directories(out);
     auto context = createContextForCli(o.get("backend", "egl"));
     std::printf("GL renderer: %s (%s)\n", context->info().renderer.c_str(), context->info().platform.c_str());
+    if (o.has("roofline") && !cachedCeilings(context->info().renderer)) {
+        std::printf("measuring this machine's ceilings (bounce probe), once per renderer\n");
+        measureCeilings();
+    }
     const std::vector<BenchRow> rows = runBenchmark(config, context->info());
     std::vector<SceneRays> rays;
     if (config.rays > 0)
@@ -63,8 +73,12 @@ int cmdBench(const Args& args)
             rays.push_back({config.sceneNames[i], measureRayThroughput(config.scenes[i], config.rays, 3, 0)});
         }
     writeBenchReport(out, config, rows, rays, context->info());
-    const int rc = plotSpeedError(out);
+    int rc = plotSpeedError(out);
     std::printf("wrote %s/{results.csv,results.json,report.md,speed_error.png}\n", out.string().c_str());
+    if (hasRoofline(rows)) {
+        rc |= plotRoofline(out);
+        std::printf("wrote %s/{roofline.csv,roofline.png}: every pass against its bound\n", out.string().c_str());
+    }
     return rc == 0 ? 0 : 1;
 }
 

@@ -25,8 +25,8 @@ std::optional<PassBound> passBound(const gl::PassStat& pass, const gl::Ceilings&
     b.memoryMs = ms(f * w.bytes, c.fragmentGBps * 1e9) + ms(k * w.bytes, c.computeGBps() * 1e9);
     b.setupMs = ms(w.triangles, c.mtrianglesPerSecond * 1e6);
     b.boundMs = std::max({b.computeMs, b.fetchMs, b.memoryMs, b.setupMs});
-    b.limiter = b.boundMs == b.computeMs ? "compute"
-                : b.boundMs == b.fetchMs ? "fetch"
+    b.limiter = b.boundMs == b.computeMs  ? "compute"
+                : b.boundMs == b.fetchMs  ? "fetch"
                 : b.boundMs == b.memoryMs ? "memory"
                                           : "setup";
     b.efficiency = b.boundMs / pass.medianMs;

@@ -16,13 +16,13 @@
 namespace bounce::app {
 
 struct PassBound {
-    double computeMs = 0.0; // flops at the FMA ceiling of the pass's stage
-    double fetchMs = 0.0;   // texel fetches at the fetch ceiling
-    double memoryMs = 0.0;  // bytes at the bandwidth ceiling
-    double setupMs = 0.0;   // triangles at the rasteriser's setup rate
-    double boundMs = 0.0;   // the largest of the four
+    double computeMs = 0.0;  // flops at the FMA ceiling of the pass's stage
+    double fetchMs = 0.0;    // texel fetches at the fetch ceiling
+    double memoryMs = 0.0;   // bytes at the bandwidth ceiling
+    double setupMs = 0.0;    // triangles at the rasteriser's setup rate
+    double boundMs = 0.0;    // the largest of the four
     double efficiency = 0.0; // boundMs / measured ms
-    std::string limiter;    // "compute", "fetch", "memory" or "setup"
+    std::string limiter;     // "compute", "fetch", "memory" or "setup"
 };
 
 // The bound of a pass that declared its cost and ran counted invocations; empty otherwise. A pass with

@@ -159,8 +159,19 @@ void RsmPass::updateSolidAngles()
 void RsmPass::render(Frame& frame, PassTimers& timers)
 {
     {
-        auto t = timers.scope("rsm");
+        // rsm.frag per fragment: the material, the light's flux through the texel, three RGBA32F targets
+        // (and the pyramid's level 0 of depth range and normal bounds), depth; the scene once per view.
+        const bool pyramid = settings_.levels > 0;
+        PassCost cost;
+        cost.flops = 60;
+        cost.fetches = frame.gpuScene().hasTextures() ? 4 : 0;
+        cost.bytesRead = 4;
+        cost.bytesWritten = 3 * 16 + 4 + (pyramid ? 8 + 2 * 8 : 0);
+        auto t = timers.scope("rsm", cost);
         buildViews(frame);
+        PassCost geometry;
+        geometry.triangles = double(views_.size()) * double(frame.gpuScene().triangleCount());
+        t.addWork(geometry);
         const int layers = std::max(1, viewCount());
         if (!position_ || position_.layers() != layers) allocate(layers);
         std::vector<GpuRsmView> gv;
@@ -176,7 +187,12 @@ void RsmPass::render(Frame& frame, PassTimers& timers)
         renderViews(frame);
     }
     if (settings_.levels > 0 && !views_.empty()) {
-        auto t = timers.scope("rsm-mipmap");
+        PassCost cost; // rsm_reduce.comp per texel of a coarser level: four children of six images, six out
+        cost.flops = 60;
+        cost.fetches = 4 * 6;
+        cost.bytesRead = 4 * (3 * 16 + 3 * 8);
+        cost.bytesWritten = 3 * 16 + 3 * 8;
+        auto t = timers.scope("rsm-mipmap", cost);
         reduce();
     }
 }

@@ -22,8 +22,8 @@ namespace {
 constexpr int kFmaIterations = 128;
 constexpr double kFlopsPerIteration = 16.0; // fmaChains: two vec4 FMAs, 2 flops per component
 constexpr int kFetchesPerInvocation = 32;
-constexpr int kTriangleGridSide = 256;     // 2 x 256^2 triangles of 8 pixels on a 1024^2 target
-constexpr int kFramebufferDraws = 4;       // blended, so that no draw can replace the one before
+constexpr int kTriangleGridSide = 256; // 2 x 256^2 triangles of 8 pixels on a 1024^2 target
+constexpr int kFramebufferDraws = 4;   // blended, so that no draw can replace the one before
 
 // Median milliseconds of `repeats` timed runs of `work` after one untimed run.
 double timeKernel(const std::string& name, int repeats, const std::function<void()>& work)
@@ -37,7 +37,8 @@ double timeKernel(const std::string& name, int repeats, const std::function<void
         timers.endFrame(r > 0);
     }
     const std::vector<PassStat> stats = timers.stats();
-    if (stats.empty() || !(stats.front().medianMs > 0.0)) throw std::runtime_error("probe kernel " + name + " took no time");
+    if (stats.empty() || !(stats.front().medianMs > 0.0))
+        throw std::runtime_error("probe kernel " + name + " took no time");
     return stats.front().medianMs;
 }
 
@@ -150,9 +151,10 @@ public:
             Program p = Program::graphics("probe.flat", "frame/fullscreen.vert", "probe/flat.frag");
             p.set("colour", glm::vec4(0.25f));
             const double bytes = pixels() * 32 * kFramebufferDraws; // blending reads and writes RGBA32F
-            c.framebufferGBps = bytes / (timeKernel("framebuffer", o_.repeats, [&] {
-                                             for (int i = 0; i < kFramebufferDraws; ++i) fullscreen(p, true);
-                                         }) *
+            c.framebufferGBps = bytes / (timeKernel("framebuffer", o_.repeats,
+                                                    [&] {
+                                                        for (int i = 0; i < kFramebufferDraws; ++i) fullscreen(p, true);
+                                                    }) *
                                          1e6);
             step("framebuffer bandwidth");
         }
@@ -195,7 +197,8 @@ private:
 
 double positive(const nlohmann::json& j, const char* key)
 {
-    if (!j.contains(key) || !j[key].is_number() || !(j[key].get<double>() > 0.0) || !std::isfinite(j[key].get<double>()))
+    if (!j.contains(key) || !j[key].is_number() || !(j[key].get<double>() > 0.0) ||
+        !std::isfinite(j[key].get<double>()))
         throw std::invalid_argument(std::string("ceilings: '") + key + "' must be a positive number");
     return j[key].get<double>();
 }

@@ -15,17 +15,17 @@
 namespace bounce::gl {
 
 struct Ceilings {
-    std::string renderer;                // GL_RENDERER of the context that measured them
-    double fragmentGflops = 0.0;         // FMA throughput of a full-screen fragment pass
-    double computeGflops = 0.0;          // the same kernel as a compute dispatch
-    double fragmentGBps = 0.0;           // texelFetch of four RGBA32F inputs + one RGBA32F target
-    double computeImageGBps = 0.0;       // texelFetch + imageStore of RGBA32F
-    double computeBufferGBps = 0.0;      // SSBO vec4 copy
-    double fragmentGfetches = 0.0;       // texel fetches per second (cache-resident texture), fragment
-    double computeGfetches = 0.0;        //   and compute
-    double framebufferGBps = 0.0;        // a flat-colour RGBA32F target, written only
-    double mtrianglesPerSecond = 0.0;    // pixel-sized triangles, flat shaded
-    int size = 0;                        // the side of the probe's square targets
+    std::string renderer;             // GL_RENDERER of the context that measured them
+    double fragmentGflops = 0.0;      // FMA throughput of a full-screen fragment pass
+    double computeGflops = 0.0;       // the same kernel as a compute dispatch
+    double fragmentGBps = 0.0;        // texelFetch of four RGBA32F inputs + one RGBA32F target
+    double computeImageGBps = 0.0;    // texelFetch + imageStore of RGBA32F
+    double computeBufferGBps = 0.0;   // SSBO vec4 copy
+    double fragmentGfetches = 0.0;    // texel fetches per second (cache-resident texture), fragment
+    double computeGfetches = 0.0;     //   and compute
+    double framebufferGBps = 0.0;     // a flat-colour RGBA32F target, written only
+    double mtrianglesPerSecond = 0.0; // pixel-sized triangles, flat shaded
+    int size = 0;                     // the side of the probe's square targets
 
     double computeGBps() const { return computeImageGBps > computeBufferGBps ? computeImageGBps : computeBufferGBps; }
     nlohmann::json toJson() const;
@@ -34,8 +34,8 @@ struct Ceilings {
 };
 
 struct ProbeOptions {
-    int size = 1024;  // targets are size x size
-    int repeats = 5;  // timed runs per kernel (after one warm-up)
+    int size = 1024; // targets are size x size
+    int repeats = 5; // timed runs per kernel (after one warm-up)
     // Called after each kernel with its name and how many of `total` are done (progress bars).
     std::function<void(const std::string& kernel, int done, int total)> progress;
 };

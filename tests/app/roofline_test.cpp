@@ -15,9 +15,9 @@ gl::Ceilings ceilings()
     gl::Ceilings c;
     c.renderer = "test renderer";
     c.size = 1024;
-    c.fragmentGflops = 100;  // 1e11 flop/s
+    c.fragmentGflops = 100; // 1e11 flop/s
     c.computeGflops = 50;
-    c.fragmentGBps = 20;     // 2e10 B/s
+    c.fragmentGBps = 20; // 2e10 B/s
     c.computeImageGBps = 4;
     c.computeBufferGBps = 5; // the compute ceiling is the better of image and buffer
     c.fragmentGfetches = 2;
@@ -114,8 +114,10 @@ TEST(Roofline, CeilingsRoundTripAndRefuseNonsense)
     EXPECT_EQ(back.toJson(), c.toJson());
     for (const char* key : {"fragmentGflops", "computeGBps", "mtrianglesPerSecond", "renderer"}) {
         nlohmann::json j = c.toJson();
-        if (j.contains(key)) j.erase(key);
-        else j["computeImageGBps"] = -1.0; // computeGBps is derived: break a field it comes from
+        if (j.contains(key))
+            j.erase(key);
+        else
+            j["computeImageGBps"] = -1.0; // computeGBps is derived: break a field it comes from
         EXPECT_THROW(gl::Ceilings::fromJson(j), std::invalid_argument) << key;
     }
     nlohmann::json nan = c.toJson();
