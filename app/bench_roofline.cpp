@@ -34,14 +34,14 @@ std::string rooflineMarkdown(const std::vector<BenchRow>& rows)
           " shader's own loops, `PassCost`) at this machine's ceilings, measured by `bounce probe`";
     if (ceilings) {
         char buf[512];
-        std::snprintf(buf, sizeof buf,
-                      " (fragment %.1f GFLOP/s, %.1f GB/s, %.2f G fetches/s; compute %.1f GFLOP/s, %.1f GB/s,"
-                      " %.2f G fetches/s; %.2f M triangles/s)",
-                      (*ceilings)["fragmentGflops"].get<double>(), (*ceilings)["fragmentGBps"].get<double>(),
-                      (*ceilings)["fragmentGfetches"].get<double>(), (*ceilings)["computeGflops"].get<double>(),
-                      std::max((*ceilings)["computeImageGBps"].get<double>(),
-                               (*ceilings)["computeBufferGBps"].get<double>()),
-                      (*ceilings)["computeGfetches"].get<double>(), (*ceilings)["mtrianglesPerSecond"].get<double>());
+        std::snprintf(
+            buf, sizeof buf,
+            " (fragment %.1f GFLOP/s, %.1f GB/s, %.2f G fetches/s; compute %.1f GFLOP/s, %.1f GB/s,"
+            " %.2f G fetches/s; %.2f M triangles/s)",
+            (*ceilings)["fragmentGflops"].get<double>(), (*ceilings)["fragmentGBps"].get<double>(),
+            (*ceilings)["fragmentGfetches"].get<double>(), (*ceilings)["computeGflops"].get<double>(),
+            std::max((*ceilings)["computeImageGBps"].get<double>(), (*ceilings)["computeBufferGBps"].get<double>()),
+            (*ceilings)["computeGfetches"].get<double>(), (*ceilings)["mtrianglesPerSecond"].get<double>());
         md << buf;
     }
     md << ". `bound ms` is the largest of the arithmetic, fetch, memory and triangle-setup times; efficiency"
@@ -79,7 +79,8 @@ std::string rooflineCsv(const std::vector<BenchRow>& rows)
         for (const auto& p : r.record["passes"]) {
             if (!p.contains("boundMs")) continue;
             char buf[1024];
-            std::snprintf(buf, sizeof buf, "%s,%s,\"%s\",%s,%.6g,%.6g,%.6g,%s,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g\n",
+            std::snprintf(buf, sizeof buf,
+                          "%s,%s,\"%s\",%s,%.6g,%.6g,%.6g,%s,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g\n",
                           r.scene.c_str(), r.record["technique"].get<std::string>().c_str(),
                           r.record["settings"].get<std::string>().c_str(), p["pass"].get<std::string>().c_str(),
                           p["medianMs"].get<double>(), p["boundMs"].get<double>(), p["efficiency"].get<double>(),
@@ -98,8 +99,8 @@ std::string rooflineCsv(const std::vector<BenchRow>& rows)
 int plotRoofline(const std::filesystem::path& out)
 {
     const std::string plot = "/usr/bin/python3 '" +
-                             (std::filesystem::path(BOUNCE_SOURCE_ROOT) / "bench/plot_roofline.py").string() +
-                             "' '" + (out / "roofline.csv").string() + "' '" + (out / "roofline.png").string() + "'";
+                             (std::filesystem::path(BOUNCE_SOURCE_ROOT) / "bench/plot_roofline.py").string() + "' '" +
+                             (out / "roofline.csv").string() + "' '" + (out / "roofline.png").string() + "'";
     const int rc = std::system(plot.c_str());
     if (rc != 0) std::fprintf(stderr, "bounce bench: the roofline plot failed (%d): %s\n", rc, plot.c_str());
     return rc;

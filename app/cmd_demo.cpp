@@ -31,7 +31,13 @@ const std::string kUsage =
         "  --script     comma-separated steps run in order, for automation, checked before the window opens:\n"
         "               wait:N (frames), technique:NAME, set:key=value (the left technique's parameters or the\n"
         "               frame's, e.g. set:shadow.size=512), compare:NAME (side by side),\n"
-        "               screenshot:FILE.exr (also the .png; when comparing, FILE-right.exr/.png too), quit\n") +
+        "               screenshot:FILE.exr (also the .png; when comparing, FILE-right.exr/.png too),\n"
+        "               move:N (the camera moves sideways for N frames), budget:MS (the frame budget), quit\n"
+        "\n"
+        "Frame budget (panel, 100 ms by default): while the camera or the light moves and frames take longer\n"
+        "than the budget, indirect light is computed at 1/2, 1/4 or 1/8 of the resolution and upsampled\n"
+        "(joint bilateral); once still for a quarter of a second it is full resolution again, and\n"
+        "progressive techniques accumulate.\n") +
     kSceneOptionsHelp;
 
 } // namespace

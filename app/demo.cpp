@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cfloat>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -187,6 +188,10 @@ bool Demo::runScript()
             compareWith(step.arg);
         else if (step.verb == "screenshot")
             screenshot(step.arg);
+        else if (step.verb == "move")
+            moveFrames_ = std::stoi(step.arg);
+        else if (step.verb == "budget")
+            budgetMs_ = float(std::stoi(step.arg));
         else if (step.verb == "quit")
             return false;
     }
@@ -198,6 +203,7 @@ std::unique_ptr<gl::Renderer> Demo::makeRenderer(const std::string& name, const 
     auto r = std::make_unique<gl::Renderer>(s_.scene, name, s_.frameValues, values, viewW_, viewH_);
     r->frame().setLights(lights_);
     r->frame().setCamera(fly_.camera());
+    r->setIndirectScale(indirectScale_);
     return r;
 }
 
@@ -253,13 +259,22 @@ void Demo::renderViews(int fbw, int fbh, float dt)
 {
     viewW_ = right_ ? std::max(1, fbw / 2) : fbw;
     viewH_ = fbh;
-    fly_.update(window_, dt, speed_);
+    movedThisFrame_ |= fly_.update(window_, dt, speed_);
+    if (moveFrames_ > 0) {
+        fly_.strafe(0.01f);
+        --moveFrames_;
+        movedThisFrame_ = true;
+    }
+    applyBudget(glfwGetTime());
+    const auto start = std::chrono::steady_clock::now();
     for (gl::Renderer* r : {left_.get(), right_.get()}) {
         if (!r) continue;
         r->frame().resize(viewW_, viewH_);
         r->frame().setCamera(fly_.camera());
         r->renderFrame();
     }
+    glFinish();
+    frameMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     referenceRelRmse_ = halvesRelRmse_ = -1.0;
     const bool withReference = compareReference_ && s_.reference.width == viewW_ && s_.reference.height == viewH_;
     if (!withReference && !right_) return;
@@ -271,12 +286,37 @@ void Demo::renderViews(int fbw, int fbh, float dt)
     if (right_) halvesRelRmse_ = core::relativeRmse(right_->image(), left);
 }
 
+void Demo::applyBudget(double now)
+{
+    if (movedThisFrame_) lastMoveTime_ = now;
+    movedThisFrame_ = false;
+    const bool moving = now - lastMoveTime_ < kStillSeconds;
+    int scale = indirectScale_;
+    if (!budgetOn_ || !moving)
+        scale = 1;
+    else if (frameMs_ > budgetMs_ && scale < 8)
+        scale *= 2; // the last frame was over budget: a quarter of the indirect pixels
+    else if (frameMs_ < 0.25 * budgetMs_ && scale > 1)
+        scale /= 2; // well under: finer again while still moving
+    if (scale == indirectScale_) return;
+    indirectScale_ = scale;
+    left_->setIndirectScale(scale);
+    if (right_) right_->setIndirectScale(scale);
+    if (scale == 1)
+        std::printf("budget: full resolution (still)\n");
+    else
+        std::printf("budget: indirect light at 1/%d resolution (%dx%d) while moving, %.0f ms over a %.0f ms budget\n",
+                    scale, left_->indirectWidth(), left_->indirectHeight(), frameMs_, double(budgetMs_));
+    std::fflush(stdout);
+}
+
 void Demo::panel()
 {
     ImGui::SetNextWindowPos(ImVec2(8, 32), ImGuiCond_FirstUseEver);
     ImGui::SetNextWindowSize(ImVec2(320, 0), ImGuiCond_FirstUseEver);
     ImGui::Begin("Bounce");
     ImGui::TextWrapped("%s", context_.info().renderer.c_str());
+    std::string id;
     std::string name = s_.technique;
     if (techniqueCombo(right_ ? "technique (left)" : "technique", name)) setTechnique(name);
     ImGui::TextWrapped("%s", left_->technique().summary.c_str());
@@ -295,19 +335,32 @@ void Demo::panel()
         id = labelAbove("pitch");
         turned |= ImGui::DragFloat(id.c_str(), &pitch, 0.01f, -1.57f, 1.57f);
         if (turned) l.direction = {std::cos(pitch) * std::sin(yaw), std::sin(pitch), std::cos(pitch) * std::cos(yaw)};
-        if (moved || turned)
+        if (moved || turned) {
+            movedThisFrame_ = true; // the frame budget treats a moving light as a moving camera
             for (gl::Renderer* r : {left_.get(), right_.get()})
                 if (r) r->frame().setLights(lights_);
+        }
     }
-    std::string id = labelAbove("exposure (stops)");
+    id = labelAbove("exposure (stops)");
     ImGui::DragFloat(id.c_str(), &exposure_, 0.05f, -10.f, 10.f);
     id = labelAbove("move speed (m/s)");
     ImGui::DragFloat(id.c_str(), &speed_, 0.01f, 0.01f, 100.f);
+    if (ImGui::CollapsingHeader("frame budget", ImGuiTreeNodeFlags_DefaultOpen)) {
+        ImGui::Text("%.1f frames/s (%.0f ms)", frameMs_ > 0 ? 1000.0 / frameMs_ : 0.0, frameMs_);
+        ImGui::Checkbox("coarser indirect light while moving", &budgetOn_);
+        id = labelAbove("budget (ms)");
+        ImGui::DragFloat(id.c_str(), &budgetMs_, 1.0f, 1.0f, 10000.0f, "%.0f");
+        ImGui::Text("indirect light: %dx%d (1/%d)", left_->indirectWidth(), left_->indirectHeight(), indirectScale_);
+    }
     if (ImGui::CollapsingHeader("passes (GPU ms)", ImGuiTreeNodeFlags_DefaultOpen)) {
         double total = 0;
-        for (const gl::PassStat& p : left_->timers().lastFrame()) {
-            ImGui::Text("%-24s %8.3f", p.pass.c_str(), p.medianMs);
-            total += p.medianMs;
+        const std::vector<gl::PassStat> passes = left_->timers().lastFrame();
+        for (const gl::PassStat& p : passes) total += p.medianMs;
+        for (const gl::PassStat& p : passes) {
+            // One bar per pass, its share of the frame.
+            char text[96];
+            std::snprintf(text, sizeof text, "%s %.2f ms", p.pass.c_str(), p.medianMs);
+            ImGui::ProgressBar(total > 0 ? float(p.medianMs / total) : 0.0f, ImVec2(-FLT_MIN, 0), text);
         }
         ImGui::Text("%-24s %8.3f", "total", total);
         for (const gl::Counter& c : left_->counters()) ImGui::Text("%-24s %g", c.name.c_str(), c.value);

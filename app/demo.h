@@ -70,6 +70,19 @@ private:
     double halvesRelRmse_ = -1.0;    // right against left (-1: not comparing)
     int viewW_ = 1, viewH_ = 1;
     int shot_ = 0, waitFrames_ = 0;
+    int moveFrames_ = 0; // script: frames the camera still moves sideways
+
+    // The frame budget (panel): while the camera or a light moves and a frame takes longer than the
+    // budget, indirect light drops to a coarser resolution (gl::Renderer::setIndirectScale: 2, 4, 8) and
+    // comes back to full resolution once the view has been still for kStillSeconds, where progressive
+    // techniques accumulate again.
+    static constexpr double kStillSeconds = 0.25;
+    bool budgetOn_ = true;
+    float budgetMs_ = 100.0f;
+    int indirectScale_ = 1;
+    double lastMoveTime_ = -1e30, frameMs_ = 0.0;
+    bool movedThisFrame_ = false;
+    void applyBudget(double now);
 };
 
 } // namespace bounce::app

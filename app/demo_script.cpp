@@ -20,17 +20,20 @@ const gl::TechniqueInfo& techniqueNamed(const std::string& name, const std::stri
     }
 }
 
-int waitFrames(const std::string& text, const std::string& step)
+// The step's whole argument as an integer in [lo, hi]; `what` says what it counts ("frames").
+int stepNumber(const std::string& text, const std::string& step, const std::string& verb, const char* what, long lo,
+               long hi)
 {
     std::size_t used = 0;
-    long n = -1;
+    long n = lo - 1;
     try {
         n = std::stol(text, &used);
     } catch (const std::exception&) {
         used = 0;
     }
-    if (text.empty() || used != text.size() || n < 0 || n > 1000000)
-        throw UsageError("--script: step '" + step + "': wait needs a number of frames in 0..1000000");
+    if (text.empty() || used != text.size() || n < lo || n > hi)
+        throw UsageError("--script: step '" + step + "': " + verb + " needs a number of " + what + " in " +
+                         std::to_string(lo) + ".." + std::to_string(hi));
     return int(n);
 }
 
@@ -57,7 +60,7 @@ std::vector<DemoStep> parseDemoScript(const std::string& text, const std::string
         const auto colon = item.find(':');
         DemoStep s{item.substr(0, colon), colon == std::string::npos ? "" : item.substr(colon + 1)};
         if (s.verb == "wait") {
-            waitFrames(s.arg, item);
+            stepNumber(s.arg, item, "wait", "frames", 0, 1000000);
         } else if (s.verb == "technique") {
             current = &techniqueNamed(s.arg, item);
             techniqueValues = gl::ParamValues(current->params);
@@ -69,11 +72,16 @@ std::vector<DemoStep> parseDemoScript(const std::string& text, const std::string
             } catch (const UsageError& e) {
                 throw UsageError("--script: step '" + item + "': " + e.what());
             }
+        } else if (s.verb == "move") {
+            stepNumber(s.arg, item, "move", "frames", 1, 100000);
+        } else if (s.verb == "budget") {
+            stepNumber(s.arg, item, "budget", "milliseconds", 1, 100000);
         } else if (s.verb == "screenshot") {
             if (s.arg.empty()) throw UsageError("--script: step '" + item + "': screenshot needs a file name");
         } else if (s.verb != "quit") {
             throw UsageError("--script: unknown step '" + item +
-                             "' (steps: wait:N, technique:NAME, set:key=value, compare:NAME, screenshot:FILE, quit)");
+                             "' (steps: wait:N, technique:NAME, set:key=value, compare:NAME, screenshot:FILE, move:N, "
+                             "budget:MS, quit)");
         }
         steps.push_back(s);
     }

@@ -9,14 +9,16 @@
 namespace bounce::app {
 
 struct DemoStep {
-    std::string verb; // wait, technique, set, compare, screenshot, quit
+    std::string verb; // wait, technique, set, compare, screenshot, move, budget, quit
     std::string arg;  // what follows the colon ("" when none)
 };
 
 // Parses the steps and checks each against the registry: technique: and compare: name a registered
 // technique, set:key=value names a frame parameter or a parameter of the technique selected at that
 // point of the script (starting from `initialTechnique`) with a value in its range, wait:N has
-// 0 <= N <= 1000000, screenshot: names a file. Throws UsageError saying which step is wrong and why.
+// 0 <= N <= 1000000, screenshot: names a file, move:N (the camera moves sideways for N frames, as a held
+// key would) has 1 <= N <= 100000, budget:MS (the frame budget, gl::Renderer::setIndirectScale) has
+// 1 <= MS <= 100000. Throws UsageError saying which step is wrong and why.
 std::vector<DemoStep> parseDemoScript(const std::string& text, const std::string& initialTechnique);
 
 // Whether `key` is one of gl::frameParams() (changing it rebuilds the frame, so every renderer).

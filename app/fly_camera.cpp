@@ -43,4 +43,9 @@ bool FlyCamera::update(GLFWwindow* w, float dt, float speed)
     return moved;
 }
 
+void FlyCamera::strafe(float metres)
+{
+    camera_.position += glm::normalize(glm::cross(camera_.forward, glm::vec3(0, 1, 0))) * metres;
+}
+
 } // namespace bounce::app

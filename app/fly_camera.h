@@ -13,6 +13,8 @@ public:
     const core::Camera& camera() const { return camera_; }
     // Reads the mouse and keys (unless the panel has them); returns true when the camera moved.
     bool update(GLFWwindow* window, float dtSeconds, float speedMPerS);
+    // Moves the camera sideways by `metres` (the demo script's move: step, as the D key would).
+    void strafe(float metres);
 
 private:
     core::Camera camera_;

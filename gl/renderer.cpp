@@ -1,5 +1,7 @@
 #include "gl/renderer.h"
 
+#include <stdexcept>
+
 namespace bounce::gl {
 
 Renderer::Renderer(const core::Scene& scene, const std::string& technique, const ParamValues& frameValues,
@@ -46,7 +48,46 @@ void Renderer::make(const TechniqueInfo& info, const ParamValues& techniqueValue
     technique_ = info_->create(*frame_, techniqueValues_);
     techniqueWidth_ = frame_->width();
     techniqueHeight_ = frame_->height();
+    coarse_.reset();
+    coarseTechnique_.reset();
     timers_.clear();
+}
+
+void Renderer::setIndirectScale(int scale)
+{
+    if (scale < 1 || scale > 16) throw std::invalid_argument("indirect scale must be in 1..16");
+    indirectScale_ = scale;
+    coarse_.reset();
+    coarseTechnique_.reset();
+}
+
+void Renderer::renderCoarseIndirect()
+{
+    const int w = (frame_->width() + indirectScale_ - 1) / indirectScale_;
+    const int h = (frame_->height() + indirectScale_ - 1) / indirectScale_;
+    if (!coarse_ || coarse_->width() != w || coarse_->height() != h) {
+        FrameSettings s = frame_->settings();
+        s.width = w;
+        s.height = h;
+        coarse_ = std::make_unique<Frame>(frame_->scene(), s);
+        coarse_->setLights(frame_->gpuScene().punctualLights());
+        coarseLights_ = frame_->version().lights;
+        coarseTechnique_ = info_->create(*coarse_, techniqueValues_);
+        if (!upsample_) upsample_ = std::make_unique<JointUpsample>();
+    }
+    // The same view and lights as the full frame.
+    coarse_->setCamera(frame_->camera());
+    if (coarseLights_ != frame_->version().lights) {
+        coarse_->setLights(frame_->gpuScene().punctualLights());
+        coarseLights_ = frame_->version().lights;
+    }
+    coarse_->beginFrame();
+    coarse_->renderShadowMaps(timers_);
+    coarse_->renderGBuffer(timers_);
+    coarse_->renderDirect(timers_);
+    coarse_->clearIndirect();
+    coarseTechnique_->render(*coarse_, timers_);
+    upsample_->run(*coarse_, *frame_, timers_);
 }
 
 void Renderer::renderFrame(bool keepTimings)
@@ -58,7 +99,10 @@ void Renderer::renderFrame(bool keepTimings)
     frame_->renderGBuffer(timers_);
     frame_->renderDirect(timers_);
     frame_->clearIndirect();
-    technique_->render(*frame_, timers_);
+    if (indirectScale_ > 1)
+        renderCoarseIndirect();
+    else
+        technique_->render(*frame_, timers_);
     frame_->composite(timers_);
     timers_.endFrame(keepTimings);
 }

@@ -7,6 +7,7 @@
 
 #include "core/scene.h"
 #include "gl/frame/frame.h"
+#include "gl/frame/joint_upsample.h"
 #include "gl/technique/technique.h"
 
 namespace bounce::gl {
@@ -31,6 +32,18 @@ public:
     void restartAccumulation() { technique_->restart(); }
     int accumulatedSteps() const { return technique_->accumulatedSteps(); }
 
+    // Indirect light at 1/scale of the frame's resolution (the demo's frame budget while the camera or a
+    // light moves): the technique runs on a coarse frame of ceil(w/scale) x ceil(h/scale) with the same
+    // scene, camera and lights, and its indirect light reaches the full frame through joint bilateral
+    // upsampling (gl/frame/joint_upsample.h); shadows, G-buffer and direct light stay at full resolution.
+    // Scale 1 renders as before (the full-resolution technique, which a progressive technique keeps
+    // accumulating in). Throws std::invalid_argument outside 1..16.
+    void setIndirectScale(int scale);
+    int indirectScale() const { return indirectScale_; }
+    // The resolution the indirect light is computed at.
+    int indirectWidth() const { return (frame_->width() + indirectScale_ - 1) / indirectScale_; }
+    int indirectHeight() const { return (frame_->height() + indirectScale_ - 1) / indirectScale_; }
+
     Frame& frame() { return *frame_; }
     const TechniqueInfo& technique() const { return *info_; }
     const ParamValues& techniqueValues() const { return techniqueValues_; }
@@ -47,6 +60,12 @@ private:
     ParamValues frameValues_, techniqueValues_;
     PassTimers timers_;
     int techniqueWidth_ = 0, techniqueHeight_ = 0;
+    int indirectScale_ = 1;
+    std::unique_ptr<Frame> coarse_;              // indirectScale_ > 1: the coarse frame the technique runs on
+    std::unique_ptr<Technique> coarseTechnique_; //   and its technique
+    std::unique_ptr<JointUpsample> upsample_;
+    std::uint64_t coarseLights_ = 0; // the full frame's lights version the coarse frame has
+    void renderCoarseIndirect();
 };
 
 } // namespace bounce::gl

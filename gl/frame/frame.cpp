@@ -132,9 +132,9 @@ void Frame::renderGBuffer(PassTimers& timers)
     cost.flops = 40;                           // gbuffer.frag: normalize, brdfParams, the back-face case
     cost.fetches = gpu_.hasTextures() ? 4 : 0; // one bilinear base-colour sample
     cost.bytesRead = 4;                        // depth test
-    cost.bytesWritten = 5 * 16 + 4;            // five RGBA32F targets and depth
+    cost.bytesWritten = 2 * 16 + 3 * 8 + 4;    // two RGBA32F and three RGBA16F targets, depth
     const double pixels = double(settings_.width) * settings_.height;
-    cost.bytesFixed = pixels * (5 * 16 + 4) + 3.0 * gpu_.triangleCount() * kVertexBytes; // clears, vertices
+    cost.bytesFixed = pixels * (2 * 16 + 3 * 8 + 4) + 3.0 * gpu_.triangleCount() * kVertexBytes; // clears, vertices
     cost.triangles = double(gpu_.triangleCount());
     auto t = timers.scope("gbuffer", cost);
     PassState state = PassState::fullscreen(gbufferFbo_, settings_.width, settings_.height);
@@ -184,7 +184,7 @@ void Frame::renderDirect(PassTimers& timers)
     PassCost cost;
     cost.flops = 30 + punctual * (60 + 10 * taps) + area * (250 + 10 * taps);
     cost.fetches = 5 + (punctual + area) * taps;
-    cost.bytesRead = 5 * 16 + (punctual + area) * taps * 4;
+    cost.bytesRead = 2 * 16 + 3 * 8 + (punctual + area) * taps * 4;
     cost.bytesWritten = 16;
     auto t = timers.scope("direct", cost);
     PassState::fullscreen(directFbo_, settings_.width, settings_.height).apply();

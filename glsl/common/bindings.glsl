@@ -35,10 +35,13 @@
 #define UNIT_RSM_FIRST 8         // rsm.glsl: position, normal, flux, depth range, normal min, max: 8..13
 #define UNIT_MULTIRES_FIRST 14   // multires.glsl: position, normal, diffuse, depth range, normal min, max: 14..19
 #define UNIT_MULTIRES_ILLUMINATION 20 // frame/multires_upsample.comp: the flattened illumination buffer
-// The composite and tone-map passes read no G-buffer; their inputs take the first units.
+// The composite, tone-map and joint-upsample passes bind no G-buffer units; their inputs take the first units.
 #define UNIT_COMPOSITE_DIRECT 0
 #define UNIT_COMPOSITE_INDIRECT 1
 #define UNIT_TONEMAP_RADIANCE 0
+#define UNIT_UPSAMPLE_COARSE_INDIRECT 0 // frame/joint_upsample.frag (the demo's frame budget)
+#define UNIT_UPSAMPLE_COARSE_NORMAL 1
+#define UNIT_UPSAMPLE_FULL_NORMAL 2
 
 // Image units (glBindImageTexture) are bound right before the dispatch that uses them and belong to
 // that pass: each compute shader numbers its images from 0.

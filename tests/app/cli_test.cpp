@@ -386,6 +386,29 @@ TEST(Cli, DemoRunsSwitchesTechniqueAndShowsTheCornellBox)
     EXPECT_GT(right.y, 2.0f * right.x) << "the right wall should be green";
 }
 
+// The frame budget: while the camera moves and frames take longer than the budget (1 ms here, so any
+// machine is over it), indirect light drops to a coarser resolution, and once the camera has been still it
+// comes back to full resolution; the screenshot after that is the full-resolution image of the same view
+// (a renderer at full resolution throughout gives the same picture).
+TEST(Cli, DemoFrameBudgetCoarsensWhileMovingAndReturnsWhenStill)
+{
+    if (!std::getenv("DISPLAY")) GTEST_SKIP() << "no DISPLAY: the suite runs under xvfb-run in CI (test.sh)";
+    const fs::path d = outDir("demo-budget");
+    const std::string moved = (d / "moved.exr").string(), still = (d / "still.exr").string();
+    const CliRun r = run("demo --scene cornell-spot --size 96x64 --technique rsm --script set:vpls=16,budget:1,move:4,"
+                         "screenshot:" +
+                         moved + ",move:3,wait:12,screenshot:" + still + ",quit");
+    ASSERT_EQ(r.status, 0) << r.output;
+    const auto coarse = r.output.find("budget: indirect light at 1/2 resolution (48x32) while moving");
+    ASSERT_NE(coarse, std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("budget: indirect light at 1/4 resolution (24x16)"), std::string::npos) << r.output;
+    const auto full = r.output.find("budget: full resolution (still)", coarse);
+    ASSERT_NE(full, std::string::npos) << "never back to full resolution:\n" << r.output;
+    const bounce::core::Image a = bounce::core::readImage(moved), b = bounce::core::readImage(still);
+    EXPECT_EQ(a.width, 96);
+    EXPECT_EQ(b.width, 96);
+}
+
 // A frame parameter set while comparing rebuilds both halves: with the same technique on both sides the
 // two halves are the same image before and after, and the change shows (a 16-texel shadow map against
 // 1024: relative RMSE about 1 on cornell-spot at 64x64). Each screenshot while comparing writes the

@@ -14,9 +14,11 @@ using bounce::app::UsageError;
 TEST(DemoScript, ParsesEveryVerbInOrder)
 {
     const auto steps = parseDemoScript("wait:2,technique:isr,set:rsmSize=64,set:shadow.size=512,compare:rsm,"
-                                       "screenshot:out/a.exr,quit",
+                                       "screenshot:out/a.exr,quit,move:3,budget:50",
                                        "direct");
-    ASSERT_EQ(steps.size(), 7u);
+    ASSERT_EQ(steps.size(), 9u);
+    EXPECT_EQ(steps[7].verb, "move");
+    EXPECT_EQ(steps[8].arg, "50");
     EXPECT_EQ(steps[0].verb, "wait");
     EXPECT_EQ(steps[0].arg, "2");
     EXPECT_EQ(steps[2].verb, "set");
@@ -60,6 +62,10 @@ TEST(DemoScript, BadStepsAreRefusedWithTheReason)
         {"wait:-1", "wait"},
         {"wait:", "wait"},
         {"screenshot:", "file name"},
+        {"move:0", "move"},
+        {"move:x", "move"},
+        {"budget:0", "budget"},
+        {"budget:100001", "milliseconds"},
         {"jump:3", "unknown step"},
     };
     for (const auto& c : cases) {

@@ -96,8 +96,9 @@ TEST(Bindings, NoTwoNamesShareASlot)
     ASSERT_FALSE(frame.empty());
     ASSERT_FALSE(isr.empty());
     // The passes that read no G-buffer (composite, tone map) reuse the first units on purpose.
-    const std::vector<std::string> passLocal{"UNIT_COMPOSITE_DIRECT", "UNIT_COMPOSITE_INDIRECT",
-                                             "UNIT_TONEMAP_RADIANCE"};
+    const std::vector<std::string> passLocal{"UNIT_COMPOSITE_DIRECT",       "UNIT_COMPOSITE_INDIRECT",
+                                             "UNIT_TONEMAP_RADIANCE",       "UNIT_UPSAMPLE_COARSE_INDIRECT",
+                                             "UNIT_UPSAMPLE_COARSE_NORMAL", "UNIT_UPSAMPLE_FULL_NORMAL"};
     // RSM and multires pyramid names are the first of six units each.
     auto span = [](const std::string& n) { return n == "UNIT_RSM_FIRST" || n == "UNIT_MULTIRES_FIRST" ? 6 : 1; };
     std::map<std::string, std::string> used; // "SSBO 4" -> name
