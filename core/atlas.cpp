@@ -86,14 +86,19 @@ std::vector<std::uint32_t> growCharts(const Triangles& t, float cosMax, std::vec
         while (!stack.empty()) {
             const std::uint32_t cur = stack.back();
             stack.pop_back();
-            for (int k = 0; k < 3; ++k)
-                for (std::uint32_t nb : edges[edgeKey(t.welded[cur][k], t.welded[cur][(k + 1) % 3])]) {
+            for (int k = 0; k < 3; ++k) {
+                const std::vector<std::uint32_t>& across = edges[edgeKey(t.welded[cur][k], t.welded[cur][(k + 1) % 3])];
+                // Only across manifold edges: where more surfaces meet (a wall between two rooms' floors)
+                // the sides belong to different charts, which the transfer tells apart.
+                if (across.size() != 2) continue;
+                for (std::uint32_t nb : across) {
                     if (chart[nb] != kNone) continue;
                     const bool degenerate = normals[nb] == glm::vec3(0.0f);
                     if (!degenerate && glm::dot(normals[nb], normal) < cosMax) continue;
                     chart[nb] = id;
                     stack.push_back(nb);
                 }
+            }
         }
     }
     return chart;
@@ -187,9 +192,8 @@ Atlas buildAtlas(const Scene& scene, const AtlasSettings& settings)
     // Step 3: shelf packing, tallest first, into a width about the square root of the charts' area.
     std::vector<std::uint32_t> order(chartCount);
     std::iota(order.begin(), order.end(), 0u);
-    std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
-        return atlas.charts[a].size.y > atlas.charts[b].size.y;
-    });
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::uint32_t a, std::uint32_t b) { return atlas.charts[a].size.y > atlas.charts[b].size.y; });
     double rectArea = 0.0;
     int widest = 0;
     for (const AtlasChart& c : atlas.charts) {
@@ -258,8 +262,8 @@ bool fillsTexel(const std::array<glm::vec2, 3>& t, int i, int j, float margin)
 bool texelTouches(const std::array<glm::vec2, 3>& t, int i, int j)
 {
     // Separating axes: x, y and the three edge normals.
-    const glm::vec2 sq[4] = {{float(i), float(j)}, {float(i + 1), float(j)}, {float(i), float(j + 1)},
-                             {float(i + 1), float(j + 1)}};
+    const glm::vec2 sq[4] = {
+        {float(i), float(j)}, {float(i + 1), float(j)}, {float(i), float(j + 1)}, {float(i + 1), float(j + 1)}};
     const auto separated = [&](glm::vec2 axis) {
         float a0 = 1e30f, a1 = -1e30f, b0 = 1e30f, b1 = -1e30f;
         for (const glm::vec2& p : t) a0 = std::min(a0, glm::dot(p, axis)), a1 = std::max(a1, glm::dot(p, axis));

@@ -3,7 +3,8 @@
 //
 // The method (buildAtlas):
 //   1. Charts by region growing: triangles are welded by position, and a chart grows from its first
-//      unassigned triangle over shared edges to every triangle whose face normal lies within
+//      unassigned triangle over manifold edges (shared by exactly two triangles: where more meet, as
+//      under a wall between two floors, the sides stay apart) to every triangle whose face normal lies within
 //      AtlasSettings::maxNormalAngleRad of the seed's. Degenerate triangles join the chart that reaches
 //      them (or seed one of their own).
 //   2. Each chart is projected orthographically onto the plane of its seed normal and scaled by the texel
@@ -43,9 +44,9 @@ inline constexpr float kFillMargin = 1.4142136f + 0.01f;
 
 struct AtlasSettings {
     float texelsPerMetre = 64.0f;
-    int gutter = 2;                        // texels on every side of a chart (at least 2)
-    float maxNormalAngleRad = 0.2617994f;  // 15 degrees: region growing stops at sharper creases
-    int maxSize = 16384;                   // refuse atlases wider or taller than this
+    int gutter = 2;                       // texels on every side of a chart (at least 2)
+    float maxNormalAngleRad = 0.2617994f; // 15 degrees: region growing stops at sharper creases
+    int maxSize = 16384;                  // refuse atlases wider or taller than this
 };
 
 struct AtlasChart {
@@ -53,7 +54,7 @@ struct AtlasChart {
     glm::ivec2 size{0};   // the rectangle's size in texels, gutter included
     glm::vec3 normal{0.0f, 0.0f, 1.0f};
     glm::vec3 axisU{1.0f, 0.0f, 0.0f}, axisV{0.0f, 1.0f, 0.0f}; // the projection plane's axes
-    std::uint32_t firstTriangle = 0; // the seed (global triangle index)
+    std::uint32_t firstTriangle = 0;                            // the seed (global triangle index)
     std::uint32_t triangleCount = 0;
 };
 
