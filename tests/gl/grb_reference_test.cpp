@@ -67,7 +67,8 @@ std::vector<bool> awayFromEmitters(const core::Image& emission)
             const glm::vec3 e = emission.at(x, y);
             if (std::max({e.x, e.y, e.z}) <= 0.0f) continue;
             for (int j = std::max(y - 1, 0); j <= std::min(y + 1, kSize - 1); ++j)
-                for (int i = std::max(x - 1, 0); i <= std::min(x + 1, kSize - 1); ++i) keep[std::size_t(j) * kSize + i] = false;
+                for (int i = std::max(x - 1, 0); i <= std::min(x + 1, kSize - 1); ++i)
+                    keep[std::size_t(j) * kSize + i] = false;
         }
     return keep;
 }

@@ -76,7 +76,9 @@ public:
         choice_.kbuffer.samples = v.getInt("samples");
         if (v.isAuto("k")) {
             choice_.depth =
-                measureDepthComplexity(frame, atlas_, choice_.kbuffer.size, kDepthComplexityDirections, setup);
+                // Depth complexity hardly depends on the resolution: measured at 128^2 at most.
+                measureDepthComplexity(frame, atlas_, std::min(choice_.kbuffer.size, 128), kDepthComplexityDirections,
+                                       setup);
             choice_.kbuffer.k = std::clamp(choice_.depth.largest, 1, kMaxAutoK);
         } else {
             choice_.kbuffer.k = v.getInt("k");
@@ -229,7 +231,7 @@ TechniqueInfo grbTechniqueInfo()
     info.reads = {GBufferChannel::Position, GBufferChannel::Normal, GBufferChannel::Diffuse, GBufferChannel::Specular};
     ParamDecl dirs{"directionsPerFrame",
                    ParamType::Int,
-                   8,
+                   4,
                    1,
                    4096,
                    "bundle directions added per frame; time per frame is linear in it"};
@@ -258,7 +260,7 @@ TechniqueInfo grbTechniqueInfo()
                       "with its square"};
     density.allowAuto = true;
     ParamDecl texels{"atlasTexels", ParamType::Int,
-                     65536,         64,
+                     32768,         64,
                      1 << 26,       "texels the surfaces cover when density is auto (the paper: 2048^2 atlases)"};
     ParamDecl interleaved{"interleaved",
                           ParamType::Bool,

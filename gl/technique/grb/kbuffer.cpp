@@ -191,14 +191,19 @@ void KBuffer::captureStencil(const GrbAtlas& atlas, const BundleView& view)
         init.stencil.test = true;
         init.stencil.func = GL_ALWAYS;
         init.stencil.depthPass = GL_REPLACE;
+        // The fixed-function sample mask as well as gl_SampleMask: drivers honour one or the other.
+        glEnable(GL_SAMPLE_MASK);
         for (int i = 0; i < samples_; ++i) {
             init.stencil.ref = kRoutingRef + i + slice * samples_;
             init.apply();
+            glSampleMaski(0, 1u << i);
             initProgram_.set("sampleIndex", i);
             initProgram_.use();
             vao_.bind();
             glDrawArrays(GL_TRIANGLES, 0, 3);
         }
+        glSampleMaski(0, ~0u);
+        glDisable(GL_SAMPLE_MASK);
         // Routing: the sample whose stencil equals the reference takes the fragment; every sample is
         // decremented on every fragment, so the next one goes to the next sample.
         PassState route = PassState::fullscreen(fbo_, n, n);

@@ -15,11 +15,12 @@ void main()
     ivec2 px = ivec2(gl_FragCoord.xy);
     bool overflow;
     int n = kbufferCountAt(px, overflow);
+#if defined(KBUFFER_ATOMIC)
+    uint count = texelFetch(kbufferCount, px, 0).r; // the counter: no entry needs reading
+    uint used = uint(n);
+#else
     uint used = 0u;
     for (int i = 0; i < n; ++i) used += entryTexel(kbufferEntry(px, i)) != 0u ? 1u : 0u;
-#if defined(KBUFFER_ATOMIC)
-    uint count = texelFetch(kbufferCount, px, 0).r;
-#else
     uint count = used + (overflow ? 1u : 0u); // at least this many
 #endif
     if (overflow) atomicAdd(overflowPixels, 1u);
