@@ -193,8 +193,12 @@ TEST_F(GrbTransfer, OverflowNeverLeaksThroughAWall)
     core::Scene s;
     s.materials.push_back(grbtest::lambertian(0.5f));
     s.materials.push_back(grbtest::lambertian(0.5f, 1.0f));
-    s.meshes.push_back(grbtest::box({0, 0, 0}, {1, 1, 1}, true, 1));         // lit room: every face emits
-    s.meshes.push_back(grbtest::box({1.05f, 0, 0}, {2.05f, 1, 1}, true, 0)); // dark room beside it
+    // The dark room's floor is drawn first, then the lit room, then the rest of the dark room: the atomic
+    // capture keeps the first k fragments in drawing order, so with k = 2 a pixel through both rooms
+    // keeps the dark floor and a lit surface, which must never be paired.
+    s.meshes.push_back(grbtest::box({1.05f, 0, 0}, {2.05f, 1, 1}, true, 0, 0b111110u)); // dark floor only
+    s.meshes.push_back(grbtest::box({0, 0, 0}, {1, 1, 1}, true, 1));                    // lit room: all emit
+    s.meshes.push_back(grbtest::box({1.05f, 0, 0}, {2.05f, 1, 1}, true, 0, 0b000001u)); // dark room, no floor
     for (int k : {2, 16}) {
         SCOPED_TRACE("k = " + std::to_string(k));
         Harness h(s, kbufferSettings(gl::KBufferCapture::Atomic, 48, k), 10.0f);
