@@ -68,9 +68,10 @@ std::vector<BenchSetting> expand(const nlohmann::json& runs)
         const int warmup = run.value("warmup", -1), frames = run.value("frames", -1);
         if (warmup < -1 || frames == 0 || frames < -1)
             throw UsageError("bench config: a run's warmup >= 0 and frames >= 1");
+        const bool curve = run.value("curve", false);
         for (const auto& c : combos)
             out.push_back({run["technique"].get<std::string>(), c, baseline, baselineSets, temporal, width, height,
-                           scenes, warmup, frames});
+                           scenes, warmup, frames, curve});
     }
     return out;
 }
@@ -123,6 +124,9 @@ BenchConfig readBenchConfig(const std::string& path, const std::string& cacheDir
     c.sceneNames = config.value("scenes", std::vector<std::string>{"cornell-spot"});
     c.compareTo = config.value("compareTo", std::vector<std::string>{});
     c.rays = config.value("rays", 0);
+    c.pathTracerSpp = config.value("pathTracerSpp", std::vector<int>{});
+    for (int spp : c.pathTracerSpp)
+        if (spp < 1) throw UsageError("bench config: \"pathTracerSpp\" needs positive sample counts");
     if (c.rays < 0 || c.rays > (1 << 24)) throw UsageError("bench config: \"rays\" must be in [0, 16777216]");
     for (const BenchSetting& s : c.settings)
         for (const std::string& n : s.scenes)

@@ -24,6 +24,9 @@ struct BenchSetting {
     int width = 0, height = 0;
     std::vector<std::string> scenes;
     int warmup = -1, frames = -1; // -1: the config's
+    // Progressive techniques: the error against `full` after every timed frame (accumulation step), with
+    // the GPU time so far: the convergence curve (record "curve").
+    bool curve = false;
 
     bool runsOn(const std::string& scene) const;
 };
@@ -37,6 +40,9 @@ struct BenchConfig {
     std::vector<std::string> compareTo; // references beyond the technique's own paths and `full`
     int rays = 0;                       // rays per batch of the GPU-against-Embree table per scene; 0: none
     ReferenceSpec reference;
+    // The path tracer's own time against error beside the curves: `full` at these samples per pixel, at
+    // the reference's size, timed and compared with the (converged) reference; one row each.
+    std::vector<int> pathTracerSpp;
 
     int widthOf(const BenchSetting& s) const { return s.width > 0 ? s.width : width; }
     int heightOf(const BenchSetting& s) const { return s.height > 0 ? s.height : height; }

@@ -10,6 +10,7 @@
 #include "core/image.h"
 #include "core/metrics.h"
 #include "core/progress.h"
+#include "ref/reference.h"
 
 namespace bounce::app {
 
@@ -94,6 +95,30 @@ struct SceneCache {
     std::map<std::string, core::Image> references, baselines;
 };
 
+// The emitter mask of a scene seen from its camera at w x h (the `direct` frame's emission channel).
+std::vector<bool> emitterMaskOf(const core::Scene& scene, int w, int h)
+{
+    gl::Renderer d(scene, "direct", gl::ParamValues(gl::frameParams()),
+                   gl::ParamValues(gl::findTechnique("direct").params), w, h);
+    d.renderFrame(false);
+    return emitterMask(d.frame().read(d.frame().emission()), w, h);
+}
+
+// Relative RMSE of the renderer's image against the `full` reference (at the reference's size, emitters
+// left out), for the convergence curve.
+double errorAgainstFull(const BenchConfig& config, const std::string& sceneName, const core::Scene& scene,
+                        gl::Renderer& r, int w, int h, SceneCache& cache)
+{
+    const int rw = config.reference.width > 0 ? config.reference.width : w;
+    const int rh = config.reference.height > 0 ? config.reference.height : h;
+    const std::string key = "full@" + std::to_string(rw) + "x" + std::to_string(rh);
+    if (!cache.references.count(key))
+        cache.references[key] = referenceImage(scene, sceneName, "full", rw, rh, config.reference);
+    const std::vector<bool> emitters = emitterMask(r.frame().read(r.frame().emission()), rw, rh);
+    return core::relativeRmse(blanked(core::boxDownsample(r.image(), rw, rh), emitters),
+                              blanked(cache.references[key], emitters));
+}
+
 // Error figures against each reference: own light paths, `full`, then compareTo.
 void compareWithReferences(const BenchConfig& config, const std::string& sceneName, const core::Scene& scene,
                            gl::Renderer& r, int w, int h, SceneCache& cache, BenchRow& row)
@@ -161,7 +186,18 @@ BenchRow runSetting(const BenchConfig& config, const BenchSetting& s, const std:
     applySets(s.sets, info, f, t);
     gl::Renderer r(scene, s.technique, f, t, w, h);
     for (int i = 0; i < config.warmupOf(s); ++i) r.renderFrame(false);
-    for (int i = 0; i < config.framesOf(s); ++i) r.renderFrame(true);
+    nlohmann::json curve = nlohmann::json::array();
+    if (s.curve && info.progressive) r.restartAccumulation();
+    double elapsedMs = 0.0;
+    for (int i = 0; i < config.framesOf(s); ++i) {
+        r.renderFrame(true);
+        if (!s.curve) continue;
+        for (const gl::PassStat& p : r.timers().lastFrame()) elapsedMs += p.medianMs;
+        curve.push_back({{"step", i + 1},
+                         {"accumulated", r.accumulatedSteps()},
+                         {"elapsedMs", elapsedMs},
+                         {"relativeRmseFull", errorAgainstFull(config, sceneName, scene, r, w, h, cache)}});
+    }
 
     BenchRow row;
     row.scene = sceneName;
@@ -181,7 +217,58 @@ BenchRow runSetting(const BenchConfig& config, const BenchSetting& s, const std:
         row.record["temporal"] = {{"frames", s.temporalFrames}, {"meanFrameDifference", row.flicker}};
     }
     row.record["size"] = row.size;
+    if (s.curve) row.record["curve"] = curve;
     return row;
+}
+
+// The path tracer's own time against error: `full` at each of config.pathTracerSpp samples per pixel,
+// rendered afresh (never cached: the time is the figure), against the scene's reference.
+std::vector<BenchRow> pathTracerCurve(const BenchConfig& config, const std::string& sceneName, const core::Scene& scene,
+                                      SceneCache& cache)
+{
+    std::vector<BenchRow> rows;
+    const int w = config.reference.width > 0 ? config.reference.width : config.width;
+    const int h = config.reference.height > 0 ? config.reference.height : config.height;
+    const std::string key = "full@" + std::to_string(w) + "x" + std::to_string(h);
+    if (!cache.references.count(key))
+        cache.references[key] = referenceImage(scene, sceneName, "full", w, h, config.reference);
+    for (int spp : config.pathTracerSpp) {
+        ref::RenderSettings rs;
+        rs.paths = ref::LightPaths::Full;
+        rs.width = w;
+        rs.height = h;
+        rs.spp = spp;
+        rs.seed = 1234; // not the reference's seed: independent noise
+        rs.progress = false;
+        const ref::RenderResult res = ref::render(scene, scene.camera, rs);
+        BenchRow row;
+        row.scene = sceneName;
+        row.technique = "path-tracer";
+        row.settings = "spp=" + std::to_string(spp);
+        row.size = std::to_string(w) + "x" + std::to_string(h);
+        row.lightPaths = "full";
+        row.totalMs = res.seconds * 1000.0;
+        const std::vector<bool> emitters = emitterMaskOf(scene, w, h);
+        const core::ImageMetrics m =
+            core::compareImages(blanked(res.image, emitters), blanked(cache.references[key], emitters));
+        row.relRmseFull = row.relRmseOwn = m.relativeRmse;
+        row.rmseOwn = m.rmse;
+        row.ssimOwn = m.ssim;
+        row.relRmseBaseline = row.flicker = NAN;
+        row.relRmseCompareTo.assign(config.compareTo.size(), NAN);
+        row.record = {{"scene", sceneName},
+                      {"technique", "path-tracer"},
+                      {"settings", row.settings},
+                      {"size", row.size},
+                      {"lightPaths", "full"},
+                      {"totalMs", row.totalMs},
+                      {"rays", res.rays},
+                      {"spp", spp},
+                      {"passes", nlohmann::json::array()},
+                      {"error", {{"full", {{"relativeRmse", m.relativeRmse}, {"rmse", m.rmse}, {"ssim", m.ssim}}}}}};
+        rows.push_back(row);
+    }
+    return rows;
 }
 
 } // namespace
@@ -195,6 +282,8 @@ std::vector<BenchRow> runBenchmark(const BenchConfig& config, const gl::ContextI
     std::vector<BenchRow> rows;
     for (std::size_t si = 0; si < config.scenes.size(); ++si) {
         SceneCache cache;
+        for (BenchRow& row : pathTracerCurve(config, config.sceneNames[si], config.scenes[si], cache))
+            rows.push_back(std::move(row));
         for (const BenchSetting& s : config.settings) {
             if (!s.runsOn(config.sceneNames[si])) continue;
             rows.push_back(runSetting(config, s, config.sceneNames[si], config.scenes[si], context, cache));

@@ -120,6 +120,7 @@ nlohmann::json runRecord(const gl::ContextInfo& ctx, const std::string& scene, g
     nlohmann::json counters = nlohmann::json::object();
     for (const gl::Counter& c : r.counters()) counters[c.name] = c.value;
     j["counters"] = counters;
+    if (const nlohmann::json notes = r.notes(); !notes.is_null() && !notes.empty()) j["notes"] = notes;
     j["bytesAllocated"] = gl::Allocations::instance().byLabel();
     j["bytesAllocatedTotal"] = gl::Allocations::instance().totalBytes();
     j["time"] = std::time(nullptr);

@@ -50,6 +50,7 @@ public:
     const ParamValues& frameValues() const { return frameValues_; }
     PassTimers& timers() { return timers_; }
     std::vector<Counter> counters() const { return technique_->counters(); }
+    nlohmann::json notes() const { return technique_->notes(); }
     core::Image image() const { return frame_->read(frame_->result()); }
 
 private:

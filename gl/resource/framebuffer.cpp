@@ -43,6 +43,12 @@ void Framebuffer::setDrawBuffers(std::initializer_list<unsigned> buffers)
     glNamedFramebufferDrawBuffers(id(), GLsizei(b.size()), b.data());
 }
 
+void Framebuffer::setDefaultSize(int width, int height)
+{
+    glNamedFramebufferParameteri(id(), GL_FRAMEBUFFER_DEFAULT_WIDTH, width);
+    glNamedFramebufferParameteri(id(), GL_FRAMEBUFFER_DEFAULT_HEIGHT, height);
+}
+
 void Framebuffer::checkComplete() const
 {
     const GLenum s = glCheckNamedFramebufferStatus(id(), GL_FRAMEBUFFER);

@@ -26,6 +26,8 @@ public:
     void attach(unsigned attachment, const Texture& texture, int level = 0);
     void attachLayer(unsigned attachment, const Texture& texture, int layer, int level = 0);
     void setDrawBuffers(std::initializer_list<unsigned> buffers);
+    // A framebuffer without attachments (passes that only write images) rasterises this size.
+    void setDefaultSize(int width, int height);
     // Throws std::runtime_error naming the label when incomplete.
     void checkComplete() const;
     void bind() const;

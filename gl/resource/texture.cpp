@@ -176,6 +176,15 @@ Texture Texture::create2DMultisample(const std::string& label, unsigned f, int w
     return t;
 }
 
+Texture Texture::create2DMultisampleArray(const std::string& label, unsigned f, int w, int h, int samples, int layers)
+{
+    Texture t = make(label, GL_TEXTURE_2D_MULTISAMPLE_ARRAY, f, w, h, 1, samples * layers, bytesPerTexel(f));
+    t.layers_ = layers;
+    glTextureStorage3DMultisample(t.id(), samples, f, w, h, layers, GL_TRUE);
+    checkStorage(t, label, std::size_t(w) * std::size_t(h) * std::size_t(samples * layers) * bytesPerTexel(f));
+    return t;
+}
+
 Texture Texture::createBufferView(const std::string& label, unsigned f, const Buffer& buffer)
 {
     const std::size_t texels = buffer.bytes() / bytesPerTexel(f);

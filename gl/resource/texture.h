@@ -24,6 +24,9 @@ public:
     static Texture createCubeArray(const std::string& label, unsigned internalFormat, int size, int cubes);
     static Texture create2DMultisample(const std::string& label, unsigned internalFormat, int width, int height,
                                        int samples);
+    // `layers` multisample layers of `samples` samples each (the stencil-routed k-buffer's slices).
+    static Texture create2DMultisampleArray(const std::string& label, unsigned internalFormat, int width, int height,
+                                            int samples, int layers);
     // A buffer texture (samplerBuffer) over the whole of `buffer`, read as texels of `internalFormat`: a
     // view, it allocates nothing. Throws std::invalid_argument beyond GL_MAX_TEXTURE_BUFFER_SIZE texels.
     static Texture createBufferView(const std::string& label, unsigned internalFormat, const Buffer& buffer);

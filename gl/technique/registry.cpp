@@ -1,6 +1,7 @@
 // The registry: every technique of Bounce, in the order `bounce list` shows them. A family adds a line
 // here (an explicit table rather than static registration, which static libraries silently drop).
 #include "gl/technique/direct.h"
+#include "gl/technique/grb/grb_technique.h"
 #include "gl/technique/isr/hisr_technique.h"
 #include "gl/technique/isr/isr_technique.h"
 #include "gl/technique/isr/multires_technique.h"
@@ -20,6 +21,7 @@ const std::vector<TechniqueInfo>& techniques()
         t.push_back(multiresSplatTechniqueInfo());
         t.push_back(isrTechniqueInfo());
         t.push_back(hisrTechniqueInfo());
+        t.push_back(grbTechniqueInfo());
         return t;
     }();
     return all;

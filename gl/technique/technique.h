@@ -95,6 +95,8 @@ public:
     virtual void restart() {}
     // Progressive techniques: accumulation steps since the last start (ray-bundle directions, ...).
     virtual int accumulatedSteps() const { return 0; }
+    // What the run's JSON record should say beyond numbers (which capture ran and why...); {} for nothing.
+    virtual nlohmann::json notes() const { return {}; }
 };
 
 // The G-buffer channels a technique may read (Frame::bindGBuffer, glsl/common/gbuffer.glsl).

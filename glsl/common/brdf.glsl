@@ -38,22 +38,32 @@ float smithVis(float NdotL, float NdotV, float a2)
     return 0.5 / (gv + gl);
 }
 
+// What the glossy interface lets through to the diffuse part in one direction: 1 - w F(cos).
+vec3 brdfTransmission(BrdfParams p, float cosTheta)
+{
+    return 1.0 - p.weight * (p.f0 + (1.0 - p.f0) * pow(1.0 - cosTheta, 5.0));
+}
+
+// The glossy lobe alone, w F D Vis, without the cosine; zero below either horizon.
+vec3 brdfGlossy(BrdfParams p, vec3 n, vec3 wo, vec3 wi)
+{
+    float NdotL = dot(n, wi), NdotV = dot(n, wo);
+    if (NdotL <= 0.0 || NdotV <= 0.0 || p.weight <= 0.0) return vec3(0.0);
+    vec3 h = normalize(wo + wi);
+    float VdotH = max(dot(wo, h), 0.0);
+    vec3 F = p.f0 + (1.0 - p.f0) * pow(1.0 - VdotH, 5.0);
+    float a2 = p.alpha * p.alpha;
+    return p.weight * F * ggxD(max(dot(n, h), 0.0), a2) * smithVis(NdotL, NdotV, a2);
+}
+
 // f(wo, wi) without the cosine; zero below either horizon.
 vec3 brdfEval(BrdfParams p, vec3 n, vec3 wo, vec3 wi)
 {
     float NdotL = dot(n, wi), NdotV = dot(n, wo);
     if (NdotL <= 0.0 || NdotV <= 0.0) return vec3(0.0);
-    vec3 h = normalize(wo + wi);
-    float VdotH = max(dot(wo, h), 0.0);
-    vec3 F = p.f0 + (1.0 - p.f0) * pow(1.0 - VdotH, 5.0);
-    vec3 wF = p.weight * F;
     // The diffuse part keeps what the glossy interface transmits on the way in and on the way out.
-    vec3 transmitted = (1.0 - p.weight * (p.f0 + (1.0 - p.f0) * pow(1.0 - NdotV, 5.0))) *
-                       (1.0 - p.weight * (p.f0 + (1.0 - p.f0) * pow(1.0 - NdotL, 5.0)));
-    vec3 diffuse = transmitted * p.diffuse / kPi;
-    if (p.weight <= 0.0) return diffuse;
-    float a2 = p.alpha * p.alpha;
-    return diffuse + wF * ggxD(max(dot(n, h), 0.0), a2) * smithVis(NdotL, NdotV, a2);
+    vec3 diffuse = brdfTransmission(p, NdotV) * brdfTransmission(p, NdotL) * p.diffuse / kPi;
+    return diffuse + brdfGlossy(p, n, wo, wi);
 }
 
 #endif

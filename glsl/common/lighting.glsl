@@ -38,6 +38,21 @@ vec3 shadedIrradiance(Light l, vec3 p, vec3 n, vec3 wo, BrdfParams b, vec3 wi, v
     return brdfEval(b, n, wo, wi) * irradiance * shadowVisibility(l, p, n);
 }
 
+// Irradiance at p (normal n) from a point, spot or directional light l, unshadowed, and the direction
+// wi towards the light. Shared by the direct pass and by techniques that light other points (atlases).
+vec3 punctualIrradiance(Light l, vec3 p, vec3 n, out vec3 wi)
+{
+    if (int(l.positionType.w) == kLightDirectional) {
+        wi = -l.directionCosOuter.xyz;
+        return l.intensityCosInner.rgb * max(dot(n, wi), 0.0);
+    }
+    vec3 d = l.positionType.xyz - p;
+    float d2 = max(dot(d, d), 1e-12);
+    wi = d * inversesqrt(d2);
+    float w = int(l.positionType.w) == kLightSpot ? spotWeight(l, dot(-wi, l.directionCosOuter.xyz)) : 1.0;
+    return l.intensityCosInner.rgb * (w * max(dot(n, wi), 0.0) / d2);
+}
+
 // Outgoing radiance towards wo from a point, spot or directional light l at p.
 //
 // Callers loop over the lights of each kind separately (gl/frame/gpu_scene.h keeps the punctual lights
@@ -47,17 +62,7 @@ vec3 shadedIrradiance(Light l, vec3 p, vec3 n, vec3 wo, BrdfParams b, vec3 wi, v
 vec3 directFromPunctual(Light l, vec3 p, vec3 n, vec3 wo, BrdfParams b)
 {
     vec3 wi;
-    vec3 irradiance;
-    if (int(l.positionType.w) == kLightDirectional) {
-        wi = -l.directionCosOuter.xyz;
-        irradiance = l.intensityCosInner.rgb * max(dot(n, wi), 0.0);
-    } else {
-        vec3 d = l.positionType.xyz - p;
-        float d2 = max(dot(d, d), 1e-12);
-        wi = d * inversesqrt(d2);
-        float w = int(l.positionType.w) == kLightSpot ? spotWeight(l, dot(-wi, l.directionCosOuter.xyz)) : 1.0;
-        irradiance = l.intensityCosInner.rgb * (w * max(dot(n, wi), 0.0) / d2);
-    }
+    vec3 irradiance = punctualIrradiance(l, p, n, wi);
     return shadedIrradiance(l, p, n, wo, b, wi, irradiance);
 }
 

@@ -14,6 +14,7 @@
 #include <gtest/gtest.h>
 
 #include "gl/frame/bindings.h"
+#include "gl/technique/grb/bindings.h"
 #include "gl/technique/isr/bindings.h"
 
 namespace fs = std::filesystem;
@@ -92,27 +93,37 @@ TEST(Bindings, CppBindsByName)
 TEST(Bindings, NoTwoNamesShareASlot)
 {
     const auto frame = table(root() / "glsl/common/bindings.glsl");
-    const auto isr = table(root() / "glsl/technique/isr/bindings.glsl");
     ASSERT_FALSE(frame.empty());
-    ASSERT_FALSE(isr.empty());
-    // The passes that read no G-buffer (composite, tone map) reuse the first units on purpose.
-    const std::vector<std::string> passLocal{"UNIT_COMPOSITE_DIRECT",       "UNIT_COMPOSITE_INDIRECT",
-                                             "UNIT_TONEMAP_RADIANCE",       "UNIT_UPSAMPLE_COARSE_INDIRECT",
-                                             "UNIT_UPSAMPLE_COARSE_NORMAL", "UNIT_UPSAMPLE_FULL_NORMAL"};
-    // RSM and multires pyramid names are the first of six units each.
-    auto span = [](const std::string& n) { return n == "UNIT_RSM_FIRST" || n == "UNIT_MULTIRES_FIRST" ? 6 : 1; };
-    std::map<std::string, std::string> used; // "SSBO 4" -> name
-    for (const auto* t : {&frame, &isr})
-        for (const auto& [name, value] : *t) {
-            if (std::find(passLocal.begin(), passLocal.end(), name) != passLocal.end()) continue;
-            const std::string kind = name.substr(0, name.find('_'));
-            for (int i = 0; i < span(name); ++i) {
-                const std::string key = kind + " " + std::to_string(value + i);
-                EXPECT_EQ(used.count(key), 0u) << name << " and " << used[key] << " share " << key;
-                used[key] = name;
+    // Families never run together: each is checked against the frame's slots, not against each other.
+    std::vector<std::string> families; // every glsl/technique/<family>/bindings.glsl
+    for (const auto& e : fs::directory_iterator(root() / "glsl/technique"))
+        if (fs::exists(e.path() / "bindings.glsl")) families.push_back(e.path().filename().string());
+    ASSERT_GE(families.size(), 2u);
+    for (const std::string& family : families) {
+        SCOPED_TRACE(family);
+        const auto familyTable = table(root() / "glsl/technique" / family / "bindings.glsl");
+        ASSERT_FALSE(familyTable.empty());
+        // The passes that read no G-buffer (composite, tone map, joint upsampling) reuse the first units.
+        const std::vector<std::string> passLocal{"UNIT_COMPOSITE_DIRECT",       "UNIT_COMPOSITE_INDIRECT",
+                                                 "UNIT_TONEMAP_RADIANCE",       "UNIT_UPSAMPLE_COARSE_INDIRECT",
+                                                 "UNIT_UPSAMPLE_COARSE_NORMAL", "UNIT_UPSAMPLE_FULL_NORMAL"};
+        // RSM and multires pyramid names are the first of six units each.
+        auto span = [](const std::string& n) { return n == "UNIT_RSM_FIRST" || n == "UNIT_MULTIRES_FIRST" ? 6 : 1; };
+        std::map<std::string, std::string> used; // "SSBO 4" -> name
+        for (const auto* t : {&frame, &familyTable})
+            for (const auto& [name, value] : *t) {
+                if (std::find(passLocal.begin(), passLocal.end(), name) != passLocal.end()) continue;
+                const std::string kind = name.substr(0, name.find('_'));
+                for (int i = 0; i < span(name); ++i) {
+                    const std::string key = kind + " " + std::to_string(value + i);
+                    EXPECT_EQ(used.count(key), 0u) << name << " and " << used[key] << " share " << key;
+                    used[key] = name;
+                }
             }
-        }
+    }
     // The C++ side is the same file: spot-check that the macros are what the table says.
     EXPECT_EQ(SSBO_BVH_NODES, frame.at("SSBO_BVH_NODES"));
-    EXPECT_EQ(UNIT_ISR_VPL_TREE_TEXELS, isr.at("UNIT_ISR_VPL_TREE_TEXELS"));
+    EXPECT_EQ(UNIT_ISR_VPL_TREE_TEXELS,
+              table(root() / "glsl/technique/isr/bindings.glsl").at("UNIT_ISR_VPL_TREE_TEXELS"));
+    EXPECT_EQ(UNIT_GRB_KBUFFER, table(root() / "glsl/technique/grb/bindings.glsl").at("UNIT_GRB_KBUFFER"));
 }

@@ -1,0 +1,5 @@
+// Global ray-bundles' binding points for C++: glsl/technique/grb/bindings.glsl as it is, so that the
+// numbers exist once (the frame's own are in gl/frame/bindings.h).
+#pragma once
+
+#include "glsl/technique/grb/bindings.glsl"

@@ -1,0 +1,50 @@
+#include "gl/technique/grb/bundle_directions.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/sampling.h"
+
+namespace bounce::gl {
+
+glm::vec3 bundleDirection(std::uint64_t index)
+{
+    const glm::vec2 u(float(core::halton(0, index + 1)), float(core::halton(1, index + 1)));
+    return core::sampleUniformSphere(u);
+}
+
+glm::vec2 bundleJitter(std::uint64_t index)
+{
+    return {float(core::halton(2, index + 1)), float(core::halton(3, index + 1))};
+}
+
+BundleView bundleView(const core::Bounds& bounds, glm::vec3 dir, glm::vec2 jitter, int size)
+{
+    BundleView v;
+    v.dir = glm::normalize(dir);
+    const core::Frame f = core::Frame::fromNormal(v.dir);
+    v.right = f.t;
+    v.up = f.b;
+    v.centre = bounds.centre();
+    v.radius = std::max(0.5f * glm::length(bounds.extent()) * 1.01f, 1e-6f);
+    v.jitter = jitter;
+    v.size = size;
+    // clip.x = ((dot(p - c, right) + r) / 2r * size + jitter.x) / size * 2 - 1, likewise y; clip.z =
+    // dot(p - c, dir) / r. Columns of the matrix (GLM is column-major).
+    const float s = 1.0f / v.radius;
+    const glm::vec2 shift = 2.0f * jitter / float(size);
+    glm::mat4 m(0.0f);
+    for (int a = 0; a < 3; ++a) {
+        m[a][0] = v.right[a] * s;
+        m[a][1] = v.up[a] * s;
+        m[a][2] = v.dir[a] * s;
+    }
+    m[3][0] = -glm::dot(v.centre, v.right) * s + shift.x;
+    m[3][1] = -glm::dot(v.centre, v.up) * s + shift.y;
+    m[3][2] = -glm::dot(v.centre, v.dir) * s;
+    m[3][3] = 1.0f;
+    v.viewProj = m;
+    return v;
+}
+
+} // namespace bounce::gl

@@ -1,0 +1,35 @@
+// The directions of the global ray-bundles (Hermes et al. 2010, Sec. 4.3) and the orthographic view of
+// each (Sec. 3, Fig. 4). No GL here.
+#pragma once
+
+#include <cstdint>
+
+#include <glm/glm.hpp>
+
+#include "core/scene.h"
+
+namespace bounce::gl {
+
+// Sec. 4.3: the Halton sequence (bases 2 and 3) on the unit sphere, uniform in area; both orientations
+// of a direction are used, so each receiver gets one sample of its hemisphere per direction (density
+// 1 / (2 pi) there, Eq. 2). Index 0 is the sequence's point 1 (point 0 is the pole).
+glm::vec3 bundleDirection(std::uint64_t index);
+// A sub-pixel offset of the k-buffer's grid for direction `index` (Halton bases 5 and 7), in [0, 1)^2
+// pixels: the rays of successive directions do not all pass through the same lattice.
+glm::vec2 bundleJitter(std::uint64_t index);
+
+struct BundleView {
+    glm::vec3 dir{0.0f, 0.0f, 1.0f}, right{1.0f, 0.0f, 0.0f}, up{0.0f, 1.0f, 0.0f};
+    glm::vec3 centre{0.0f};
+    float radius = 1.0f;
+    glm::vec2 jitter{0.0f};
+    int size = 1;
+    // World to clip: x, y over the sphere's disk (plus the jitter), z = depth along dir over [-r, r].
+    glm::mat4 viewProj{1.0f};
+};
+
+// The bounding sphere of the scene (the bounds' centre, half their diagonal, 1% larger so that nothing
+// lies on its surface) looked at along `dir` by a size x size k-buffer.
+BundleView bundleView(const core::Bounds& bounds, glm::vec3 dir, glm::vec2 jitter, int size);
+
+} // namespace bounce::gl

@@ -1,0 +1,438 @@
+#include "gl/technique/grb/kbuffer.h"
+
+#include <algorithm>
+#include <cstring>
+#include <map>
+#include <memory>
+#include <stdexcept>
+
+#include "core/cornell.h"
+#include "gl/frame/bindings.h"
+#include "gl/gl.h"
+#include "gl/resource/dispatch.h"
+#include "gl/resource/pass_state.h"
+#include "gl/technique/grb/bindings.h"
+
+namespace bounce::gl {
+
+namespace {
+
+// Stencil routing: sample i of slice j starts at kRoutingRef + i + j S; a fragment passes where the
+// stencil equals kRoutingRef. 2 (not 1) so that the last sample of the last slice, which starts at 1 + k,
+// is still above 0 after k fragments and at 0 after more: the overflow mark (kbuffer.glsl).
+constexpr int kRoutingRef = 2;
+
+std::vector<Define> captureDefines(const char* mode, int k)
+{
+    return {{mode, "1"}, {"KBUFFER_K", std::to_string(std::max(k, 1))}};
+}
+
+void clearUint(Texture& t)
+{
+    const GLuint zero[4] = {0, 0, 0, 0};
+    glClearTexImage(t.id(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, zero);
+}
+
+std::vector<std::uint32_t> readUint(const Texture& t)
+{
+    std::vector<std::uint32_t> out(std::size_t(t.width()) * std::size_t(t.height()));
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glGetTextureImage(t.id(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, GLsizei(out.size() * 4), out.data());
+    return out;
+}
+
+} // namespace
+
+std::string kbufferCaptureName(KBufferCapture c)
+{
+    switch (c) {
+    case KBufferCapture::Stencil: return "stencil";
+    case KBufferCapture::Atomic: return "atomic";
+    default: return "peel";
+    }
+}
+
+int maxKBufferSamples()
+{
+    GLint colour = 1, depth = 1, general = 1;
+    glGetIntegerv(GL_MAX_COLOR_TEXTURE_SAMPLES, &colour);
+    glGetIntegerv(GL_MAX_DEPTH_TEXTURE_SAMPLES, &depth);
+    glGetIntegerv(GL_MAX_SAMPLES, &general);
+    return std::max(1, std::min({colour, depth, general}));
+}
+
+KBuffer::KBuffer(const KBufferSettings& settings)
+    : settings_(settings),
+      fbo_("grb.kbuffer.fbo"),
+      initFbo_("grb.kbuffer.init"),
+      vao_("grb.kbuffer.scene"),
+      anySamples_(GL_ANY_SAMPLES_PASSED, "grb.kbuffer.peel")
+{
+    if (settings.size < 1 || settings.k < 1) throw std::invalid_argument("k-buffer: size and k must be positive");
+    const int n = settings.size;
+    switch (settings.capture) {
+    case KBufferCapture::Stencil: {
+        samples_ = std::min(settings.samples, maxKBufferSamples());
+        slices_ = (settings.k + samples_ - 1) / samples_;
+        k_ = samples_ * slices_;
+        if (1 + k_ > 255) throw std::invalid_argument("k-buffer: stencil routing holds at most 254 entries");
+        entries_ = Texture::create2DMultisampleArray("grb.kbuffer.entries", GL_RG32F, n, n, samples_, slices_);
+        stencil_ = Texture::create2DMultisample("grb.kbuffer.stencil", GL_DEPTH24_STENCIL8, n, n, samples_);
+        glTextureParameteri(stencil_.id(), GL_DEPTH_STENCIL_TEXTURE_MODE, GL_STENCIL_INDEX);
+        fbo_.attach(GL_DEPTH_STENCIL_ATTACHMENT, stencil_);
+        captureProgram_ = Program::graphics("grb.capture.stencil", "technique/grb/capture.vert",
+                                            "technique/grb/capture.frag", captureDefines("CAPTURE_STENCIL", k_));
+        initProgram_ =
+            Program::graphics("grb.stencil.init", "frame/fullscreen.vert", "technique/grb/stencil_init.frag");
+        break;
+    }
+    case KBufferCapture::Atomic:
+        k_ = settings.k;
+        entries_ = Texture::create2DArray("grb.kbuffer.entries", GL_RG32F, n, n, k_);
+        count_ = Texture::create2D("grb.kbuffer.count", GL_R32UI, n, n);
+        fbo_.setDefaultSize(n, n);
+        captureProgram_ = Program::graphics("grb.capture.atomic", "technique/grb/capture.vert",
+                                            "technique/grb/capture.frag", captureDefines("CAPTURE_ATOMIC", k_));
+        break;
+    case KBufferCapture::Peel:
+        k_ = settings.k;
+        entries_ = Texture::create2DArray("grb.kbuffer.entries", GL_RG32F, n, n, k_);
+        count_ = Texture::create2D("grb.kbuffer.overflow", GL_R32UI, n, n);
+        peelTexel_ = Texture::create2D("grb.kbuffer.peelTexel", GL_RG32F, n, n);
+        peelPrevious_ = Texture::create2D("grb.kbuffer.peelPrevious", GL_RG32F, n, n);
+        peelDepth_ = Texture::create2D("grb.kbuffer.peelDepth", GL_DEPTH_COMPONENT32F, n, n);
+        peelFbo_ = Framebuffer("grb.kbuffer.peel");
+        peelFbo_.attach(GL_COLOR_ATTACHMENT0, peelTexel_);
+        peelFbo_.attach(GL_DEPTH_ATTACHMENT, peelDepth_);
+        peelFbo_.checkComplete();
+        overflowFbo_ = Framebuffer("grb.kbuffer.overflow");
+        overflowFbo_.attach(GL_COLOR_ATTACHMENT0, count_);
+        overflowFbo_.checkComplete();
+        composeProgram_ =
+            Program::graphics("grb.peel.compose", "frame/fullscreen.vert", "technique/grb/peel_compose.frag");
+        captureProgram_ = Program::graphics("grb.capture.peel", "technique/grb/capture.vert",
+                                            "technique/grb/capture.frag", captureDefines("CAPTURE_PEEL", k_));
+        overflowProgram_ = Program::graphics("grb.capture.overflow", "technique/grb/capture.vert",
+                                             "technique/grb/capture.frag", captureDefines("CAPTURE_OVERFLOW", k_));
+        break;
+    }
+}
+
+std::vector<Define> KBuffer::readerDefines() const
+{
+    std::vector<Define> d;
+    switch (settings_.capture) {
+    case KBufferCapture::Stencil: d.push_back({"KBUFFER_STENCIL", "1"}); break;
+    case KBufferCapture::Atomic: d.push_back({"KBUFFER_ATOMIC", "1"}); break;
+    case KBufferCapture::Peel: d.push_back({"KBUFFER_PEEL", "1"}); break;
+    }
+    d.push_back({"KBUFFER_K", std::to_string(k_)});
+    d.push_back({"KBUFFER_SAMPLES", std::to_string(samples_)});
+    return d;
+}
+
+void KBuffer::setBundleUniforms(Program& p, const BundleView& v)
+{
+    p.set("bundleDir", v.dir);
+    p.set("bundleRight", v.right);
+    p.set("bundleUp", v.up);
+    p.set("bundleCentre", v.centre);
+    p.set("bundleRadius", v.radius);
+    p.set("kbufferSize", v.size);
+    p.set("bundleJitter", v.jitter);
+    p.set("bundleViewProj", v.viewProj);
+}
+
+void KBuffer::bindForRead() const
+{
+    entries_.bind(UNIT_GRB_KBUFFER);
+    if (settings_.capture == KBufferCapture::Stencil)
+        stencil_.bind(UNIT_GRB_KBUFFER_STENCIL);
+    else
+        count_.bind(UNIT_GRB_KBUFFER_COUNT);
+}
+
+void KBuffer::drawScene(Program& program, const GrbAtlas& atlas, const BundleView& view)
+{
+    setBundleUniforms(program, view);
+    program.set("atlasWidth", atlas.width());
+    program.set("depthScale", 0.5f / view.radius);
+    program.use();
+    vao_.bind();
+    glDrawArrays(GL_TRIANGLES, 0, GLsizei(3 * atlas.layout().triangleCount()));
+}
+
+void KBuffer::capture(const Frame& frame, const GrbAtlas& atlas, const BundleView& view, PassTimers& timers)
+{
+    auto t = timers.scope("capture");
+    frame.bindSceneData();
+    atlas.bind();
+    switch (settings_.capture) {
+    case KBufferCapture::Stencil: captureStencil(atlas, view); break;
+    case KBufferCapture::Atomic: captureAtomic(atlas, view); break;
+    case KBufferCapture::Peel: capturePeel(atlas, view); break;
+    }
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+}
+
+void KBuffer::captureStencil(const GrbAtlas& atlas, const BundleView& view)
+{
+    const int n = settings_.size;
+    for (int slice = 0; slice < slices_; ++slice) {
+        fbo_.attachLayer(GL_COLOR_ATTACHMENT0, entries_, slice);
+        const float zero[4] = {0, 0, 0, 0};
+        PassState clear = PassState::fullscreen(fbo_, n, n);
+        clear.apply();
+        glClearNamedFramebufferfv(fbo_.id(), GL_COLOR, 0, zero);
+        // Each sample's stencil to its index plus the slice's offset, through the sample mask.
+        PassState init = PassState::fullscreen(fbo_, n, n);
+        init.multisample = true;
+        init.colorMask = glm::bvec4(false);
+        init.stencil.test = true;
+        init.stencil.func = GL_ALWAYS;
+        init.stencil.depthPass = GL_REPLACE;
+        // The fixed-function sample mask as well as gl_SampleMask: drivers honour one or the other.
+        glEnable(GL_SAMPLE_MASK);
+        for (int i = 0; i < samples_; ++i) {
+            init.stencil.ref = kRoutingRef + i + slice * samples_;
+            init.apply();
+            glSampleMaski(0, 1u << i);
+            initProgram_.set("sampleIndex", i);
+            initProgram_.use();
+            vao_.bind();
+            glDrawArrays(GL_TRIANGLES, 0, 3);
+        }
+        glSampleMaski(0, ~0u);
+        glDisable(GL_SAMPLE_MASK);
+        // Routing: the sample whose stencil equals the reference takes the fragment; every sample is
+        // decremented on every fragment, so the next one goes to the next sample.
+        PassState route = PassState::fullscreen(fbo_, n, n);
+        route.multisample = settings_.multisample;
+        route.stencil.test = true;
+        route.stencil.func = GL_EQUAL;
+        route.stencil.ref = kRoutingRef;
+        route.stencil.stencilFail = route.stencil.depthFail = route.stencil.depthPass = GL_DECR;
+        route.apply();
+        drawScene(captureProgram_, atlas, view);
+    }
+}
+
+void KBuffer::captureAtomic(const GrbAtlas& atlas, const BundleView& view)
+{
+    const int n = settings_.size;
+    clearUint(count_);
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
+    PassState::fullscreen(fbo_, n, n).apply();
+    count_.bindImage(0, GL_READ_WRITE, 0, GL_R32UI);
+    entries_.bindImage(1, GL_WRITE_ONLY, 0, GL_RG32F);
+    drawScene(captureProgram_, atlas, view);
+}
+
+void KBuffer::capturePeel(const GrbAtlas& atlas, const BundleView& view)
+{
+    const int n = settings_.size;
+    if (double(atlas.width()) * double(atlas.height()) >= double(1 << 24))
+        throw std::invalid_argument("k-buffer: depth peeling orders texels as floats, exact for atlases below 2^24 "
+                                    "texels; this one has " +
+                                    std::to_string(atlas.width()) + "x" + std::to_string(atlas.height()));
+    const float zero[4] = {0, 0, 0, 0}, none[4] = {3e38f, 3e38f, 0, 0};
+    entries_.clear(0, zero);
+    peelPrevious_.clear(0, zero);
+    clearUint(count_);
+    peeled_ = 0;
+    bool more = true;
+    for (int layer = 0; layer < k_ && more; ++layer) {
+        captureProgram_.set("firstLayer", layer == 0 ? 1 : 0);
+        peelPrevious_.bind(UNIT_GRB_KBUFFER);
+        // The nearest depth beyond the previous layer...
+        PassState s = PassState::fullscreen(peelFbo_, n, n);
+        s.apply(); // clears obey the write masks: clear before masking colour
+        glClearNamedFramebufferfv(peelFbo_.id(), GL_COLOR, 0, none);
+        glClearNamedFramebufferfi(peelFbo_.id(), GL_DEPTH_STENCIL, 0, 1.0f, 0);
+        s.depthTest = true;
+        s.colorMask = glm::bvec4(false);
+        s.apply();
+        {
+            auto q = anySamples_.scope();
+            drawScene(captureProgram_, atlas, view);
+        }
+        more = anySamples_.result() != 0;
+        if (!more) break;
+        // ...and the smallest texel at exactly that depth.
+        s.colorMask = glm::bvec4(true);
+        s.depthFunc = GL_EQUAL;
+        s.depthWrite = false;
+        s.blend = true;
+        s.blendEquation = GL_MIN;
+        s.apply();
+        drawScene(captureProgram_, atlas, view);
+        // Into the k-buffer's layer and the copy the next layer reads.
+        fbo_.attachLayer(GL_COLOR_ATTACHMENT0, entries_, layer);
+        fbo_.attach(GL_COLOR_ATTACHMENT1, peelPrevious_);
+        fbo_.setDrawBuffers({GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1});
+        PassState::fullscreen(fbo_, n, n).apply();
+        peelTexel_.bind(UNIT_GRB_KBUFFER);
+        composeProgram_.use();
+        vao_.bind();
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+        ++peeled_;
+    }
+    if (!more) return;
+    // One more layer beyond the last marks the pixels that overflowed.
+    PassState s = PassState::fullscreen(overflowFbo_, n, n);
+    s.apply();
+    peelPrevious_.bind(UNIT_GRB_KBUFFER);
+    overflowProgram_.set("firstLayer", 0);
+    drawScene(overflowProgram_, atlas, view);
+}
+
+std::vector<KBuffer::Pixel> KBuffer::readBack()
+{
+    const int n = settings_.size;
+    if (!readProgram_)
+        readProgram_ = Program::compute("grb.kbuffer.read", "technique/grb/kbuffer_read.comp", readerDefines());
+    Texture entries = Texture::create2DArray("grb.kbuffer.readEntries", GL_RG32F, n, n, k_);
+    Texture counts = Texture::create2D("grb.kbuffer.readCounts", GL_R32UI, n, n);
+    bindForRead();
+    entries.bindImage(0, GL_WRITE_ONLY, 0, GL_RG32F);
+    counts.bindImage(1, GL_WRITE_ONLY, 0, GL_R32UI);
+    readProgram_.set("kbufferSize", n);
+    dispatchCompute(readProgram_, {n, n, 1}, {8, 8, 1});
+    glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
+    const std::vector<float> e = entries.readFloats(0, 2);
+    const std::vector<std::uint32_t> c = readUint(counts);
+    std::vector<Pixel> out(std::size_t(n) * std::size_t(n));
+    for (std::size_t p = 0; p < out.size(); ++p) {
+        out[p].count = c[p] & 0x7FFFFFFFu;
+        out[p].overflow = (c[p] & 0x80000000u) != 0;
+        for (int i = 0; i < k_; ++i) {
+            const float* v = &e[(std::size_t(i) * out.size() + p) * 2];
+            std::uint32_t texel = 0;
+            std::memcpy(&texel, &v[0], 4);
+            if (texel != 0) out[p].entries.push_back({v[1], texel - 1});
+        }
+        std::sort(out[p].entries.begin(), out[p].entries.end());
+    }
+    return out;
+}
+
+DepthComplexity measureDepthComplexity(const Frame& frame, const GrbAtlas& atlas, int size, int directions,
+                                       PassTimers& timers)
+{
+    auto t = timers.scope("depth-complexity");
+    Texture counter = Texture::create2D("grb.depthComplexity.counter", GL_R32UI, size, size);
+    Framebuffer fbo("grb.depthComplexity.fbo");
+    fbo.setDefaultSize(size, size);
+    VertexArray vao("grb.depthComplexity.scene");
+    Program program = Program::graphics("grb.capture.count", "technique/grb/capture.vert", "technique/grb/capture.frag",
+                                        captureDefines("CAPTURE_COUNT", 1));
+    frame.bindSceneData();
+    atlas.bind();
+    DepthComplexity dc;
+    double occupied = 0.0, fragments = 0.0;
+    for (int d = 0; d < directions; ++d) {
+        clearUint(counter);
+        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
+        PassState::fullscreen(fbo, size, size).apply();
+        counter.bindImage(0, GL_READ_WRITE, 0, GL_R32UI);
+        const BundleView v = bundleView(frame.gpuScene().bounds(), bundleDirection(std::uint64_t(d)),
+                                        bundleJitter(std::uint64_t(d)), size);
+        KBuffer::setBundleUniforms(program, v);
+        program.set("atlasWidth", atlas.width());
+        program.use();
+        vao.bind();
+        glDrawArrays(GL_TRIANGLES, 0, GLsizei(3 * atlas.layout().triangleCount()));
+        glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
+        for (std::uint32_t c : readUint(counter)) {
+            dc.largest = std::max(dc.largest, int(c));
+            if (c > 0) occupied += 1.0, fragments += double(c);
+        }
+    }
+    dc.directions = directions;
+    dc.meanOccupied = occupied > 0.0 ? fragments / occupied : 0.0;
+    return dc;
+}
+
+namespace {
+
+// Pixels whose entries differ between two captures of the same direction, among the pixels that did
+// not overflow the smaller one.
+int mismatchedPixels(const std::vector<KBuffer::Pixel>& a, const std::vector<KBuffer::Pixel>& b, int k)
+{
+    int bad = 0;
+    for (std::size_t p = 0; p < a.size(); ++p) {
+        if (int(b[p].count) > k) continue; // beyond k the captures keep different subsets
+        if (a[p].entries != b[p].entries || a[p].overflow != b[p].overflow) ++bad;
+    }
+    return bad;
+}
+
+StencilProbe runStencilProbe()
+{
+    // cornell-slats at a k-buffer of 32^2: thin slats whose edges cross pixels at every angle, and
+    // depth complexity within k = 8 (two slices of 4 on llvmpipe).
+    const core::Scene scene = core::makeCornell("cornell-slats");
+    FrameSettings fs;
+    fs.width = fs.height = 4;
+    fs.shadowMapSize = 16;
+    Frame frame(scene, fs);
+    core::AtlasSettings as;
+    as.texelsPerMetre = 64.0f;
+    GrbAtlas atlas(scene, as);
+    PassTimers timers;
+    atlas.fill(frame, timers);
+    StencilProbe probe;
+    probe.samples = maxKBufferSamples();
+    constexpr int kSize = 32, kDirections = 4, kEntries = 8;
+    KBufferSettings ks;
+    ks.size = kSize;
+    ks.k = kEntries;
+    ks.samples = probe.samples;
+    ks.capture = KBufferCapture::Atomic;
+    KBuffer atomic(ks);
+    int best = -1;
+    for (bool multisample : {false, true}) {
+        ks.capture = KBufferCapture::Stencil;
+        ks.multisample = multisample;
+        KBuffer stencil(ks);
+        int bad = 0;
+        for (int d = 0; d < kDirections; ++d) {
+            const BundleView v = bundleView(frame.gpuScene().bounds(), bundleDirection(std::uint64_t(d)),
+                                            bundleJitter(std::uint64_t(d)), kSize);
+            atomic.capture(frame, atlas, v, timers);
+            stencil.capture(frame, atlas, v, timers);
+            bad += mismatchedPixels(stencil.readBack(), atomic.readBack(), stencil.k());
+        }
+        if (best < 0 || bad < best) {
+            best = bad;
+            probe.multisample = multisample;
+        }
+    }
+    timers.endFrame(false);
+    probe.mismatchedPixels = best;
+    probe.pixels = kSize * kSize * kDirections;
+    probe.exact = best == 0;
+    probe.reason = probe.exact
+                       ? std::string("stencil routing exact on this driver (GL_MULTISAMPLE ") +
+                             (probe.multisample ? "on" : "off") + ", " + std::to_string(probe.samples) + " samples)"
+                       : "stencil routing inexact on this driver: " + std::to_string(best) + " of " +
+                             std::to_string(probe.pixels) +
+                             " probe pixels differ from the atomic capture (best with GL_MULTISAMPLE " +
+                             (probe.multisample ? "on" : "off") + ")";
+    return probe;
+}
+
+} // namespace
+
+const StencilProbe& stencilProbe()
+{
+    // One probe per driver (the renderer string) for the life of the process.
+    static std::map<std::string, std::unique_ptr<StencilProbe>> probes;
+    const char* r = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+    const std::string key = r ? r : "";
+    auto& p = probes[key];
+    if (!p) p = std::make_unique<StencilProbe>(runStencilProbe());
+    return *p;
+}
+
+} // namespace bounce::gl

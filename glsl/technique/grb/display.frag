@@ -1,0 +1,60 @@
+#version 450 core
+// The indirect light at each pixel: the reflected part of the atlas (radiance.glsl: the indirect sums
+// over their counts, bilinearly among the texels that took samples) times the pixel's own diffuse colour
+// and Fresnel transmission towards the eye, from the G-buffer (sharp textures, back faces black);
+// FINAL_GLOSSY: plus the final glossy bounce gathered at the pixel (Sec. 5.3). The direct part of the atlas
+// (emitters through the bundles, the seed) is not shown: the frame computes direct light.
+#include "common/brdf.glsl"
+#include "common/gbuffer.glsl"
+#include "technique/grb/bindings.glsl"
+
+layout(binding = UNIT_GRB_SENDER_INDIRECT) uniform sampler2D atlasIndirect;
+#ifdef FINAL_GLOSSY
+layout(binding = UNIT_GRB_FINAL_GLOSSY) uniform sampler2D finalGlossy;
+#endif
+uniform vec3 cameraPosition;
+
+in vec2 vAtlas;
+layout(location = 0) out vec4 outIndirect;
+
+void main()
+{
+    ivec2 px = ivec2(gl_FragCoord.xy);
+    vec4 pos = texelFetch(gPosition, px, 0);
+    if (pos.w == 0.0) {
+        outIndirect = vec4(0.0);
+        return;
+    }
+    vec3 n = texelFetch(gNormal, px, 0).xyz;
+    vec4 diff = texelFetch(gDiffuse, px, 0);
+    vec4 spec = texelFetch(gSpecular, px, 0);
+    BrdfParams b;
+    b.diffuse = diff.rgb;
+    b.weight = diff.a;
+    b.f0 = spec.rgb;
+    b.alpha = max(spec.a * spec.a, 1e-3);
+    vec3 wo = normalize(cameraPosition - pos.xyz);
+
+    // Bilinear among the four nearest texels, each its sum over its own count; texels without a sample
+    // (empty, or never found in a k-buffer) take no part.
+    vec2 q = vAtlas - 0.5;
+    ivec2 base = ivec2(floor(q));
+    vec2 f = q - vec2(base);
+    vec3 sum = vec3(0.0);
+    float weights = 0.0;
+    for (int j = 0; j < 2; ++j)
+        for (int i = 0; i < 2; ++i) {
+            vec4 v = texelFetch(atlasIndirect, base + ivec2(i, j), 0);
+            float w = (i == 1 ? f.x : 1.0 - f.x) * (j == 1 ? f.y : 1.0 - f.y);
+            if (v.a > 0.0 && w > 0.0) {
+                sum += w * v.rgb / v.a;
+                weights += w;
+            }
+        }
+    vec3 radiance = weights > 0.0 ? b.diffuse * brdfTransmission(b, max(dot(n, wo), 0.0)) * sum / weights : vec3(0.0);
+#ifdef FINAL_GLOSSY
+    vec4 g = texelFetch(finalGlossy, px, 0);
+    radiance += g.rgb / max(g.a, 1.0);
+#endif
+    outIndirect = vec4(radiance, 1.0);
+}
