@@ -9,7 +9,8 @@
 
 namespace bounce::gl {
 
-GpuScan::GpuScan() : program_(Program::compute("photon.scan", "technique/photon/scan.comp")) {}
+GpuScan::GpuScan() : program_(Program::compute("photon.scan", "technique/photon/scan.comp"))
+{}
 
 void GpuScan::run(const Buffer& data, std::uint32_t count, const Buffer& counters, std::uint32_t totalSlot)
 {

@@ -58,8 +58,8 @@ enum PhotonCounter : std::uint32_t {
 glm::vec3 emittedPower(const LightSource& light, float directionalRadius);
 
 struct PhotonTracerSettings {
-    int photons = 65536;    // emitted paths
-    int maxBounces = 16;    // surfaces one path may reach
+    int photons = 65536; // emitted paths
+    int maxBounces = 16; // surfaces one path may reach
     bool russianRoulette = true;
     std::uint32_t seed = 1; // the same in every frame: a moving light moves the same photons
 };
