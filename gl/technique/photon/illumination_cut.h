@@ -50,8 +50,8 @@ public:
     IlluminationCut();
 
     // counters: the family's counters buffer (kCounterSlots uints); photons: the tree's photons.
-    void build(const PhotonTree& tree, const Buffer& photons, const IlluminationCutSettings& settings,
-               Buffer& counters, PassTimers& timers);
+    void build(const PhotonTree& tree, const Buffer& photons, const IlluminationCutSettings& settings, Buffer& counters,
+               PassTimers& timers);
     // Binds the per-node cut data at SSBO_PHOTON_CUT.
     void bind() const;
 
