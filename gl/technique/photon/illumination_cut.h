@@ -34,8 +34,10 @@ struct GpuCutNode {
     glm::vec4 influenceHi;  // w: generation bits
     glm::vec4 centreRadius; // w: r_p
     glm::vec4 normalRatio;  // w: refinement ratio
+    glm::vec4 fallbackLo, fallbackHi;
+    glm::vec4 incoming;
 };
-static_assert(sizeof(GpuCutNode) == 80);
+static_assert(sizeof(GpuCutNode) == 128);
 inline constexpr std::uint32_t kCutSelected = 1, kCutAnyBelow = 2, kCutIn = 4, kCutPassed = 8;
 
 struct IlluminationCutSettings {

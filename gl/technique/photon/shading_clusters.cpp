@@ -34,7 +34,8 @@ ShadingClusters::ShadingClusters(const ShadingClusterSettings& settings)
       update_(compute("kmeansUpdate", "kmeans_update.comp")),
       sample_(compute("kmeansSample", "kmeans_sample.comp")),
       marks_(compute("kmeansMarks", "kmeans_marks.comp")),
-      survivorsProgram_(compute("kmeansSurvivors", "kmeans_survivors.comp"))
+      survivorsProgram_(compute("kmeansSurvivors", "kmeans_survivors.comp")),
+      perPixel_(compute("clustersPerPixel", "clusters_per_pixel.comp"))
 {}
 
 void ShadingClusters::allocate(int width, int height)
@@ -47,11 +48,13 @@ void ShadingClusters::allocate(int width, int height)
     std::size_t quadNodes = 0;
     for (int m = 0; m <= quadLevels_; ++m) quadNodes += std::size_t(quadSize_ >> m) * std::size_t(quadSize_ >> m);
     quad_ = Buffer("photon.quadtree", quadNodes * 32);
-    seedsBuffer_ = Buffer("photon.seeds", std::max(quadNodes * 8, std::size_t(settings_.clusters) * sizeof(GpuCluster)));
+    seedsBuffer_ =
+        Buffer("photon.seeds", std::max(quadNodes * 8, std::size_t(settings_.clusters) * sizeof(GpuCluster)));
     const std::size_t pixels = std::size_t(width) * std::size_t(height);
     clusterOfPixel_ = Buffer("photon.clusterOfPixel", pixels * 4);
     clusterOfPixel_.clearToZero();
-    const std::size_t k = std::size_t(std::max(settings_.clusters, 1));
+    const std::size_t k =
+        settings_.everyPixel ? std::max<std::size_t>(pixels, 1) : std::size_t(std::max(settings_.clusters, 1));
     clusters_ = Buffer("photon.clusters", k * sizeof(GpuCluster));
     clusters_.clearToZero();
     const std::size_t sortCount = std::max(pixels, std::size_t(std::bit_ceil(unsigned(k))));
@@ -200,6 +203,17 @@ void ShadingClusters::cluster(const Frame& frame, float sceneSize, Buffer& count
     alpha_ = settings_.alpha / std::max(sceneSize, 1e-30f);
     frame.bindGBuffer();
     const auto k = std::uint32_t(std::max(settings_.clusters, 1));
+    if (settings_.everyPixel) {
+        bind();
+        clusterOfPixel_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_CLUSTER_OF_PIXEL);
+        setCommon(perPixel_);
+        dispatchCompute(perPixel_, {width_, height_, 1}, {8, 8, 1});
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+        count_ = std::uint32_t(width_ * height_);
+        nonEmpty_ = count_;
+        seeds_ = survivors_ = 0;
+        return;
+    }
 
     survivors_ = 0;
     if (settings_.temporal && havePrevious_ && count_ > 0) {

@@ -29,9 +29,9 @@ namespace bounce::gl {
 
 // std430 mirror of Cluster in shading_clusters.glsl.
 struct GpuCluster {
-    glm::vec4 centre;       // w: members
-    glm::vec4 normal;       // w: largest member error
-    glm::vec4 sample;       // w: sample pixel, or -1
+    glm::vec4 centre; // w: members
+    glm::vec4 normal; // w: largest member error
+    glm::vec4 sample; // w: sample pixel, or -1
     glm::vec4 sampleNormal;
     glm::vec4 irradiance; // w: R_j
     glm::uvec4 members;
@@ -49,7 +49,8 @@ struct ShadingClusterSettings {
     bool temporal = true;     // reuse the previous frame's clusters
     float errorSlack = 0.05f; // temporal: a point joins a previous cluster within 1 + this of its largest error
     std::uint32_t seed = 1;
-    bool bruteForce = false;  // tests: nearest centres by trying every one
+    bool bruteForce = false; // tests: nearest centres by trying every one
+    bool everyPixel = false; // no clustering: every shading point its own cluster and sample (Fig. 6)
 };
 
 class ShadingClusters {
@@ -61,10 +62,10 @@ public:
     // Forgets the previous frame's clusters (the next frame seeds from scratch).
     void restart() { havePrevious_ = false; }
 
-    std::uint32_t count() const { return count_; }           // clusters in clusters()
-    std::uint32_t seedsPlaced() const { return seeds_; }      // this frame's new seeds
-    std::uint32_t survivors() const { return survivors_; }    // clusters kept from the previous frame
-    std::uint32_t nonEmpty() const { return nonEmpty_; }      // clusters with members (and samples)
+    std::uint32_t count() const { return count_; }         // clusters in clusters()
+    std::uint32_t seedsPlaced() const { return seeds_; }   // this frame's new seeds
+    std::uint32_t survivors() const { return survivors_; } // clusters kept from the previous frame
+    std::uint32_t nonEmpty() const { return nonEmpty_; }   // clusters with members (and samples)
     const Buffer& clusters() const { return clusters_; }
     const Buffer& clusterOfPixel() const { return clusterOfPixel_; }
     // Binds the clusters at SSBO_CLUSTER_CENTRES.
@@ -84,7 +85,7 @@ public:
 private:
     ShadingClusterSettings settings_;
     Program quadLeaves_, quadReduce_, quadError_, seedDistribute_, seedWrite_, pointKeys_, pointLeaves_, pointReduce_,
-        assign_, segments_, update_, sample_, marks_, survivorsProgram_;
+        assign_, segments_, update_, sample_, marks_, survivorsProgram_, perPixel_;
     GpuScan scan_;
     RadixSort sort_;
     Buffer quad_, seedsBuffer_, clusterOfPixel_, clusters_, spare_, keys_, values_, keysTmp_, valuesTmp_, pointTree_,

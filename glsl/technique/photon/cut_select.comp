@@ -25,4 +25,6 @@ void main()
     cutNodes[i].influenceHi = vec4(vec3(-3.0e38), uintBitsToFloat(0u));
     cutNodes[i].centreRadius = vec4(nodeCentre(n), n.hi.w);
     cutNodes[i].normalRatio = vec4(nodeNormal(n), 0.0);
+    float len = length(n.incoming.xyz);
+    cutNodes[i].incoming = vec4(len > 0.0 ? n.incoming.xyz / len : nodeNormal(n), 0.0);
 }

@@ -8,10 +8,13 @@
 
 struct CutNode {
     vec4 irradiance;   // rgb E_p (W/m^2), the standard density estimate at the node's centre; w: 1 once computed
-    vec4 influenceLo;  // xyz: the box within which this node's or its cut descendants' kernels are non-zero; w: flag bits
+    vec4 influenceLo;  // xyz: the box within which this node's or its cut descendants' kernels (Eq. 5) are non-zero; w: flag bits
     vec4 influenceHi;  // xyz; w: the refinement iteration in which the node entered the cut (uint bits)
     vec4 centreRadius; // xyz the node's centre (mean photon position), w: r_p
     vec4 normalRatio;  // xyz n_p, w: the nearest-photon estimate over E~_p (the 1.2x test)
+    vec4 fallbackLo;   // xyz, w unused: as influence*, for the fallback kernels of twice the radius
+    vec4 fallbackHi;
+    vec4 incoming;     // xyz the node's photons' mean incoming direction (luminous power weighted), w unused
 };
 
 const uint kCutSelected = 1u;   // E~_p > E_min
