@@ -15,6 +15,7 @@
 
 #include "gl/frame/bindings.h"
 #include "gl/technique/isr/bindings.h"
+#include "gl/technique/photon/bindings.h"
 
 namespace fs = std::filesystem;
 
@@ -93,25 +94,31 @@ TEST(Bindings, NoTwoNamesShareASlot)
 {
     const auto frame = table(root() / "glsl/common/bindings.glsl");
     const auto isr = table(root() / "glsl/technique/isr/bindings.glsl");
+    const auto photon = table(root() / "glsl/technique/photon/bindings.glsl");
     ASSERT_FALSE(frame.empty());
     ASSERT_FALSE(isr.empty());
+    ASSERT_FALSE(photon.empty());
     // The passes that read no G-buffer (composite, tone map) reuse the first units on purpose.
     const std::vector<std::string> passLocal{"UNIT_COMPOSITE_DIRECT", "UNIT_COMPOSITE_INDIRECT",
                                              "UNIT_TONEMAP_RADIANCE"};
     // RSM and multires pyramid names are the first of six units each.
     auto span = [](const std::string& n) { return n == "UNIT_RSM_FIRST" || n == "UNIT_MULTIRES_FIRST" ? 6 : 1; };
-    std::map<std::string, std::string> used; // "SSBO 4" -> name
-    for (const auto* t : {&frame, &isr})
-        for (const auto& [name, value] : *t) {
-            if (std::find(passLocal.begin(), passLocal.end(), name) != passLocal.end()) continue;
-            const std::string kind = name.substr(0, name.find('_'));
-            for (int i = 0; i < span(name); ++i) {
-                const std::string key = kind + " " + std::to_string(value + i);
-                EXPECT_EQ(used.count(key), 0u) << name << " and " << used[key] << " share " << key;
-                used[key] = name;
+    // Families never run together: each is checked with the frame's names, not with the other families'.
+    for (const auto* family : {&isr, &photon}) {
+        std::map<std::string, std::string> used; // "SSBO 4" -> name
+        for (const auto* t : {&frame, family})
+            for (const auto& [name, value] : *t) {
+                if (std::find(passLocal.begin(), passLocal.end(), name) != passLocal.end()) continue;
+                const std::string kind = name.substr(0, name.find('_'));
+                for (int i = 0; i < span(name); ++i) {
+                    const std::string key = kind + " " + std::to_string(value + i);
+                    EXPECT_EQ(used.count(key), 0u) << name << " and " << used[key] << " share " << key;
+                    used[key] = name;
+                }
             }
-        }
+    }
     // The C++ side is the same file: spot-check that the macros are what the table says.
     EXPECT_EQ(SSBO_BVH_NODES, frame.at("SSBO_BVH_NODES"));
     EXPECT_EQ(UNIT_ISR_VPL_TREE_TEXELS, isr.at("UNIT_ISR_VPL_TREE_TEXELS"));
+    EXPECT_EQ(SSBO_PHOTON_NODES, photon.at("SSBO_PHOTON_NODES"));
 }

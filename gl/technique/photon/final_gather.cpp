@@ -32,8 +32,8 @@ FinalGather::FinalGather(const Frame& frame, const FinalGatherSettings& settings
 {}
 
 void FinalGather::gather(const Frame& frame, const RayCaster& caster, const PhotonTree& tree, const Buffer& photons,
-                         const IlluminationCut& cut, const ShadingClusters& clusters, float sceneSize,
-                         Buffer& counters, PassTimers& timers)
+                         const IlluminationCut& cut, const ShadingClusters& clusters, float sceneSize, Buffer& counters,
+                         PassTimers& timers)
 {
     auto t = timers.scope("gather");
     const std::uint32_t zero[2] = {0, 0};
@@ -71,7 +71,8 @@ void FinalGather::gather(const Frame& frame, const RayCaster& caster, const Phot
 }
 
 Interpolation::Interpolation()
-    : program_(Program::graphics("photon.interpolate", "frame/fullscreen.vert", "technique/photon/photon_interpolate.frag")),
+    : program_(
+          Program::graphics("photon.interpolate", "frame/fullscreen.vert", "technique/photon/photon_interpolate.frag")),
       framebuffer_("photon.interpolate")
 {}
 

@@ -67,6 +67,7 @@ public:
     std::uint32_t survivors() const { return survivors_; } // clusters kept from the previous frame
     std::uint32_t nonEmpty() const { return nonEmpty_; }   // clusters with members (and samples)
     const Buffer& clusters() const { return clusters_; }
+    Buffer& clusters() { return clusters_; } // tests write sample irradiances through it
     const Buffer& clusterOfPixel() const { return clusterOfPixel_; }
     // Binds the clusters at SSBO_CLUSTER_CENTRES.
     void bind() const;
