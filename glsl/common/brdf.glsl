@@ -45,11 +45,13 @@ vec3 brdfEval(BrdfParams p, vec3 n, vec3 wo, vec3 wi)
     if (NdotL <= 0.0 || NdotV <= 0.0) return vec3(0.0);
     vec3 h = normalize(wo + wi);
     float VdotH = max(dot(wo, h), 0.0);
-    vec3 F = p.f0 + (1.0 - p.f0) * pow(1.0 - VdotH, 5.0);
+    // pow of a negative base is undefined in GLSL (NaN on llvmpipe): a unit dot product may round to
+    // 1 + 1 ulp (wi exactly along n), so 1 - cos is clamped at 0, where core/brdf.cpp's x^5 gives -1e-35.
+    vec3 F = p.f0 + (1.0 - p.f0) * pow(max(1.0 - VdotH, 0.0), 5.0);
     vec3 wF = p.weight * F;
     // The diffuse part keeps what the glossy interface transmits on the way in and on the way out.
-    vec3 transmitted = (1.0 - p.weight * (p.f0 + (1.0 - p.f0) * pow(1.0 - NdotV, 5.0))) *
-                       (1.0 - p.weight * (p.f0 + (1.0 - p.f0) * pow(1.0 - NdotL, 5.0)));
+    vec3 transmitted = (1.0 - p.weight * (p.f0 + (1.0 - p.f0) * pow(max(1.0 - NdotV, 0.0), 5.0))) *
+                       (1.0 - p.weight * (p.f0 + (1.0 - p.f0) * pow(max(1.0 - NdotL, 0.0), 5.0)));
     vec3 diffuse = transmitted * p.diffuse / kPi;
     if (p.weight <= 0.0) return diffuse;
     float a2 = p.alpha * p.alpha;

@@ -61,8 +61,8 @@ Built buildScene(const core::Scene& scene, int photons, const gl::IlluminationCu
     gl::PhotonTracer tracer(ts);
     gl::PassTimers timers;
     tracer.trace(frame, caster, counters, timers);
-    Built b = buildFrom(tracer.photons(), tracer.storedCount(), 16, cutSettings, counters,
-                        tracer.sceneSize() / 4096.0f);
+    Built b =
+        buildFrom(tracer.photons(), tracer.storedCount(), 16, cutSettings, counters, tracer.sceneSize() / 4096.0f);
     b.photons = tracer.downloadPhotons();
     return b;
 }
@@ -92,7 +92,8 @@ void expectTreeHoldsItsPhotons(const Built& b)
         glm::dvec3 power(0.0);
         for (std::uint32_t p = lo; p < hi; ++p) {
             const glm::vec3 x(b.photons[p].positionPath);
-            wrongBox += glm::any(glm::lessThan(x, glm::vec3(node.lo))) || glm::any(glm::greaterThan(x, glm::vec3(node.hi)));
+            wrongBox +=
+                glm::any(glm::lessThan(x, glm::vec3(node.lo))) || glm::any(glm::greaterThan(x, glm::vec3(node.hi)));
             power += glm::dvec3(glm::vec3(b.photons[p].powerIndex));
         }
         wrongPower += std::abs(power.x - node.power.x) > 1e-4 * std::max(power.x, 1e-9);

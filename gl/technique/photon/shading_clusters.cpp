@@ -258,6 +258,7 @@ void ShadingClusters::cluster(const Frame& frame, float sceneSize, Buffer& count
         values_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_SORT_VALUES);
         setCommon(update_);
         update_.set("clusterCount", count_);
+        update_.set("fixedClusters", survivors_);
         dispatchCompute(update_, {int(count_), 1, 1}, {64, 1, 1});
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     }

@@ -10,7 +10,8 @@
 //   4. each cluster's sample: the member nearest its centre (kmeans_sample.comp);
 //   5. temporal reuse: next frame, the previous centres classify the new points within each cluster's
 //      largest member error; clusters without points are eliminated, and new seeds are placed over the
-//      points no cluster took, so that about K clusters remain (kmeans_marks/survivors.comp).
+//      points no cluster took, so that about K clusters remain (kmeans_marks/survivors.comp); k-means
+//      then moves only the new clusters (the kept centres stay fixed).
 // alpha is in units of 1 / (scene size): Eq. 2 is the same for the same scene at any scale.
 #pragma once
 

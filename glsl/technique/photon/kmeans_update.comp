@@ -2,7 +2,8 @@
 // k-means, update (section 3.2): each centre becomes its members' mean position and normal, summed over
 // its segment of the sorted pixels in order (a segmented reduction: the same sums in every run). An empty
 // cluster keeps its centre and drops out (no members: no tree leaf, no sample). A mean normal that
-// cancels (members facing opposite ways) keeps the previous one.
+// cancels (members facing opposite ways) keeps the previous one. Clusters kept from the previous frame
+// (k < fixedClusters) keep their centres: temporal reuse fixes them (section 3.2).
 #include "common/gbuffer.glsl"
 #include "technique/photon/shading_clusters.glsl"
 
@@ -11,6 +12,7 @@ layout(local_size_x = 64) in;
 layout(std430, binding = SSBO_SORT_VALUES) readonly buffer Values { uint sortedPixels[]; };
 
 uniform uint clusterCount;
+uniform uint fixedClusters;
 uniform ivec2 viewport;
 
 void main()
@@ -22,6 +24,10 @@ void main()
     clusters[k].members = uvec4(0u);
     if (range.y <= range.x) {
         clusters[k].centre.w = 0.0;
+        return;
+    }
+    if (k < fixedClusters) {
+        clusters[k].centre.w = float(range.y - range.x);
         return;
     }
     vec3 position = vec3(0.0), normal = vec3(0.0);

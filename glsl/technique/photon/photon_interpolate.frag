@@ -71,7 +71,7 @@ void main()
     vec4 diffuse = texelFetch(gDiffuse, q, 0);
     vec3 f0 = texelFetch(gSpecular, q, 0).rgb;
     float cosView = max(dot(n, normalize(cameraPosition - x)), 0.0);
-    vec3 out_ = 1.0 - diffuse.a * (f0 + (1.0 - f0) * pow(1.0 - cosView, 5.0));
+    vec3 out_ = 1.0 - diffuse.a * (f0 + (1.0 - f0) * pow(clamp(1.0 - cosView, 0.0, 1.0), 5.0));
     vec3 in_ = 1.0 - diffuse.a * (f0 + (1.0 - f0) / 21.0);
     outRadiance = vec4(diffuse.rgb / 3.14159265358979323846 * out_ * in_ * e, 1.0);
 }

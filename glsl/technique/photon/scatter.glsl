@@ -41,7 +41,7 @@ vec3 cosineDirection(vec3 n, vec2 u)
 
 float fresnelLuminance(BrdfParams p, float cosTheta)
 {
-    vec3 f = p.f0 + (1.0 - p.f0) * pow(1.0 - max(cosTheta, 0.0), 5.0);
+    vec3 f = p.f0 + (1.0 - p.f0) * pow(clamp(1.0 - cosTheta, 0.0, 1.0), 5.0);
     return dot(f, vec3(0.2126, 0.7152, 0.0722));
 }
 
