@@ -5,9 +5,12 @@
 // below `maxError` (found through the tree of samples, pruned by distance over the largest R_j below a
 // node), and always the sample of x's own cluster. Written as E_own + sum w_j (E_j - E_own) / sum w_j: the
 // same quantity, but a field that is the same at every sample comes out exactly that value. A point on
-// a sample (w infinite) takes that sample's irradiance. The outgoing radiance is the diffuse part of
-// the BRDF times E: c_diff / pi with the Fresnel transmission out (1 - w F(n.v)) and in (1 - w F_avg,
-// F_avg = F0 + (1 - F0) / 21, Schlick's term averaged over the cosine-weighted hemisphere).
+// a sample (w infinite) takes that sample's irradiance. The outgoing radiance is the BRDF's reflection of
+// E as if it came evenly from the hemisphere: the diffuse part c_diff / pi with the Fresnel transmission
+// out (1 - w F(n.v)) and in (1 - w F_avg, F_avg = F0 + (1 - F0) / 21, Schlick's term averaged over the
+// cosine-weighted hemisphere), plus the glossy part w (F0 A + B) / pi, A and B Karis' (2014) fit of the
+// GGX lobe's directional albedo. The paper interpolates spherical harmonics for glossy last bounces
+// (section 3.4); the albedo is exact only for uniform incident light, and good for rough lobes.
 #include "common/gbuffer.glsl"
 #include "technique/photon/shading_clusters.glsl"
 
@@ -69,9 +72,15 @@ void main()
         return;
     }
     vec4 diffuse = texelFetch(gDiffuse, q, 0);
-    vec3 f0 = texelFetch(gSpecular, q, 0).rgb;
+    vec4 specular = texelFetch(gSpecular, q, 0);
+    vec3 f0 = specular.rgb;
     float cosView = max(dot(n, normalize(cameraPosition - x)), 0.0);
     vec3 out_ = 1.0 - diffuse.a * (f0 + (1.0 - f0) * pow(clamp(1.0 - cosView, 0.0, 1.0), 5.0));
     vec3 in_ = 1.0 - diffuse.a * (f0 + (1.0 - f0) / 21.0);
-    outRadiance = vec4(diffuse.rgb / 3.14159265358979323846 * out_ * in_ * e, 1.0);
+    // Karis 2014, "Physically Based Shading on Mobile": the split-sum DFG term as scale A and bias B of F0.
+    vec4 r = specular.a * vec4(-1.0, -0.0275, -0.572, 0.022) + vec4(1.0, 0.0425, 1.04, -0.04);
+    float a004 = min(r.x * r.x, exp2(-9.28 * cosView)) * r.x + r.y;
+    vec2 ab = vec2(-1.04, 1.04) * a004 + r.zw;
+    vec3 glossy = diffuse.a * (f0 * ab.x + ab.y);
+    outRadiance = vec4((diffuse.rgb * out_ * in_ + glossy) / 3.14159265358979323846 * e, 1.0);
 }
