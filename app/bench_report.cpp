@@ -100,6 +100,37 @@ void passTable(std::ostringstream& md, const std::vector<const nlohmann::json*>&
     }
 }
 
+// The counters of a scene's renders (photons, clusters, cut size...): one row per counter, one column per
+// render; nothing when no render reports one.
+void counterTable(std::ostringstream& md, const std::vector<const nlohmann::json*>& recs)
+{
+    std::vector<std::string> names;
+    for (const nlohmann::json* rec : recs)
+        if (rec->contains("counters"))
+            for (const auto& [name, value] : (*rec)["counters"].items())
+                if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
+    if (names.empty()) return;
+    md << "\n### counters\n\n| counter |";
+    for (const nlohmann::json* rec : recs)
+        md << " " << (*rec)["technique"].get<std::string>() << " (" << (*rec)["settings"].get<std::string>() << ") |";
+    md << "\n|---|";
+    for (std::size_t i = 0; i < recs.size(); ++i) md << "---:|";
+    md << "\n";
+    for (const auto& name : names) {
+        md << "| " << name << " |";
+        for (const nlohmann::json* rec : recs) {
+            std::string cell = " - |";
+            if (rec->contains("counters") && (*rec)["counters"].contains(name)) {
+                char buf[64];
+                std::snprintf(buf, sizeof buf, " %.6g |", (*rec)["counters"][name].get<double>());
+                cell = buf;
+            }
+            md << cell;
+        }
+        md << "\n";
+    }
+}
+
 // The ray-casting table: Embree's and the GPU's rays per second on the same rays.
 std::string raysMarkdown(const std::vector<SceneRays>& rays)
 {
@@ -140,6 +171,7 @@ std::string markdownText(const BenchConfig& config, const std::vector<BenchRow>&
         for (const nlohmann::json* rec : recs) tableRow(md, *rec, config.compareTo);
         md << "\n### per-pass GPU ms\n\n";
         passTable(md, recs);
+        counterTable(md, recs);
         md << "\n";
     }
     md << "![speed against error](speed_error.png)\n";

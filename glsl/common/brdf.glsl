@@ -38,10 +38,15 @@ float smithVis(float NdotL, float NdotV, float a2)
     return 0.5 / (gv + gl);
 }
 
+// Schlick's 5th power of 1 - cos. pow of a negative base is undefined in GLSL (NaN on llvmpipe): a unit
+// dot product may round to 1 + 1 ulp (a direction exactly along n), so 1 - cos is clamped at 0, where
+// core/brdf.cpp's x^5 gives -1e-35.
+float schlickWeight(float cosTheta) { return pow(max(1.0 - cosTheta, 0.0), 5.0); }
+
 // What the glossy interface lets through to the diffuse part in one direction: 1 - w F(cos).
 vec3 brdfTransmission(BrdfParams p, float cosTheta)
 {
-    return 1.0 - p.weight * (p.f0 + (1.0 - p.f0) * pow(1.0 - cosTheta, 5.0));
+    return 1.0 - p.weight * (p.f0 + (1.0 - p.f0) * schlickWeight(cosTheta));
 }
 
 // The glossy lobe alone, w F D Vis, without the cosine; zero below either horizon.
@@ -51,7 +56,7 @@ vec3 brdfGlossy(BrdfParams p, vec3 n, vec3 wo, vec3 wi)
     if (NdotL <= 0.0 || NdotV <= 0.0 || p.weight <= 0.0) return vec3(0.0);
     vec3 h = normalize(wo + wi);
     float VdotH = max(dot(wo, h), 0.0);
-    vec3 F = p.f0 + (1.0 - p.f0) * pow(1.0 - VdotH, 5.0);
+    vec3 F = p.f0 + (1.0 - p.f0) * schlickWeight(VdotH);
     float a2 = p.alpha * p.alpha;
     return p.weight * F * ggxD(max(dot(n, h), 0.0), a2) * smithVis(NdotL, NdotV, a2);
 }

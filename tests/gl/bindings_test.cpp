@@ -16,6 +16,7 @@
 #include "gl/frame/bindings.h"
 #include "gl/technique/grb/bindings.h"
 #include "gl/technique/isr/bindings.h"
+#include "gl/technique/photon/bindings.h"
 
 namespace fs = std::filesystem;
 
@@ -126,4 +127,5 @@ TEST(Bindings, NoTwoNamesShareASlot)
     EXPECT_EQ(UNIT_ISR_VPL_TREE_TEXELS,
               table(root() / "glsl/technique/isr/bindings.glsl").at("UNIT_ISR_VPL_TREE_TEXELS"));
     EXPECT_EQ(UNIT_GRB_KBUFFER, table(root() / "glsl/technique/grb/bindings.glsl").at("UNIT_GRB_KBUFFER"));
+    EXPECT_EQ(SSBO_PHOTON_NODES, table(root() / "glsl/technique/photon/bindings.glsl").at("SSBO_PHOTON_NODES"));
 }

@@ -1,0 +1,58 @@
+// Final gather at the clusters' samples (section 3.3) and the interpolation of their irradiance to every
+// pixel (section 3.4): glsl/technique/photon/photon_gather.{glsl,comp} and photon_interpolate.frag.
+#pragma once
+
+#include <cstdint>
+
+#include "gl/frame/frame.h"
+#include "gl/frame/ray_caster.h"
+#include "gl/resource/buffer.h"
+#include "gl/resource/framebuffer.h"
+#include "gl/resource/program.h"
+#include "gl/resource/timer.h"
+#include "gl/technique/photon/illumination_cut.h"
+#include "gl/technique/photon/photon_tree.h"
+#include "gl/technique/photon/shading_clusters.h"
+
+namespace bounce::gl {
+
+struct FinalGatherSettings {
+    int rays = 256;               // per sample (the paper: 250-500)
+    bool fullPhotonMap = false;   // density estimation in every photon instead of the cut (Fig. 6's reference)
+    float densityPhotons = 32.0f; // k, for fullPhotonMap
+    std::uint32_t seed = 1;
+};
+
+class FinalGather {
+public:
+    FinalGather(const Frame& frame, const FinalGatherSettings& settings);
+
+    // Gathers at every cluster's sample: writes each cluster's irradiance and R_j. Counters kCounterFirst
+    // + 1 and + 2 receive the hits that only the fallback kernels reached, and those none reached.
+    void gather(const Frame& frame, const RayCaster& caster, const PhotonTree& tree, const Buffer& photons,
+                const IlluminationCut& cut, const ShadingClusters& clusters, float sceneSize, Buffer& counters,
+                PassTimers& timers);
+    std::uint32_t fallbackHits() const { return fallback_; }
+    std::uint32_t uncoveredHits() const { return uncovered_; }
+
+private:
+    FinalGatherSettings settings_;
+    Program program_;
+    std::uint32_t fallback_ = 0, uncovered_ = 0;
+};
+
+class Interpolation {
+public:
+    Interpolation();
+    // Writes the diffuse radiance of the interpolated irradiance into `target` (the frame's indirect
+    // texture), or the irradiance itself with writeIrradiance (tests).
+    void run(Frame& frame, const ShadingClusters& clusters, float maxError, bool ownSampleOnly, PassTimers& timers,
+             bool writeIrradiance = false);
+
+private:
+    Program program_;
+    Framebuffer framebuffer_;
+    unsigned attached_ = 0;
+};
+
+} // namespace bounce::gl

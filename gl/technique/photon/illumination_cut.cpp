@@ -1,0 +1,132 @@
+#include "gl/technique/photon/illumination_cut.h"
+
+#include <cstring>
+
+#include "gl/gl.h"
+#include "gl/resource/dispatch.h"
+#include "gl/technique/photon/bindings.h"
+#include "gl/technique/photon/photon_tracer.h"
+
+namespace bounce::gl {
+
+IlluminationCut::IlluminationCut()
+    : emin_(Program::compute("photon.cutEmin", "technique/photon/cut_emin.comp")),
+      select_(Program::compute("photon.cutSelect", "technique/photon/cut_select.comp")),
+      mark_(Program::compute("photon.cutMark", "technique/photon/cut_mark.comp")),
+      flags_(Program::compute("photon.cutFlags", "technique/photon/cut_flags.comp")),
+      listProgram_(Program::compute("photon.cutList", "technique/photon/cut_list.comp")),
+      refine_(Program::compute("photon.cutRefine", "technique/photon/cut_refine.comp")),
+      influence_(Program::compute("photon.cutInfluence", "technique/photon/cut_influence.comp"))
+{}
+
+void IlluminationCut::bind() const
+{
+    nodes_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_PHOTON_CUT);
+}
+
+std::uint32_t IlluminationCut::compact(const PhotonTree& tree, Buffer& counters)
+{
+    bind();
+    marks_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_PHOTON_SCAN);
+    tree.bind(flags_);
+    flags_.set("nodeCount", nodeCount_);
+    dispatchCompute(flags_, {int(nodeCount_), 1, 1}, {64, 1, 1});
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    scan_.run(marks_, nodeCount_, counters, kCounterCutSize);
+    bind();
+    marks_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_PHOTON_SCAN);
+    list_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_PHOTON_CUT_LIST);
+    tree.bind(listProgram_);
+    listProgram_.set("nodeCount", nodeCount_);
+    dispatchCompute(listProgram_, {int(nodeCount_), 1, 1}, {64, 1, 1});
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+    std::uint32_t size = 0;
+    counters.download(kCounterCutSize * 4, 4, &size);
+    return size;
+}
+
+void IlluminationCut::build(const PhotonTree& tree, const Buffer& photons, const IlluminationCutSettings& s,
+                            Buffer& counters, PassTimers& timers)
+{
+    auto t = timers.scope("cut");
+    nodeCount_ = tree.nodeCount();
+    const std::size_t bytes = std::size_t(nodeCount_) * sizeof(GpuCutNode);
+    if (!nodes_ || nodes_.bytes() < bytes) {
+        nodes_ = Buffer("photon.cutNodes", bytes);
+        list_ = Buffer("photon.cutList", std::size_t(nodeCount_) * 4);
+        marks_ = Buffer("photon.cutMarks", std::size_t(nodeCount_) * 4);
+    }
+    splits_.clear();
+    counters.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_PHOTON_COUNTERS);
+    tree.bind(emin_);
+    emin_.set("firstLevel", s.eminLevel);
+    dispatchCompute(emin_, {256, 1, 1}, {256, 1, 1});
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    counters.download(kCounterEmin * 4, 4, &eMin_);
+
+    bind();
+    tree.bind(select_);
+    for (int level = tree.depth(); level >= 0; --level) {
+        select_.set("level", level);
+        dispatchCompute(select_, {1 << level, 1, 1}, {64, 1, 1});
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    }
+    tree.bind(mark_);
+    mark_.set("nodeCount", nodeCount_);
+    dispatchCompute(mark_, {int(nodeCount_), 1, 1}, {64, 1, 1});
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+
+    for (int iteration = 0; iteration <= s.iterations; ++iteration) {
+        size_ = compact(tree, counters);
+        const bool split = iteration < s.iterations;
+        const std::uint32_t zero = 0;
+        counters.update(kCounterCutSplits * 4, 4, &zero);
+        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+        if (size_ > 0) {
+            bind();
+            photons.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_PHOTONS);
+            list_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_PHOTON_CUT_LIST);
+            counters.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_PHOTON_COUNTERS);
+            tree.bind(refine_);
+            refine_.set("cutSize", size_);
+            refine_.set("densityPhotons", s.densityPhotons);
+            refine_.set("threshold", s.threshold);
+            refine_.set("split", split ? 1 : 0);
+            refine_.set("iteration", unsigned(iteration + 1));
+            dispatchCompute(refine_, {int(size_), 1, 1}, {64, 1, 1});
+            glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+        }
+        if (!split) break;
+        std::uint32_t splits = 0;
+        counters.download(kCounterCutSplits * 4, 4, &splits);
+        splits_.push_back(splits);
+        if (splits == 0) { // nothing changed: the last pass has nothing new to evaluate
+            size_ = compact(tree, counters);
+            break;
+        }
+    }
+
+    bind();
+    tree.bind(influence_);
+    for (int level = tree.depth(); level >= 0; --level) {
+        influence_.set("level", level);
+        dispatchCompute(influence_, {1 << level, 1, 1}, {64, 1, 1});
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    }
+}
+
+std::vector<GpuCutNode> IlluminationCut::download() const
+{
+    std::vector<GpuCutNode> n = nodes_.download<GpuCutNode>();
+    n.resize(nodeCount_);
+    return n;
+}
+
+std::vector<std::uint32_t> IlluminationCut::downloadList() const
+{
+    std::vector<std::uint32_t> l = list_.download<std::uint32_t>();
+    l.resize(size_);
+    return l;
+}
+
+} // namespace bounce::gl

@@ -1,0 +1,160 @@
+#include "gl/technique/photon/photon_technique.h"
+
+#include <algorithm>
+#include <memory>
+
+#include <glm/glm.hpp>
+
+#include "gl/frame/ray_caster.h"
+#include "gl/technique/photon/final_gather.h"
+#include "gl/technique/photon/illumination_cut.h"
+#include "gl/technique/photon/photon_tracer.h"
+#include "gl/technique/photon/photon_tree.h"
+#include "gl/technique/photon/shading_clusters.h"
+
+namespace bounce::gl {
+
+namespace {
+
+struct PhotonSettings {
+    PhotonTracerSettings tracer;
+    int leafPhotons = 32;
+    IlluminationCutSettings cut;
+    ShadingClusterSettings clusters;
+    FinalGatherSettings gather;
+    float interpolationError = 0.3f;
+};
+
+class Photon final : public Technique {
+public:
+    Photon(Frame& frame, const PhotonSettings& s)
+        : settings_(s),
+          caster_(frame.scene()),
+          counters_("photon.counters", kCounterSlots * 4),
+          tracer_(s.tracer),
+          tree_(s.leafPhotons),
+          clusters_(s.clusters),
+          gather_(frame, s.gather)
+    {
+        const core::Bounds& b = frame.gpuScene().bounds();
+        sceneSize_ = b.empty() ? 1.0f : std::max(glm::length(b.extent()), 1e-30f);
+    }
+
+    void render(Frame& frame, PassTimers& timers) override
+    {
+        tracer_.trace(frame, caster_, counters_, timers);
+        tree_.build(tracer_.photons(), tracer_.storedCount(), sceneSize_ / 4096.0f, timers);
+        cut_.build(tree_, tracer_.photons(), settings_.cut, counters_, timers);
+        clusters_.cluster(frame, sceneSize_, counters_, timers);
+        gather_.gather(frame, caster_, tree_, tracer_.photons(), cut_, clusters_, sceneSize_, counters_, timers);
+        const bool everyPixel = settings_.clusters.everyPixel;
+        if (!everyPixel && clusters_.count() > 0) {
+            auto t = timers.scope("interpolate");
+            clusters_.buildPointTree(true, counters_);
+        }
+        interpolation_.run(frame, clusters_, settings_.interpolationError, everyPixel, timers);
+    }
+
+    void restart() override { clusters_.restart(); }
+
+    std::vector<Counter> counters() const override
+    {
+        return {
+            {"photons.emitted", double(settings_.tracer.photons)},
+            {"photons.stored", double(tracer_.storedCount())},
+            {"photons.capacity", double(tracer_.capacity())},
+            {"tree.depth", double(tree_.depth())},
+            {"cut.eMin", double(cut_.eMin())},
+            {"cut.size", double(cut_.size())},
+            {"clusters", double(clusters_.nonEmpty())},
+            {"clusters.seeds", double(clusters_.seedsPlaced())},
+            {"clusters.reused", double(clusters_.survivors())},
+            {"gather.rays", double(clusters_.nonEmpty()) * double(settings_.gather.rays)},
+            {"gather.fallbackHits", double(gather_.fallbackHits())},
+            {"gather.uncoveredHits", double(gather_.uncoveredHits())},
+        };
+    }
+
+private:
+    PhotonSettings settings_;
+    RayCaster caster_;
+    Buffer counters_;
+    PhotonTracer tracer_;
+    PhotonTree tree_;
+    IlluminationCut cut_;
+    ShadingClusters clusters_;
+    FinalGather gather_;
+    Interpolation interpolation_;
+    float sceneSize_ = 1.0f;
+};
+
+} // namespace
+
+TechniqueInfo photonTechniqueInfo()
+{
+    TechniqueInfo info;
+    info.name = "photon";
+    info.paper = "Wang, Wang, Zhou, Pan & Bao 2009";
+    info.lightPaths = core::LightPaths::Full;
+    info.summary = "photon mapping on the GPU: final gather at k-means shading clusters from an illumination cut of "
+                   "the photon tree, interpolated to every pixel";
+    info.passes = {
+        {"photon-trace", "photons from every light through the BVH, Russian roulette, stored from the second surface",
+         ""},
+        {"photon-sort", "photons put in path order and sorted by Morton code", ""},
+        {"photon-tree", "the linear hierarchy over the sorted photons with Eq. 3 per node", ""},
+        {"cut", "E_min, the valid cut, its refinement and the irradiance cached per cut node", ""},
+        {"kmeans", "quadtree seeding and k-means shading clusters with their samples", ""},
+        {"gather", "final gather at every cluster's sample through the cut", ""},
+        {"interpolate", "the tree of samples and the interpolation to every pixel", ""},
+    };
+    info.reads = {GBufferChannel::Position, GBufferChannel::Normal, GBufferChannel::Diffuse, GBufferChannel::Specular};
+    info.params = {
+        {"photons", ParamType::Int, 65536, 0, 16777216, "photon paths emitted per frame (split among lights by power)"},
+        {"maxBounces", ParamType::Int, 16, 1, 64, "surfaces one photon path may reach"},
+        {"russianRoulette", ParamType::Bool, 1, 0, 1, "end photon paths by Russian roulette (0: only at maxBounces)"},
+        {"leafPhotons", ParamType::Int, 32, 1, 1024, "photons per leaf of the photon tree, at most"},
+        {"cutLevel", ParamType::Int, 12, 0, 24,
+         "E_min is the mean Eq. 3 estimate of this level of the photon tree and the next (the paper: 12-13)"},
+        {"cutIterations", ParamType::Int, 4, 0, 8, "refinement iterations of the illumination cut (the paper: 3-5)"},
+        {"cutThreshold", ParamType::Float, 1.2, 1.0, 100.0,
+         "a cut node is refined when its estimates differ by more than this ratio (the paper: 1.2)"},
+        {"densityPhotons", ParamType::Int, 32, 1, 1024, "k of the nearest-photon density estimates"},
+        {"clusters", ParamType::Int, 1600, 1, 1048576, "shading clusters K (the paper: 1000-6000)"},
+        {"alpha", ParamType::Float, 0.3, 0.0, 100.0,
+         "Eq. 2's weight of position against normal, per scene size (the paper: 0.1-0.5)"},
+        {"kmeansIterations", ParamType::Int, 4, 0, 64, "k-means iterations after seeding"},
+        {"temporal", ParamType::Bool, 1, 0, 1, "reuse the previous frame's clusters (section 3.2)"},
+        {"gatherRays", ParamType::Int, 256, 1, 65536, "final-gather rays per cluster sample (the paper: 250-500)"},
+        {"interpolationError", ParamType::Float, 0.3, 0.0, 10.0,
+         "samples whose error 1/w is below this take part in a pixel's interpolation"},
+        choiceParam("gatherAt", {"clusters", "pixels"}, 0,
+                    "gather at the clusters' samples and interpolate (the paper), or at every pixel (Fig. 6)"),
+        choiceParam("density", {"cut", "photons"}, 0,
+                    "gather hits read the illumination cut (the paper), or the full photon map (Fig. 6)"),
+    };
+    info.create = [](Frame& frame, const ParamValues& v) -> std::unique_ptr<Technique> {
+        PhotonSettings s;
+        s.tracer.photons = v.getInt("photons");
+        s.tracer.maxBounces = v.getInt("maxBounces");
+        s.tracer.russianRoulette = v.getBool("russianRoulette");
+        s.leafPhotons = v.getInt("leafPhotons");
+        s.cut.eminLevel = v.getInt("cutLevel");
+        s.cut.iterations = v.getInt("cutIterations");
+        s.cut.threshold = float(v.get("cutThreshold"));
+        s.cut.densityPhotons = float(v.getInt("densityPhotons"));
+        s.clusters.clusters = v.getInt("clusters");
+        s.clusters.alpha = float(v.get("alpha"));
+        s.clusters.iterations = v.getInt("kmeansIterations");
+        s.clusters.temporal = v.getBool("temporal");
+        s.clusters.everyPixel = v.getChoice(photonTechniqueInfo().params, "gatherAt") == "pixels";
+        s.gather.rays = v.getInt("gatherRays");
+        s.gather.fullPhotonMap = v.getChoice(photonTechniqueInfo().params, "density") == "photons";
+        s.gather.densityPhotons = float(v.getInt("densityPhotons"));
+        s.interpolationError = float(v.get("interpolationError"));
+        return std::make_unique<Photon>(frame, s);
+    };
+    return info;
+}
+
+} // namespace bounce::gl

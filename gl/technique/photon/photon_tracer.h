@@ -1,0 +1,106 @@
+// Photon tracing (Wang et al. 2009, section 3.1, "Building Photon Maps"; Jensen 2001): photons from every
+// light of the frame (point, spot, directional, emitting triangles), traced through the frame's BVH with
+// Russian roulette, stored from the second surface on (direct light is the frame's, from shadow maps),
+// put in path order (deterministic), then sorted by Morton code: the input of the photon tree.
+// glsl/technique/photon/photon_trace.comp says what happens at a surface.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "gl/frame/frame.h"
+#include "gl/frame/ray_caster.h"
+#include "gl/resource/buffer.h"
+#include "gl/resource/program.h"
+#include "gl/resource/timer.h"
+#include "gl/technique/photon/gpu_sort.h"
+
+namespace bounce::gl {
+
+// std430 mirror of PhotonEmitter in photon_trace.comp.
+struct PhotonEmitter {
+    glm::vec4 positionType;
+    glm::vec4 directionCos;
+    glm::vec4 powerCosInner; // rgb: W per photon
+    glm::vec4 v0, v1, v2;
+    glm::uvec4 range; // first path, path count
+};
+static_assert(sizeof(PhotonEmitter) == 112);
+
+// std430 mirror of Photon in glsl/technique/photon/photon.glsl.
+struct GpuPhoton {
+    glm::vec4 positionPath; // w: path index bits
+    glm::vec4 powerIndex;   // w: index within the path, bits
+    glm::vec4 incoming;
+    glm::vec4 normal;
+};
+static_assert(sizeof(GpuPhoton) == 64);
+
+// Slots of the counters buffer (photon.glsl: kCounter*).
+enum PhotonCounter : std::uint32_t {
+    kCounterStaged = 0,
+    kCounterStored = 1,
+    kCounterScratch = 2,
+    kCounterEmin = 3,
+    kCounterCutSize = 4,
+    kCounterCutSplits = 5,
+    kCounterClusters = 6,
+    kCounterSeeds = 7,
+    kCounterFirst = 8,
+    kCounterSlots = 16,
+};
+
+// The power a light emits (W, RGB): point 4 pi I, spot I times the solid integral of its falloff
+// (2 pi (1 - cos outer) for a hard cone), directional E times the area of the disk photons leave from
+// (radius: the scene's bounding sphere), an emitting triangle pi L A.
+glm::vec3 emittedPower(const LightSource& light, float directionalRadius);
+
+struct PhotonTracerSettings {
+    int photons = 65536; // emitted paths
+    int maxBounces = 16; // surfaces one path may reach
+    bool russianRoulette = true;
+    std::uint32_t seed = 1; // the same in every frame: a moving light moves the same photons
+};
+
+class PhotonTracer {
+public:
+    explicit PhotonTracer(const PhotonTracerSettings& settings);
+
+    // Traces this frame's photons; afterwards photons() holds storedCount() photons in Morton order.
+    // counters: the family's counters buffer (kCounterSlots uints).
+    void trace(const Frame& frame, const RayCaster& caster, Buffer& counters, PassTimers& timers);
+
+    const Buffer& photons() const { return sorted_; }
+    std::uint32_t storedCount() const { return stored_; }
+    const std::vector<PhotonEmitter>& emitters() const { return emitters_; }
+    // Morton codes are taken over this box (the scene's bounds, a little larger).
+    glm::vec3 boundsLo() const { return lo_; }
+    glm::vec3 boundsExtent() const { return extent_; }
+    float sceneSize() const { return size_; }
+    int capacity() const { return capacity_; }
+    int grownTimes() const { return grown_; }
+
+    // For tests: the power each path left its light with (summed in double), and the photons.
+    glm::dvec3 emittedTotal() const;
+    std::vector<GpuPhoton> downloadPhotons() const;
+    std::size_t bytes() const;
+
+private:
+    PhotonTracerSettings settings_;
+    Program trace_, place_, permute_;
+    GpuScan scan_;
+    RadixSort sort_;
+    Buffer emitterBuffer_, staging_, sorted_, pathCounts_, emitted_, keys_, values_, keysTmp_, valuesTmp_;
+    std::vector<PhotonEmitter> emitters_;
+    std::uint32_t stored_ = 0;
+    int capacity_ = 0, grown_ = 0;
+    glm::vec3 lo_{0.0f}, extent_{1.0f};
+    float size_ = 1.0f;
+
+    void buildEmitters(const Frame& frame);
+    void allocate(int capacity);
+};
+
+} // namespace bounce::gl

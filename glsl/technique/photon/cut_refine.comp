@@ -1,0 +1,50 @@
+#version 450 core
+// One refinement iteration of the illumination cut (section 3.3), one invocation per cut node: a node
+// entering the cut gets its accurate irradiance E_p, the standard density estimate from about k nearest
+// photons at its centre, and the same estimate weighted as Eq. 3 weighs photons (by w_i . n_p), which
+// is compared with E~_p. When they differ by more than the threshold (the paper: 1.2 x) and splitting
+// is allowed, the node leaves the cut and its non-empty children enter it. Each invocation writes only
+// its node and its children: no two touch the same node.
+#include "technique/photon/density.glsl"
+
+layout(local_size_x = 64) in;
+
+layout(std430, binding = SSBO_PHOTON_CUT_LIST) readonly buffer CutList { uint cutList[]; };
+layout(std430, binding = SSBO_PHOTON_COUNTERS) buffer Counters { uint counters[]; };
+
+uniform uint cutSize;
+uniform float densityPhotons; // k
+uniform float threshold;      // Delta E as a ratio: 1.2
+uniform int split;            // 0: the last pass, which only evaluates
+uniform uint iteration;       // the generation children get
+
+void main()
+{
+    uint c = gl_GlobalInvocationID.x;
+    if (c >= cutSize) return;
+    uint i = cutList[c];
+    PhotonNode node = photonNodes[i];
+    uint f = cutFlags(i);
+    if (cutNodes[i].irradiance.w == 0.0) {
+        vec3 x = nodeCentre(node), n = nodeNormal(node);
+        float radius;
+        DensitySums s = nearestPhotons(x, n, node, densityPhotons, radius);
+        float area = kPi * radius * radius;
+        float accurate = s.cosWeighted / area;
+        float approx = node.power.w;
+        float ratio = (accurate > 0.0 && approx > 0.0) ? max(accurate / approx, approx / accurate)
+                                                       : (accurate == approx ? 1.0 : 3.0e38);
+        cutNodes[i].irradiance = vec4(s.power / area, 1.0);
+        cutNodes[i].normalRatio.w = ratio;
+        if (ratio <= threshold) f |= kCutPassed;
+        setCutFlags(i, f);
+    }
+    if (split == 0 || (f & kCutPassed) != 0u || nodeIsLeaf(i)) return;
+    setCutFlags(i, f & ~kCutIn);
+    atomicAdd(counters[kCounterCutSplits], 1u);
+    for (uint child = 2u * i; child <= 2u * i + 1u; ++child) {
+        if (photonNodes[child].lo.w <= 0.0) continue;
+        setCutFlags(child, cutFlags(child) | kCutIn);
+        cutNodes[child].influenceHi.w = uintBitsToFloat(iteration);
+    }
+}

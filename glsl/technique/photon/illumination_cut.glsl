@@ -1,0 +1,44 @@
+// The illumination cut (section 3.3; gl/technique/photon/illumination_cut.h): per node of the photon
+// tree, whether it is selected, above, in or below the cut, when it entered the cut, its cached
+// irradiance E_p, and the box its kernel and those of the cut nodes under it reach (for the gather).
+#ifndef BOUNCE_ILLUMINATION_CUT_GLSL
+#define BOUNCE_ILLUMINATION_CUT_GLSL
+
+#include "technique/photon/photon_tree.glsl"
+
+struct CutNode {
+    vec4 irradiance;   // rgb E_p (W/m^2), the standard density estimate at the node's centre; w: 1 once computed
+    vec4 influenceLo;  // xyz: the box within which this node's or its cut descendants' kernels (Eq. 5) are non-zero; w: flag bits
+    vec4 influenceHi;  // xyz; w: the refinement iteration in which the node entered the cut (uint bits)
+    vec4 centreRadius; // xyz the node's centre (mean photon position), w: r_p
+    vec4 normalRatio;  // xyz n_p, w: the nearest-photon estimate over E~_p (the 1.2x test)
+    vec4 fallbackLo;   // xyz, w unused: as influence*, for the fallback kernels of twice the radius
+    vec4 fallbackHi;
+    vec4 incoming;     // xyz the node's photons' mean incoming direction (luminous power weighted), w unused
+};
+
+const uint kCutSelected = 1u;   // E~_p > E_min
+const uint kCutAnyBelow = 2u;   // a selected node lies strictly under this one
+const uint kCutIn = 4u;         // in the cut
+const uint kCutPassed = 8u;     // its estimates agree within the threshold
+
+layout(std430, binding = SSBO_PHOTON_CUT) buffer CutNodes { CutNode cutNodes[]; };
+
+uint cutFlags(uint i) { return floatBitsToUint(cutNodes[i].influenceLo.w); }
+void setCutFlags(uint i, uint f) { cutNodes[i].influenceLo.w = uintBitsToFloat(f); }
+bool cutSubtreeSelected(uint f) { return (f & (kCutSelected | kCutAnyBelow)) != 0u; }
+
+// The next node after i's subtree in depth-first order over the heap (0: the walk is over).
+uint skipSubtree(uint i)
+{
+    while ((i & 1u) == 1u) i >>= 1;
+    return i == 0u ? 0u : i + 1u;
+}
+
+float boxDistance(vec3 p, vec3 lo, vec3 hi)
+{
+    vec3 d = max(max(lo - p, p - hi), vec3(0.0));
+    return length(d);
+}
+
+#endif

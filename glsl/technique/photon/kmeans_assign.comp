@@ -1,0 +1,70 @@
+#version 450 core
+// k-means, classification (section 3.2): every shading point to its nearest centre by Eq. 2, found
+// through the tree of centres: a subtree is skipped when alpha times the distance to its box (a lower
+// bound of Eq. 2: the normal term is never negative) exceeds the best error so far; the previous
+// assignment's error starts the bound. Ties go to the lower cluster index, so the result is the brute
+// force's (bruteForce: every centre, for tests). Writes the cluster and the (cluster, pixel) pair the
+// sort by cluster takes.
+#include "common/gbuffer.glsl"
+#include "technique/photon/shading_clusters.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+
+layout(std430, binding = SSBO_CLUSTER_OF_PIXEL) buffer ClusterOfPixel { uint clusterOfPixel[]; };
+layout(std430, binding = SSBO_SORT_KEYS) writeonly buffer Keys { uint keys[]; };
+layout(std430, binding = SSBO_SORT_VALUES) writeonly buffer Values { uint values[]; };
+
+uniform ivec2 viewport;
+uniform uint clusterCount;
+uniform int bruteForce;
+uniform int onlyClassify;   // temporal reuse: keep a pixel only when its error is within the cluster's largest
+uniform float errorSlack;   //   (times 1 + errorSlack), else mark it unclassified
+
+void consider(uint c, vec3 x, vec3 n, inout float best, inout uint bestCluster)
+{
+    Cluster k = clusters[c];
+    if (k.centre.w <= 0.0) return;
+    float e = clusterError(x, n, k.centre.xyz, k.normal.xyz);
+    if (e < best || (e == best && c < bestCluster)) {
+        best = e;
+        bestCluster = c;
+    }
+}
+
+void main()
+{
+    ivec2 q = ivec2(gl_GlobalInvocationID.xy);
+    if (q.x >= viewport.x || q.y >= viewport.y) return;
+    uint pixel = uint(q.y * viewport.x + q.x);
+    vec4 pos = texelFetch(gPosition, q, 0);
+    uint bestCluster = kNoCluster;
+    if (pos.w != 0.0) {
+        vec3 x = pos.xyz, n = texelFetch(gNormal, q, 0).xyz;
+        float best = 3.0e38;
+        if (bruteForce != 0) {
+            for (uint c = 0u; c < clusterCount; ++c) consider(c, x, n, best, bestCluster);
+        } else {
+            uint previous = clusterOfPixel[pixel];
+            if (previous < clusterCount) consider(previous, x, n, best, bestCluster);
+            uint i = 1u;
+            while (i != 0u) {
+                PointNode node = pointNodes[i];
+                if (node.lo.w <= 0.0 || alpha * pointBoxDistance(x, node.lo.xyz, node.hi.xyz) > best) {
+                    i = pointSkip(i);
+                } else if (findMSB(i) == pointTreeDepth) {
+                    consider(floatBitsToUint(node.hi.w), x, n, best, bestCluster);
+                    i = pointSkip(i);
+                } else {
+                    i = 2u * i;
+                }
+            }
+        }
+        if (onlyClassify != 0 && bestCluster != kNoCluster &&
+            best > clusters[bestCluster].normal.w * (1.0 + errorSlack) + 1e-6)
+            bestCluster = kUnclassified;
+        if (bestCluster == kNoCluster) bestCluster = kUnclassified;
+    }
+    clusterOfPixel[pixel] = bestCluster;
+    keys[pixel] = bestCluster < clusterCount ? bestCluster : clusterCount;
+    values[pixel] = pixel;
+}

@@ -1,0 +1,80 @@
+// The photon map's layouts (gl/technique/photon/photon_tracer.h writes them): photons, the family's
+// counters, and the random numbers and Morton codes the passes share.
+#ifndef BOUNCE_PHOTON_GLSL
+#define BOUNCE_PHOTON_GLSL
+
+#include "technique/photon/bindings.glsl"
+
+// A stored photon (Jensen 2001): where it landed, the power it carries (W), the direction it came from
+// (unit, pointing away from the surface) and the shading normal of the side it landed on.
+struct Photon {
+    vec4 positionPath;  // xyz metres, w: the emitting path's index (uint bits)
+    vec4 powerIndex;    // rgb W, w: which of the path's stored photons it is (uint bits)
+    vec4 incoming;      // xyz unit, towards where the photon came from
+    vec4 normal;        // xyz unit
+};
+
+// Slots of the counters buffer (PhotonCounters in photon_tracer.h): uints, floats as their bits.
+const uint kCounterStaged = 0u;     // photons the tracing wrote (may exceed the capacity)
+const uint kCounterStored = 1u;     // photons kept, in order
+const uint kCounterScratch = 2u;    // totals of scans nobody reads
+const uint kCounterEmin = 3u;       // float: the cut's E_min (section 3.3)
+const uint kCounterCutSize = 4u;    // nodes in the cut
+const uint kCounterCutSplits = 5u;  // nodes split by the last refinement iteration
+const uint kCounterClusters = 6u;   // shading clusters with members
+const uint kCounterSeeds = 7u;      // seeds placed
+const uint kCounterFirst = 8u;      // free for passes that need one more
+
+// PCG (O'Neill 2014) as a hash and a stream: one stream per photon path, seeded by its index.
+uint pcgHash(uint v)
+{
+    uint state = v * 747796405u + 2891336453u;
+    uint word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
+    return (word >> 22u) ^ word;
+}
+float nextRandom(inout uint state)
+{
+    state = state * 747796405u + 2891336453u;
+    uint word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
+    word = (word >> 22u) ^ word;
+    return float(word >> 8) * (1.0 / 16777216.0);
+}
+
+// Radical inverse in base 2 (van der Corput), for low-discrepancy emission.
+float radicalInverse2(uint i)
+{
+    return float(bitfieldReverse(i) >> 8) * (1.0 / 16777216.0);
+}
+float radicalInverse(uint i, uint base)
+{
+    float inv = 1.0 / float(base), f = inv, r = 0.0;
+    while (i > 0u) {
+        r += f * float(i % base);
+        i /= base;
+        f *= inv;
+    }
+    return min(r, 0.99999994);
+}
+
+// 30-bit Morton code of a point in the box [lo, lo + extent) (10 bits per axis).
+uint expandBits10(uint v)
+{
+    v = (v * 0x00010001u) & 0xFF0000FFu;
+    v = (v * 0x00000101u) & 0x0F00F00Fu;
+    v = (v * 0x00000011u) & 0xC30C30C3u;
+    v = (v * 0x00000005u) & 0x49249249u;
+    return v;
+}
+uint morton30(vec3 p, vec3 lo, vec3 extent)
+{
+    vec3 q = clamp((p - lo) / max(extent, vec3(1e-30)), vec3(0.0), vec3(0.99999994));
+    uvec3 c = uvec3(q * 1024.0);
+    return expandBits10(c.x) * 4u + expandBits10(c.y) * 2u + expandBits10(c.z);
+}
+
+float photonLuminance(vec3 c)
+{
+    return dot(c, vec3(0.2126, 0.7152, 0.0722));
+}
+
+#endif

@@ -1,0 +1,72 @@
+#version 450 core
+// Final gather at the clusters' samples (section 3.3): one work group per cluster, gatherRays cosine-
+// distributed rays about the sample's normal (a Hammersley set, rotated per cluster), each hit's radiance
+// (photon_gather.glsl). E = pi / N sum L_j (cosine sampling); R_j = N / sum 1 / t_j, the harmonic mean
+// distance of the hits (section 3.4; misses count 1/t = 0). Each invocation sums its rays in order, then
+// the group reduces the 64 sums in a fixed order: no float atomics, the same result in every run.
+#include "technique/photon/photon_gather.glsl"
+#include "technique/photon/scatter.glsl"
+#include "technique/photon/shading_clusters.glsl"
+
+layout(local_size_x = 64) in;
+
+layout(std430, binding = SSBO_PHOTON_COUNTERS) buffer Counters { uint counters[]; };
+
+uniform uint clusterCount;
+uniform uint gatherRays;
+uniform float rayEpsilon;
+uniform float minDistance; // R_j's bounds, scene units
+uniform float maxDistance;
+uniform uint seed;
+
+shared vec3 radianceSums[64];
+shared float inverseDistanceSums[64];
+shared uint fallbackHits[64];
+shared uint uncoveredHits[64];
+
+void main()
+{
+    uint k = gl_WorkGroupID.x;
+    uint t = gl_LocalInvocationID.x;
+    if (k >= clusterCount) return;
+    Cluster c = clusters[k];
+    vec3 sum = vec3(0.0);
+    float inverseSum = 0.0;
+    uint fallback = 0u, uncovered = 0u;
+    if (c.samplePoint.w >= 0.0) {
+        vec3 x = c.samplePoint.xyz, n = c.sampleNormal.xyz;
+        uint h = pcgHash(k ^ pcgHash(seed));
+        vec2 shift = vec2(float(h >> 8), float(pcgHash(h) >> 8)) * (1.0 / 16777216.0);
+        for (uint j = t; j < gatherRays; j += 64u) {
+            vec2 u = fract(vec2((float(j) + 0.5) / float(gatherRays), radicalInverse2(j)) + shift);
+            vec3 dir = cosineDirection(n, u);
+            Hit hit;
+            if (!closestHit(x + n * rayEpsilon, dir, 0.0, 3.0e38, hit)) continue;
+            int coverage;
+            sum += gatherRadiance(x, dir, hit, coverage);
+            inverseSum += 1.0 / max(hit.t, 1e-30);
+            fallback += coverage == 1 ? 1u : 0u;
+            uncovered += coverage == 0 ? 1u : 0u;
+        }
+    }
+    radianceSums[t] = sum;
+    inverseDistanceSums[t] = inverseSum;
+    fallbackHits[t] = fallback;
+    uncoveredHits[t] = uncovered;
+    barrier();
+    for (uint d = 32u; d > 0u; d >>= 1) {
+        if (t < d) {
+            radianceSums[t] += radianceSums[t + d];
+            inverseDistanceSums[t] += inverseDistanceSums[t + d];
+            fallbackHits[t] += fallbackHits[t + d];
+            uncoveredHits[t] += uncoveredHits[t + d];
+        }
+        barrier();
+    }
+    if (t == 0u) {
+        float r = inverseDistanceSums[0] > 0.0 ? float(gatherRays) / inverseDistanceSums[0] : maxDistance;
+        clusters[k].irradiance = vec4(radianceSums[0] * (kPi / float(gatherRays)), clamp(r, minDistance, maxDistance));
+        atomicAdd(counters[kCounterFirst + 1u], fallbackHits[0]);
+        atomicAdd(counters[kCounterFirst + 2u], uncoveredHits[0]);
+    }
+}

@@ -1,0 +1,164 @@
+#version 450 core
+// Photon tracing (section 3.1, "Building Photon Maps"): one invocation per photon path. The path's
+// emitter is the light whose photon range holds its index (PhotonEmitter, photon_tracer.h: ranges in
+// proportion to power); it leaves the light with that light's power over its photon count, is traced
+// through the frame's BVH (common/raycast.glsl), and at every surface it reaches:
+//   - an emitter, or the back of a one-sided surface, absorbs it (both are black);
+//   - from the second surface on it is stored (the first surface's light is direct light, which the
+//     frame's shadow maps give: the photon map holds indirect light only);
+//   - it scatters by the BRDF (scatter.glsl), with Russian roulette on the ratio of its power after and
+//     before, so that a surviving photon keeps its power and the stored power is unbiased.
+// Photons are appended in any order with (path, index within the path); photon_place.comp puts them in
+// path order afterwards, so the photon map is the same in every run.
+#define SCENE_GEOMETRY
+#include "common/scene.glsl"
+#include "common/raycast.glsl"
+#include "technique/photon/photon.glsl"
+#include "technique/photon/scatter.glsl"
+
+layout(local_size_x = 64) in;
+
+struct PhotonEmitter {
+    vec4 positionType;   // xyz position (point, spot), disk centre (directional); w: kLight* kind
+    vec4 directionCos;   // xyz the direction light travels (spot, directional) or the emitter normal (area); w: cos outer
+    vec4 powerCosInner;  // rgb W per photon (before a spot's falloff); w: cos inner
+    vec4 v0;             // area: corner 0; directional: w = disk radius
+    vec4 v1;             // area: corner 1
+    vec4 v2;             // area: corner 2
+    uvec4 range;         // x: first path index, y: path count
+};
+
+layout(std430, binding = SSBO_PHOTON_EMITTERS) readonly buffer Emitters { PhotonEmitter emitters[]; };
+layout(std430, binding = SSBO_PHOTON_COUNTERS) buffer Counters { uint counters[]; };
+layout(std430, binding = SSBO_PHOTON_STAGING) writeonly buffer Staging { Photon staging[]; };
+layout(std430, binding = SSBO_PHOTON_PATHS) writeonly buffer PathCounts { uint pathCounts[]; };
+layout(std430, binding = SSBO_PHOTON_EMITTED) writeonly buffer Emitted { vec4 emitted[]; };
+layout(binding = UNIT_BASE_COLOR) uniform sampler2DArray baseColorTextures;
+
+uniform uint pathCount;
+uniform int emitterCount;
+uniform uint capacity;      // staging slots
+uniform int maxBounces;     // surfaces a photon may reach
+uniform int russianRoulette;
+uniform float rayEpsilon;   // scene units: how far a scattered ray starts off its surface
+uniform uint seed;
+
+int findEmitter(uint path)
+{
+    int lo = 0, hi = emitterCount - 1;
+    while (lo < hi) {
+        int mid = (lo + hi + 1) / 2;
+        if (emitters[mid].range.x <= path) lo = mid; else hi = mid - 1;
+    }
+    return lo;
+}
+
+// Emission: origin, direction and power of path `path`, the j-th of its emitter's n (a Hammersley set:
+// stratified in the first dimension, radical inverses in the others).
+void emit(PhotonEmitter e, uint j, uint n, out vec3 origin, out vec3 dir, out vec3 power)
+{
+    vec2 u = vec2((float(j) + 0.5) / float(n), radicalInverse2(j));
+    vec2 w = vec2(radicalInverse(j, 3u), radicalInverse(j, 5u));
+    int kind = int(e.positionType.w);
+    power = e.powerCosInner.rgb;
+    origin = e.positionType.xyz;
+    if (kind == kLightPoint) {
+        float z = 1.0 - 2.0 * u.x, r = sqrt(max(0.0, 1.0 - z * z)), phi = 2.0 * kPi * u.y;
+        dir = vec3(r * cos(phi), r * sin(phi), z);
+    } else if (kind == kLightSpot) {
+        // Uniform in the outer cone; the glTF falloff weights the power (1 inside a hard cone).
+        float cosOuter = e.directionCos.w;
+        float z = 1.0 - u.x * (1.0 - cosOuter), r = sqrt(max(0.0, 1.0 - z * z)), phi = 2.0 * kPi * u.y;
+        vec3 t, b;
+        basisAround(e.directionCos.xyz, t, b);
+        dir = normalize(r * cos(phi) * t + r * sin(phi) * b + z * e.directionCos.xyz);
+        Light l = Light(vec4(0.0), e.directionCos, vec4(0.0, 0.0, 0.0, e.powerCosInner.w), ivec4(0));
+        power *= spotWeight(l, z);
+    } else if (kind == kLightDirectional) {
+        // A disk across the light, wider than the scene, behind it.
+        vec3 t, b;
+        basisAround(e.directionCos.xyz, t, b);
+        float r = e.v0.w * sqrt(u.x), phi = 2.0 * kPi * u.y;
+        origin += r * (cos(phi) * t + sin(phi) * b);
+        dir = e.directionCos.xyz;
+    } else {
+        // One-sided emitting triangle: uniform point, cosine-weighted direction about its normal.
+        float s = sqrt(w.x);
+        vec3 a = e.v0.xyz, bb = e.v1.xyz, c = e.v2.xyz;
+        origin = (1.0 - s) * a + s * (1.0 - w.y) * bb + s * w.y * c;
+        dir = cosineDirection(e.directionCos.xyz, u);
+        origin += e.directionCos.xyz * rayEpsilon;
+    }
+}
+
+void main()
+{
+    uint path = gl_GlobalInvocationID.x;
+    if (path >= pathCount) return;
+    uint stored = 0u;
+    if (emitterCount == 0) {
+        pathCounts[path] = 0u;
+        emitted[path] = vec4(0.0);
+        return;
+    }
+    PhotonEmitter e = emitters[findEmitter(path)];
+    vec3 origin, dir, power;
+    emit(e, path - e.range.x, e.range.y, origin, dir, power);
+    emitted[path] = vec4(power, 0.0);
+    uint rng = pcgHash(path ^ pcgHash(seed));
+
+    for (int bounce = 0; bounce < maxBounces; ++bounce) {
+        if (max(power.r, max(power.g, power.b)) <= 0.0) break;
+        Hit hit;
+        if (!closestHit(origin, dir, 0.0, 3.0e38, hit)) break;
+        uint tri = hit.triangle;
+        vec3 p0 = sceneVertexPosition(sceneVertexIndex(tri, 0));
+        vec3 p1 = sceneVertexPosition(sceneVertexIndex(tri, 1));
+        vec3 p2 = sceneVertexPosition(sceneVertexIndex(tri, 2));
+        vec3 p = (1.0 - hit.b.x - hit.b.y) * p0 + hit.b.x * p1 + hit.b.y * p2;
+        vec3 ng = normalize(cross(p1 - p0, p2 - p0));
+        vec3 n = sceneTriangleNormal(tri, hit.b);
+        Material m = materials[sceneTriangleMaterial(tri)];
+        vec3 wo = -dir;
+        if (dot(ng, wo) <= 0.0) {
+            if (m.flags.y == 0) break; // the back of a one-sided surface is black
+            ng = -ng;
+            n = -n;
+        }
+        if (max(m.emissionRoughness.r, max(m.emissionRoughness.g, m.emissionRoughness.b)) > 0.0) break;
+        vec3 baseColor = m.baseColorMetallic.rgb;
+        if (m.flags.x >= 0) {
+            vec2 uv = (1.0 - hit.b.x - hit.b.y) * sceneVertexUv(sceneVertexIndex(tri, 0)) +
+                      hit.b.x * sceneVertexUv(sceneVertexIndex(tri, 1)) + hit.b.y * sceneVertexUv(sceneVertexIndex(tri, 2));
+            baseColor *= textureLod(baseColorTextures, vec3(uv, float(m.flags.x)), 0.0).rgb;
+        }
+        BrdfParams b = brdfParams(baseColor, m.baseColorMetallic.a, m.emissionRoughness.a, m.specularColorSpecular.a,
+                                  m.specularColorSpecular.rgb);
+        if (bounce > 0) {
+            uint slot = atomicAdd(counters[kCounterStaged], 1u);
+            if (slot < capacity) {
+                staging[slot].positionPath = vec4(p, uintBitsToFloat(path));
+                staging[slot].powerIndex = vec4(power, uintBitsToFloat(stored));
+                staging[slot].incoming = vec4(wo, 0.0);
+                staging[slot].normal = vec4(dot(n, wo) > 0.0 ? n : ng, 0.0);
+            }
+            stored += 1u;
+        }
+        if (b.weight <= 0.0 && !brdfHasDiffuse(b)) break;
+        float u1 = nextRandom(rng);
+        vec2 u = vec2(nextRandom(rng), nextRandom(rng));
+        vec3 wi;
+        vec3 weight = scatterPhoton(b, dot(n, wo) > 0.0 ? n : ng, wo, u1, u, wi);
+        if (dot(ng, wi) <= 0.0) break;
+        vec3 next = power * weight;
+        if (russianRoulette != 0) {
+            float keep = min(1.0, max(next.r, max(next.g, next.b)) / max(power.r, max(power.g, power.b)));
+            if (nextRandom(rng) >= keep) break;
+            next /= keep;
+        }
+        power = next;
+        origin = p + ng * rayEpsilon;
+        dir = wi;
+    }
+    pathCounts[path] = stored;
+}

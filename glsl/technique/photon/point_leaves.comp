@@ -1,0 +1,24 @@
+#version 450 core
+// The point tree's leaves, one point each, in Morton order (shading_clusters.glsl: PointNode).
+#include "technique/photon/shading_clusters.glsl"
+
+layout(local_size_x = 64) in;
+
+layout(std430, binding = SSBO_SORT_KEYS) readonly buffer Keys { uint keys[]; };
+layout(std430, binding = SSBO_SORT_VALUES) readonly buffer Values { uint values[]; };
+
+uniform int useSamples;
+
+void main()
+{
+    uint k = gl_GlobalInvocationID.x;
+    uint leaves = 1u << uint(pointTreeDepth);
+    if (k >= leaves) return;
+    PointNode n = PointNode(vec4(vec3(3.0e38), 0.0), vec4(vec3(-3.0e38), 0.0));
+    if (keys[k] != 0xFFFFFFFFu) {
+        uint c = values[k];
+        vec3 p = useSamples != 0 ? clusters[c].samplePoint.xyz : clusters[c].centre.xyz;
+        n = PointNode(vec4(p, 1.0), vec4(p, uintBitsToFloat(c)));
+    }
+    pointNodes[leaves + k] = n;
+}

@@ -1,0 +1,164 @@
+// Photon tracing of the photon family (gl/technique/photon/photon_tracer.h) against closed forms: the
+// power that leaves each kind of light (cornell-box.md's numbers), the furnace box's stored power
+// rho / (1 - rho) times the emitted power, Russian roulette keeping the expected power, the photon map's
+// order (Morton codes ascending) and its determinism.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+
+#include <gtest/gtest.h>
+
+#include "core/cornell.h"
+#include "gl/frame/frame.h"
+#include "gl/frame/ray_caster.h"
+#include "gl/technique/photon/photon_tracer.h"
+#include "tests/gl/gl_test_fixture.h"
+#include "tests/gl/photon_test_scenes.h"
+
+namespace bounce {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+struct Traced {
+    glm::dvec3 emitted{0.0}, stored{0.0};
+    std::vector<gl::GpuPhoton> photons;
+    int grown = 0;
+};
+
+Traced trace(const core::Scene& scene, const gl::PhotonTracerSettings& settings)
+{
+    gl::Frame frame(scene, photontest::smallFrame(8, 8));
+    gl::RayCaster caster(scene);
+    gl::Buffer counters("photon.counters", gl::kCounterSlots * 4);
+    gl::PhotonTracer tracer(settings);
+    gl::PassTimers timers;
+    tracer.trace(frame, caster, counters, timers);
+    Traced t;
+    t.emitted = tracer.emittedTotal();
+    t.photons = tracer.downloadPhotons();
+    for (const gl::GpuPhoton& p : t.photons) t.stored += glm::dvec3(glm::vec3(p.powerIndex));
+    t.grown = tracer.grownTimes();
+    return t;
+}
+
+void expectRgbNear(const glm::dvec3& got, const glm::dvec3& want, double relative)
+{
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(got[c], want[c], relative * want[c]) << "channel " << c;
+}
+
+class PhotonTracingTest : public GlTest {};
+
+// cornell-box.md: the spot's power is I 2 pi (1 - cos 45 deg) = (0.42704, 0.30144, 0.10048) W. Each
+// photon carries the light's power over its photon count, so the sum is exact up to float rounding.
+TEST_F(PhotonTracingTest, SpotEmitsItsPower)
+{
+    gl::PhotonTracerSettings s;
+    s.photons = 4096;
+    const Traced t = trace(core::makeCornell("cornell-spot"), s);
+    std::printf("[ measured ] spot: emitted (%.5f, %.5f, %.5f) W\n", t.emitted.x, t.emitted.y, t.emitted.z);
+    expectRgbNear(t.emitted, {0.42704, 0.30144, 0.10048}, 2e-4);
+}
+
+TEST_F(PhotonTracingTest, PointEmitsItsPower)
+{
+    gl::PhotonTracerSettings s;
+    s.photons = 4096;
+    const Traced t = trace(core::makeCornell("cornell-point"), s);
+    std::printf("[ measured ] point: emitted (%.5f, %.5f, %.5f) W\n", t.emitted.x, t.emitted.y, t.emitted.z);
+    expectRgbNear(t.emitted, {2.91603, 2.05837, 0.68612}, 2e-4);
+}
+
+// The area light: pi L A, with A the light quad's area from cornell-box.md's corners (0.13 x 0.105 m).
+TEST_F(PhotonTracingTest, AreaLightEmitsPiLA)
+{
+    gl::PhotonTracerSettings s;
+    s.photons = 4096;
+    const Traced t = trace(core::makeCornell("cornell-area"), s);
+    const double area = (0.343 - 0.213) * (0.332 - 0.227);
+    const glm::dvec3 want = kPi * area * glm::dvec3(17.0, 12.0, 4.0);
+    std::printf("[ measured ] area: emitted (%.5f, %.5f, %.5f) W, pi L A (%.5f, %.5f, %.5f)\n", t.emitted.x,
+                t.emitted.y, t.emitted.z, want.x, want.y, want.z);
+    expectRgbNear(t.emitted, want, 2e-4);
+}
+
+// A point light in a closed box of albedo rho: every photon reaches a wall at every bounce, so with
+// Russian roulette the stored power (from the second surface on) is emitted x (rho + rho^2 + ...) =
+// emitted x rho / (1 - rho) in expectation. 16384 paths at rho = 0.5: the standard error of the sum is
+// about 1.1%; 4% is over 3 sigma. Without roulette it is exactly the truncated series.
+TEST_F(PhotonTracingTest, FurnaceBoxStoresRhoOverOneMinusRho)
+{
+    const float rho = 0.5f;
+    gl::PhotonTracerSettings s;
+    s.photons = 16384;
+    s.maxBounces = 64;
+    const Traced rr = trace(photontest::closedBox(rho), s);
+    const double want = rho / (1.0 - rho);
+    std::printf("[ measured ] furnace, roulette: stored / emitted = %.4f (closed form %.4f), %zu photons\n",
+                rr.stored.x / rr.emitted.x, want, rr.photons.size());
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(rr.stored[c] / rr.emitted[c], want, 0.04 * want);
+
+    s.russianRoulette = false;
+    s.maxBounces = 8;
+    const Traced all = trace(photontest::closedBox(rho), s);
+    double series = 0.0;
+    for (int k = 1; k < s.maxBounces; ++k) series += std::pow(double(rho), k);
+    std::printf("[ measured ] furnace, no roulette: stored / emitted = %.6f (series %.6f)\n",
+                all.stored.x / all.emitted.x, series);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(all.stored[c] / all.emitted[c], series, 1e-3 * series);
+    // Roulette keeps the expected power: the two agree within its noise (the truncated tail is 0.8%).
+    EXPECT_NEAR(rr.stored.x, all.stored.x / series * want, 0.05 * rr.stored.x);
+}
+
+// Paths traced twice give the same photons bit for bit (appended in any order, placed in path order,
+// then sorted stably), in ascending Morton order.
+TEST_F(PhotonTracingTest, PhotonMapIsDeterministicAndInMortonOrder)
+{
+    gl::PhotonTracerSettings s;
+    s.photons = 8192;
+    const core::Scene scene = core::makeCornell("cornell-spot");
+    const Traced a = trace(scene, s), b = trace(scene, s);
+    ASSERT_GT(a.photons.size(), 1000u);
+    ASSERT_EQ(a.photons.size(), b.photons.size());
+    EXPECT_EQ(std::memcmp(a.photons.data(), b.photons.data(), a.photons.size() * sizeof(gl::GpuPhoton)), 0);
+    // Morton order over the tracer's bounds, recomputed here.
+    const core::Bounds bounds = scene.bounds();
+    const float size = glm::length(bounds.extent());
+    const glm::vec3 lo = bounds.lo - 1e-3f * size, extent = bounds.extent() + 2e-3f * size;
+    const auto expand = [](std::uint32_t v) {
+        v = (v * 0x00010001u) & 0xFF0000FFu;
+        v = (v * 0x00000101u) & 0x0F00F00Fu;
+        v = (v * 0x00000011u) & 0xC30C30C3u;
+        v = (v * 0x00000005u) & 0x49249249u;
+        return v;
+    };
+    std::uint32_t previous = 0;
+    int outOfOrder = 0;
+    for (const gl::GpuPhoton& p : a.photons) {
+        const glm::vec3 q = glm::clamp((glm::vec3(p.positionPath) - lo) / extent, 0.0f, 0.99999994f);
+        const glm::uvec3 c(q * 1024.0f);
+        const std::uint32_t code = expand(c.x) * 4u + expand(c.y) * 2u + expand(c.z);
+        outOfOrder += code < previous;
+        previous = code;
+    }
+    EXPECT_EQ(outOfOrder, 0);
+}
+
+// Photons that reach the light (here: the back of the one-sided emitter, and its front) are absorbed:
+// none lies on the emitting quad's plane between its corners.
+TEST_F(PhotonTracingTest, NoPhotonIsStoredOnTheEmitter)
+{
+    gl::PhotonTracerSettings s;
+    s.photons = 8192;
+    const Traced t = trace(core::makeCornell("cornell-area"), s);
+    int onLight = 0;
+    for (const gl::GpuPhoton& p : t.photons) {
+        const glm::vec3 x(p.positionPath);
+        onLight += std::abs(x.y - 0.5487f) < 2e-5f && x.x > 0.213f && x.x < 0.343f && x.z > 0.227f && x.z < 0.332f;
+    }
+    EXPECT_EQ(onLight, 0);
+}
+
+} // namespace
+} // namespace bounce
