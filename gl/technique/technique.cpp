@@ -209,7 +209,8 @@ nlohmann::json TechniqueInfo::toJson() const
                         {"paper", paper},
                         {"lightPaths", core::lightPathsName(lightPaths)},
                         {"summary", summary},
-                        {"progressive", progressive}};
+                        {"progressive", progressive},
+                        {"quickSets", quickSets}};
     j["parameters"] = nlohmann::json::array();
     for (const ParamDecl& p : params) j["parameters"].push_back(p.toJson());
     j["passes"] = nlohmann::json::array();

@@ -122,6 +122,10 @@ struct TechniqueInfo {
     // Accumulates over frames (ray-bundle directions, progressive point projection): `--frames N` is N
     // accumulation steps, and it starts over when Frame::version() changes.
     bool progressive = false;
+    // "key=value" settings that make the technique cheap while still running every pass its defaults run
+    // (fewer photons, directions, rays, smaller buffers): the conformance and determinism tests render
+    // with them, so that each new technique costs the suite seconds, not minutes, on a CPU rasteriser.
+    std::vector<std::string> quickSets;
     std::function<std::unique_ptr<Technique>(Frame&, const ParamValues&)> create;
 
     nlohmann::json toJson() const; // everything but `create`, for `bounce list --json`

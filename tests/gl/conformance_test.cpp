@@ -1,7 +1,8 @@
 // One conformance test for every registered technique (DESIGN.md, "What lives where when a family is
 // added"): a new technique gets it without a line of test code. `ctest -R Conformance` runs one case per
 // technique; each renders cornell-spot, cornell-area, cornell-point-ceiling (the light 1 mm under the
-// ceiling) and a closed furnace box at 32x32, 1x1 and 3x5 with the technique's defaults, and checks:
+// ceiling) and a closed furnace box at 32x32, 1x1 and 3x5 with the technique's defaults and its
+// quickSets (TechniqueInfo: cheap values that run the same passes), and checks:
 //   - it builds (every shader compiles) and renders two frames without a GL error or a high-severity
 //     debug message (the fixture fails the test on either);
 //   - its indirect light is finite and non-negative at every pixel;
@@ -85,6 +86,20 @@ std::vector<std::string> techniqueNames()
     return names;
 }
 
+// The technique's defaults with its quickSets applied (TechniqueInfo::quickSets): every pass the defaults
+// run, at a cost of seconds on a CPU rasteriser.
+gl::ParamValues quickValues(const gl::TechniqueInfo& info)
+{
+    gl::ParamValues v(info.params);
+    for (const std::string& kv : info.quickSets) {
+        const auto eq = kv.find('=');
+        EXPECT_NE(eq, std::string::npos) << info.name << ": quickSets entry '" << kv << "' is not key=value";
+        if (eq == std::string::npos) continue;
+        EXPECT_NO_THROW(v.set(info.params, kv.substr(0, eq), kv.substr(eq + 1))) << info.name << ": " << kv;
+    }
+    return v;
+}
+
 // The furnace's bound on indirect light for a technique's light paths (see the file comment).
 double furnaceBound(core::LightPaths paths)
 {
@@ -119,7 +134,7 @@ TEST_P(Conformance, Technique)
             SCOPED_TRACE(info.name + " on " + sceneName + " at " + std::to_string(w) + "x" + std::to_string(h));
             std::unique_ptr<gl::Renderer> r;
             ASSERT_NO_THROW(
-                r = std::make_unique<gl::Renderer>(scene, info.name, frameValues, gl::ParamValues(info.params), w, h));
+                r = std::make_unique<gl::Renderer>(scene, info.name, frameValues, quickValues(info), w, h));
             r->renderFrame(false);
             r->renderFrame(true);
             bounce::gl::checkGlError("the conformance frame");
@@ -175,7 +190,7 @@ TEST_P(Conformance, UniformsMatchARebuild)
         return r.frame().read(r.frame().indirect());
     };
     // Coarse patches even at this small size, so that the eye-space thresholds have patches to refine.
-    gl::ParamValues defaults(info.params);
+    gl::ParamValues defaults = quickValues(info);
     for (const gl::ParamDecl& d : info.params)
         if (d.name == "coarsestLevel") defaults.setValue(d.name, 3);
     for (const gl::ParamDecl& d : info.params) {

@@ -282,6 +282,8 @@ TechniqueInfo grbTechniqueInfo()
         choiceParam("finalGlossy", {"auto", "on", "off"}, 0,
                     "Sec. 5.3 final glossy bounce towards the eye (auto: where the scene is glossy); restarts "
                     "on camera moves")};
+    // Every pass with fewer, coarser bundles and a small atlas: the tests' cheap settings.
+    info.quickSets = {"directionsPerFrame=2", "kbufferSize=64", "atlasTexels=4096"};
     info.create = [](Frame& frame, const ParamValues& v) -> std::unique_ptr<Technique> {
         try {
             return std::make_unique<GlobalRayBundles>(frame, v);

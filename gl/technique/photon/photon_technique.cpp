@@ -133,6 +133,8 @@ TechniqueInfo photonTechniqueInfo()
         choiceParam("density", {"cut", "photons"}, 0,
                     "gather hits read the illumination cut (the paper), or the full photon map (Fig. 6)"),
     };
+    // Every pass with a small photon map, few clusters and short gathers: the tests' cheap settings.
+    info.quickSets = {"photons=4096", "clusters=64", "gatherRays=16"};
     info.create = [](Frame& frame, const ParamValues& v) -> std::unique_ptr<Technique> {
         PhotonSettings s;
         s.tracer.photons = v.getInt("photons");
