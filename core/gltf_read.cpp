@@ -375,9 +375,11 @@ private:
             Material m;
             m.name = gm.name;
             const tinygltf::PbrMetallicRoughness& pbr = gm.pbrMetallicRoughness;
-            if (pbr.baseColorFactor.size() == 4)
+            if (pbr.baseColorFactor.size() == 4) {
                 m.baseColor = glm::vec3(float(pbr.baseColorFactor[0]), float(pbr.baseColorFactor[1]),
                                         float(pbr.baseColorFactor[2]));
+                m.baseAlpha = float(pbr.baseColorFactor[3]);
+            }
             if (pbr.baseColorTexture.index >= 0) {
                 if (pbr.baseColorTexture.texCoord != 0) warn("material '" + gm.name + "': only TEXCOORD_0 is read");
                 const auto it = textureOfImage_.find(imageOfTexture(pbr.baseColorTexture.index));
@@ -398,7 +400,19 @@ private:
                 m.specularColor = glm::vec3(colour(*s, "specularColorFactor", glm::dvec3(1.0)));
             }
             m.doubleSided = gm.doubleSided;
+            readAlphaMode(gm, m);
             scene_.materials.push_back(m);
+        }
+    }
+
+    // MASK cuts holes wherever alpha < alphaCutoff; BLEND (translucency) has no model in Bounce.
+    void readAlphaMode(const tinygltf::Material& gm, Material& m) const
+    {
+        if (gm.alphaMode == "MASK") {
+            m.alphaMode = AlphaMode::Mask;
+            m.alphaCutoff = float(gm.alphaCutoff);
+        } else if (gm.alphaMode != "OPAQUE") {
+            warn("material '" + gm.name + "': alphaMode '" + gm.alphaMode + "' is drawn OPAQUE");
         }
     }
 

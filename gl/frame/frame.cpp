@@ -31,7 +31,8 @@ Frame::Frame(const core::Scene& scene, const FrameSettings& settings)
       directFbo_("direct.fbo"),
       compositeFbo_("composite.fbo"),
       emptyVao_("fullscreen"),
-      gbufferProgram_(Program::graphics("gbuffer", "frame/gbuffer.vert", "frame/gbuffer.frag")),
+      gbufferProgram_(
+          Program::graphics("gbuffer", "frame/gbuffer.vert", "frame/gbuffer.frag", gpu_.alphaMaskDefines())),
       directProgram_(directProgram(gpu_)),
       compositeProgram_(Program::graphics("composite", "frame/fullscreen.vert", "frame/composite.frag"))
 {

@@ -1,5 +1,6 @@
 // core::Scene on the GPU: one vertex/index buffer for all meshes (world space), materials, lights and
-// area-light polygons in SSBOs (layouts in glsl/common/scene.glsl), base-colour textures in one array.
+// area-light polygons in SSBOs (layouts in glsl/common/scene.glsl), base-colour textures (with the alpha
+// of masked materials) in one array.
 #pragma once
 
 #include <cstdint>
@@ -10,6 +11,7 @@
 #include "core/scene.h"
 #include "gl/resource/buffer.h"
 #include "gl/resource/framebuffer.h"
+#include "gl/resource/program.h"
 #include "gl/resource/texture.h"
 
 namespace bounce::gl {
@@ -79,6 +81,11 @@ public:
     const Buffer& materials() const { return materials_; }
     const Texture& baseColorTextures() const { return textures_; }
     bool hasTextures() const { return hasTextures_; }
+    // Alpha-masked materials (glTF MASK): the passes that rasterise the scene compile their ALPHA_MASK
+    // variant (glsl/common/base_color.glsl) only for such scenes, so other scenes pay no texture fetch
+    // and no discard. Those variants read materials (SSBO_MATERIALS) and textures (UNIT_BASE_COLOR).
+    bool hasAlphaMask() const { return hasAlphaMask_; }
+    std::vector<Define> alphaMaskDefines() const;
     std::size_t triangleCount() const { return indexCount_ / 3; }
     const core::Bounds& bounds() const { return bounds_; }
 
@@ -96,6 +103,7 @@ private:
     int emissiveCount_ = 0;
     Texture textures_;
     bool hasTextures_ = false;
+    bool hasAlphaMask_ = false;
     std::size_t indexCount_ = 0;
     core::Bounds bounds_;
     std::vector<core::Light> punctual_;

@@ -22,7 +22,9 @@ struct GpuShadowView {
 } // namespace
 
 ShadowMaps::ShadowMaps(const GpuScene& scene, int size)
-    : size_(size), fbo_("shadow.fbo"), program_(Program::graphics("shadow", "frame/shadow.vert", "frame/shadow.frag"))
+    : size_(size),
+      fbo_("shadow.fbo"),
+      program_(Program::graphics("shadow", "frame/shadow.vert", "frame/shadow.frag", scene.alphaMaskDefines()))
 {
     update(scene);
 }
@@ -100,6 +102,10 @@ void ShadowMaps::render(const GpuScene& scene)
     state.depthTest = true; // no culling: every surface blocks light from both sides
     state.polygonOffset = {1.0f, 1.0f};
     state.apply();
+    if (scene.hasAlphaMask()) { // shadow.frag cuts the masks' holes
+        scene.materials().bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_MATERIALS);
+        scene.baseColorTextures().bind(UNIT_BASE_COLOR);
+    }
     program_.use();
     for (std::size_t i = 0; i < views_.size(); ++i) {
         fbo_.attachLayer(GL_DEPTH_ATTACHMENT, depth_, int(i));

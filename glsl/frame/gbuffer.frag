@@ -2,14 +2,13 @@
 // The G-buffer pass: material terms of the one BRDF at each pixel (common/gbuffer.glsl).
 #include "common/brdf.glsl"
 #include "common/scene.glsl"
+#include "common/base_color.glsl"
 
 in vec3 vPosition;
 in vec3 vNormal;
 in vec2 vUv;
 in float vEyeDepth;
 flat in uint vMaterial;
-
-layout(binding = UNIT_BASE_COLOR) uniform sampler2DArray baseColorTextures;
 
 layout(location = 0) out vec4 outPosition;
 layout(location = 1) out vec4 outNormal;
@@ -22,8 +21,11 @@ void main()
     Material m = materials[vMaterial];
     vec3 n = normalize(vNormal);
     bool doubleSided = m.flags.y != 0;
-    vec3 baseColor = m.baseColorMetallic.rgb;
-    if (m.flags.x >= 0) baseColor *= texture(baseColorTextures, vec3(vUv, float(m.flags.x))).rgb;
+    vec4 texel = baseColorTexel(m, vUv);
+#ifdef ALPHA_MASK
+    if (alphaCutOut(m, texel.a)) discard;
+#endif
+    vec3 baseColor = m.baseColorMetallic.rgb * texel.rgb;
     BrdfParams b = brdfParams(baseColor, m.baseColorMetallic.a, m.emissionRoughness.a, m.specularColorSpecular.a,
                               m.specularColorSpecular.rgb);
     vec3 emission = m.emissionRoughness.rgb;
