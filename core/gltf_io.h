@@ -9,8 +9,9 @@
 // - without NORMAL, flat normals are generated (each triangle gets its own three vertices);
 // - without material, a primitive gets glTF's default material (white, metallic 1, roughness 1);
 // - only the baseColor texture is decoded (8-bit RGBA, sRGB as stored, alpha kept for MASK materials),
-//   and only TEXCOORD_0 is read; samplers, normal/occlusion/emissive/metallic-roughness textures are
-//   ignored; alphaMode MASK is kept with its alphaCutoff and baseColorFactor's alpha, BLEND is drawn
+//   and only TEXCOORD_0 is read; a metallicRoughness texture's mean (blue: metallic, green: roughness)
+//   multiplies metallicFactor and roughnessFactor (Bounce has no per-texel metallic or roughness);
+//   samplers, normal/occlusion/emissive textures are ignored; alphaMode MASK is kept with its alphaCutoff and baseColorFactor's alpha, BLEND is drawn
 //   OPAQUE with a warning;
 // - the first perspective camera met in a depth-first walk of the scene is used. Without zfar (an
 //   infinite projection) zfar becomes twice the distance from the camera to the farthest corner of the
