@@ -160,7 +160,8 @@ TEST_F(AlphaMaskTest, GpuRayCastingCutsTheHolesLikeEmbree)
             std::uint64_t count = 0;
             const bool e = embree.intersect(rays[i].origin, rays[i].dir, rays[i].tMin, rays[i].tMax, hit, count);
             const std::uint32_t want = e ? embree.globalTriangle(hit.mesh, hit.prim) : 0xFFFFFFFFu;
-            ASSERT_EQ(got[i].triangle, want) << "ray " << i << (stage == gl::RayStage::Compute ? " (compute)" : " (fragment)");
+            ASSERT_EQ(got[i].triangle, want)
+                << "ray " << i << (stage == gl::RayStage::Compute ? " (compute)" : " (fragment)");
             const bool occluded = embree.occluded(rays[i].origin, rays[i].dir, rays[i].tMin, rays[i].tMax, count);
             ASSERT_EQ(got[i].any != 0u, occluded) << "ray " << i;
             const glm::vec3 at = rays[i].origin + rays[i].dir * ((1.5f - rays[i].origin.y) / rays[i].dir.y);

@@ -173,8 +173,8 @@ TEST_P(SetupDirectTest, GlDirectMatchesPathTracerThroughAnAlphaMask)
 
     int bx = 0, by = 0;
     const double worst = worstBlock(gl, pt, bx, by) / p.hole;
-    std::printf("[ measured ] %s: worst 8x8 block differs by %.4g of the lit floor (block %d, %d)\n",
-                GetParam().name, worst, bx, by);
+    std::printf("[ measured ] %s: worst 8x8 block differs by %.4g of the lit floor (block %d, %d)\n", GetParam().name,
+                worst, bx, by);
     EXPECT_LE(worst, kBlockTolerance) << "block " << bx << ", " << by;
 }
 
