@@ -76,6 +76,25 @@ GpuScene::GpuScene(const core::Scene& scene, int textureSize)
         s.position = sum / float(n) + s.direction * 1e-3f;
     }
 
+    if (hasAlphaMask_) {
+        std::size_t first = 0;
+        for (const core::Mesh& m : scene.meshes) {
+            IndexRanges& r = scene.materials[m.material].isMasked() ? maskedRanges_ : opaqueRanges_;
+            const void* offset = reinterpret_cast<const void*>(first * sizeof(std::uint32_t));
+            const std::size_t end = first + m.indices.size();
+            // A mesh that follows one of the same kind extends its range.
+            if (!r.counts.empty() &&
+                static_cast<const char*>(r.offsets.back()) + std::size_t(r.counts.back()) * sizeof(std::uint32_t) ==
+                    static_cast<const char*>(offset))
+                r.counts.back() += int(m.indices.size());
+            else if (!m.indices.empty()) {
+                r.counts.push_back(int(m.indices.size()));
+                r.offsets.push_back(offset);
+            }
+            first = end;
+        }
+    }
+
     vertices_ = Buffer::fromVector("scene.vertices", vertices);
     indices_ = Buffer::fromVector("scene.indices", indices);
     indexCount_ = indices.size();
@@ -200,6 +219,14 @@ void GpuScene::draw() const
 {
     vao_.bind();
     glDrawElements(GL_TRIANGLES, GLsizei(indexCount_), GL_UNSIGNED_INT, nullptr);
+}
+
+void GpuScene::draw(Meshes which) const
+{
+    const IndexRanges& r = which == Meshes::Masked ? maskedRanges_ : opaqueRanges_;
+    if (r.counts.empty()) return;
+    vao_.bind();
+    glMultiDrawElements(GL_TRIANGLES, r.counts.data(), GL_UNSIGNED_INT, r.offsets.data(), GLsizei(r.counts.size()));
 }
 
 } // namespace bounce::gl

@@ -74,6 +74,10 @@ public:
     GpuScene(const core::Scene& scene, int textureSize = 512);
 
     void draw() const; // binds the vertex array and draws every triangle
+    // The meshes of masked materials, or the others, in as few index ranges as their order allows
+    // (gl/frame/scene_program.h draws each with its shader variant).
+    enum class Meshes { Opaque, Masked };
+    void draw(Meshes which) const;
     // Binds vertices, indices and emissive triangles at SSBO_SCENE_* and the textures at UNIT_BASE_COLOR (gl/frame/bindings.h).
     void bindGeometry() const;
     int emissiveTriangleCount() const { return emissiveCount_; }
@@ -104,6 +108,11 @@ private:
     Texture textures_;
     bool hasTextures_ = false;
     bool hasAlphaMask_ = false;
+    struct IndexRanges {
+        std::vector<int> counts;
+        std::vector<const void*> offsets; // bytes into the index buffer
+    };
+    IndexRanges opaqueRanges_, maskedRanges_; // only for scenes with masks
     std::size_t indexCount_ = 0;
     core::Bounds bounds_;
     std::vector<core::Light> punctual_;

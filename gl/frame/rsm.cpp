@@ -76,7 +76,7 @@ double RsmPass::exactTexelSolidAngle(double fovRad, int size, int x, int y)
 }
 
 RsmPass::RsmPass(const RsmSettings& settings)
-    : settings_(settings), fbo_("rsm.fbo"), program_(Program::graphics("rsm", "frame/rsm.vert", "frame/rsm.frag"))
+    : settings_(settings), fbo_("rsm.fbo"), program_("rsm", "frame/rsm.vert", "frame/rsm.frag")
 {
     if (settings_.size < 1) throw std::invalid_argument("RSM size must be at least 1");
     if (settings_.levels > 0) {
@@ -181,19 +181,10 @@ void RsmPass::render(Frame& frame, PassTimers& timers)
     }
 }
 
-// Scenes with alpha-masked materials get the rsm.frag that cuts their holes; only they pay for it.
-Program& RsmPass::programFor(const GpuScene& scene)
-{
-    if (!scene.hasAlphaMask()) return program_;
-    if (!maskedProgram_)
-        maskedProgram_ = Program::graphics("rsm.masked", "frame/rsm.vert", "frame/rsm.frag", scene.alphaMaskDefines());
-    return maskedProgram_;
-}
-
 void RsmPass::renderViews(Frame& frame)
 {
     if (views_.empty()) return;
-    Program& program = programFor(frame.gpuScene());
+    program_.prepare(frame.gpuScene()); // the ALPHA_MASK variant for a scene with masks, once
     const int size = settings_.size;
     const bool pyramid = settings_.levels > 0;
     PassState state = PassState::fullscreen(fbo_, size, size);
@@ -202,8 +193,7 @@ void RsmPass::renderViews(Frame& frame)
     frame.bindSceneData();
     frame.gpuScene().baseColorTextures().bind(UNIT_BASE_COLOR);
     if (solidAngles_) solidAngles_.bind(UNIT_RSM_SOLID_ANGLES);
-    program.set("exactSolidAngle", settings_.exactSolidAngle ? 1 : 0);
-    program.use();
+    program_.set("exactSolidAngle", settings_.exactSolidAngle ? 1 : 0);
     const float empty[4] = {0, 0, 0, 0}, noDepth[4] = {1e30f, 0, 0, 0}, nMin[4] = {2, 2, 2, 0},
                 nMax[4] = {-2, -2, -2, 0};
     for (int i = 0; i < viewCount(); ++i) {
@@ -234,17 +224,17 @@ void RsmPass::renderViews(Frame& frame)
         const float one = 1.0f;
         glClearNamedFramebufferfv(fbo_.id(), GL_DEPTH, 0, &one);
 
-        program.set("viewProj", v.proj * v.view);
-        program.set("lightIndex", std::max(v.light, 0));
-        program.set("areaFirst", v.areaFirst);
-        program.set("areaCount", v.areaCount);
-        program.set("viewOrigin", v.origin);
-        program.set("viewDirection", v.direction);
-        program.set("orthographic", v.orthographic ? 1 : 0);
-        program.set("orthoTexelArea", v.orthoTexelArea);
-        program.set("equalSolidAngle", v.orthographic ? 0.0f : float(equalTexelSolidAngle(v.fovRad, size)));
-        program.set("viewLayer", i);
-        frame.gpuScene().draw();
+        program_.set("viewProj", v.proj * v.view);
+        program_.set("lightIndex", std::max(v.light, 0));
+        program_.set("areaFirst", v.areaFirst);
+        program_.set("areaCount", v.areaCount);
+        program_.set("viewOrigin", v.origin);
+        program_.set("viewDirection", v.direction);
+        program_.set("orthographic", v.orthographic ? 1 : 0);
+        program_.set("orthoTexelArea", v.orthoTexelArea);
+        program_.set("equalSolidAngle", v.orthographic ? 0.0f : float(equalTexelSolidAngle(v.fovRad, size)));
+        program_.set("viewLayer", i);
+        program_.draw(frame.gpuScene());
     }
 }
 

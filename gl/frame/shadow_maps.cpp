@@ -22,10 +22,9 @@ struct GpuShadowView {
 } // namespace
 
 ShadowMaps::ShadowMaps(const GpuScene& scene, int size)
-    : size_(size),
-      fbo_("shadow.fbo"),
-      program_(Program::graphics("shadow", "frame/shadow.vert", "frame/shadow.frag", scene.alphaMaskDefines()))
+    : size_(size), fbo_("shadow.fbo"), program_("shadow", "frame/shadow.vert", "frame/shadow.frag")
 {
+    program_.prepare(scene);
     update(scene);
 }
 
@@ -106,13 +105,12 @@ void ShadowMaps::render(const GpuScene& scene)
         scene.materials().bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_MATERIALS);
         scene.baseColorTextures().bind(UNIT_BASE_COLOR);
     }
-    program_.use();
     for (std::size_t i = 0; i < views_.size(); ++i) {
         fbo_.attachLayer(GL_DEPTH_ATTACHMENT, depth_, int(i));
         glNamedFramebufferDrawBuffer(fbo_.id(), GL_NONE);
         glClear(GL_DEPTH_BUFFER_BIT);
         program_.set("viewProj", views_[i].proj * views_[i].view);
-        scene.draw();
+        program_.draw(scene);
     }
 }
 

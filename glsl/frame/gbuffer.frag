@@ -16,6 +16,17 @@ layout(location = 2) out vec4 outDiffuse;
 layout(location = 3) out vec4 outSpecular;
 layout(location = 4) out vec4 outEmission;
 
+#ifdef GBUFFER_CONSTANT_FRAGMENT
+// Profiling only (frame parameter gbuffer.fragment=constant): no material, no texture.
+void main()
+{
+    outPosition = vec4(0.0, 0.0, 0.0, 1.0);
+    outNormal = vec4(0.0, 1.0, 0.0, 1.0);
+    outDiffuse = vec4(0.5, 0.5, 0.5, 0.0);
+    outSpecular = vec4(0.0);
+    outEmission = vec4(0.0, 0.0, 0.0, 1.0);
+}
+#else
 void main()
 {
     Material m = materials[vMaterial];
@@ -45,3 +56,4 @@ void main()
     outSpecular = vec4(b.f0, m.emissionRoughness.a);
     outEmission = vec4(emission, 1.0);
 }
+#endif
