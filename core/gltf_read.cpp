@@ -385,7 +385,9 @@ private:
 
     void loadMaterials()
     {
+        int normalTextures = 0;
         for (const tinygltf::Material& gm : model_.materials) {
+            if (gm.normalTexture.index >= 0) ++normalTextures;
             Material m;
             m.name = gm.name;
             const tinygltf::PbrMetallicRoughness& pbr = gm.pbrMetallicRoughness;
@@ -427,6 +429,9 @@ private:
             readAlphaMode(gm, m);
             scene_.materials.push_back(m);
         }
+        if (normalTextures > 0)
+            warn(std::to_string(normalTextures) +
+                 " material(s) have normal textures; both renderers shade with the vertex normals (gltf_io.h)");
     }
 
     // MASK cuts holes wherever alpha < alphaCutoff; BLEND (translucency) has no model in Bounce.
