@@ -79,19 +79,8 @@ GpuScene::GpuScene(const core::Scene& scene, int textureSize)
     if (hasAlphaMask_) {
         std::size_t first = 0;
         for (const core::Mesh& m : scene.meshes) {
-            IndexRanges& r = scene.materials[m.material].isMasked() ? maskedRanges_ : opaqueRanges_;
-            const void* offset = reinterpret_cast<const void*>(first * sizeof(std::uint32_t));
-            const std::size_t end = first + m.indices.size();
-            // A mesh that follows one of the same kind extends its range.
-            if (!r.counts.empty() &&
-                static_cast<const char*>(r.offsets.back()) + std::size_t(r.counts.back()) * sizeof(std::uint32_t) ==
-                    static_cast<const char*>(offset))
-                r.counts.back() += int(m.indices.size());
-            else if (!m.indices.empty()) {
-                r.counts.push_back(int(m.indices.size()));
-                r.offsets.push_back(offset);
-            }
-            first = end;
+            (scene.materials[m.material].isMasked() ? maskedRanges_ : opaqueRanges_).add(first, m.indices.size());
+            first += m.indices.size();
         }
     }
 
@@ -219,6 +208,18 @@ void GpuScene::draw() const
 {
     vao_.bind();
     glDrawElements(GL_TRIANGLES, GLsizei(indexCount_), GL_UNSIGNED_INT, nullptr);
+}
+
+void GpuScene::IndexRanges::add(std::size_t first, std::size_t count)
+{
+    if (count == 0) return;
+    if (!counts.empty() && first == end) { // follows the last range: extend it
+        counts.back() += int(count);
+    } else {
+        counts.push_back(int(count));
+        offsets.push_back(reinterpret_cast<const void*>(first * sizeof(std::uint32_t)));
+    }
+    end = first + count;
 }
 
 void GpuScene::draw(Meshes which) const

@@ -108,9 +108,12 @@ private:
     Texture textures_;
     bool hasTextures_ = false;
     bool hasAlphaMask_ = false;
+    // Ranges of the index buffer for glMultiDrawElements.
     struct IndexRanges {
         std::vector<int> counts;
         std::vector<const void*> offsets; // bytes into the index buffer
+        std::size_t end = 0;              // one past the last range's last index
+        void add(std::size_t first, std::size_t count);
     };
     IndexRanges opaqueRanges_, maskedRanges_; // only for scenes with masks
     std::size_t indexCount_ = 0;

@@ -37,6 +37,11 @@ core::Scene floorUnderMask()
     f.indices = {0, 1, 2, 0, 2, 3};
     s.meshes.push_back(f);
     testing::addMaskedQuad(s);
+    // An opaque shelf under the hole after the masked mesh, so that the opaque meshes are two index ranges.
+    core::Mesh shelf = f;
+    shelf.name = "shelf";
+    shelf.positions = {{-0.85f, 0.3f, -0.3f}, {-0.85f, 0.3f, 0.3f}, {-0.55f, 0.3f, 0.3f}, {-0.55f, 0.3f, -0.3f}};
+    s.meshes.push_back(shelf);
     core::Light sun;
     sun.type = core::LightType::Directional;
     sun.direction = {0.0f, -1.0f, 0.0f};
@@ -58,6 +63,12 @@ Under under(const glm::vec3& p)
     return p.x < 0.0f ? Under::Hole : Under::Opaque;
 }
 
+// Whether a point at the shelf's height lies on it (inside: 5 cm from its edges) or near it.
+bool onShelf(const glm::vec3& p, float margin)
+{
+    return p.x > -0.85f + margin && p.x < -0.55f - margin && std::abs(p.z) < 0.3f - margin;
+}
+
 class AlphaMaskTest : public GlTest {};
 
 // Seen from above, the G-buffer holds the floor through the hole and the quad on its opaque half.
@@ -73,23 +84,28 @@ TEST_F(AlphaMaskTest, GBufferSeesThroughTheHoles)
     frame.beginFrame();
     frame.renderGBuffer(timers);
     timers.endFrame(false);
-    const core::Image position = frame.read(frame.position());
-    int hole = 0, opaque = 0, wrong = 0;
+    const core::Image position = frame.read(frame.position()), normal = frame.read(frame.normal());
+    int hole = 0, opaque = 0, shelf = 0, wrong = 0;
     for (int y = 0; y < kSize; ++y)
         for (int x = 0; x < kSize; ++x) {
             const glm::vec3 d = scene.camera.rayDirection(x + 0.5f, y + 0.5f, kSize, kSize);
-            const glm::vec3 onQuad = scene.camera.position + d * ((scene.camera.position.y - 1.5f) / -d.y);
-            const Under u = under(onQuad);
+            const auto at = [&](float height) { return scene.camera.position + d * ((3.0f - height) / -d.y); };
+            const Under u = under(at(1.5f));
             if (u == Under::Elsewhere) continue;
-            ++(u == Under::Hole ? hole : opaque);
-            const float want = u == Under::Hole ? 0.0f : 1.5f; // the floor through the hole, else the quad
-            if (std::abs(position.at(x, y).y - want) > 1e-4f && wrong++ == 0)
-                ADD_FAILURE() << "pixel " << x << ", " << y << " sees height " << position.at(x, y).y << ", not "
-                              << want;
+            // Through the hole: the shelf, or the floor away from the shelf's edges.
+            const bool toShelf = u == Under::Hole && onShelf(at(0.3f), 0.05f);
+            if (u == Under::Hole && !toShelf && onShelf(at(0.3f), -0.05f)) continue;
+            ++(toShelf ? shelf : u == Under::Hole ? hole : opaque);
+            // All face the camera (the quad is double-sided), and none is the cleared background.
+            const float want = toShelf ? 0.3f : u == Under::Hole ? 0.0f : 1.5f;
+            if ((std::abs(position.at(x, y).y - want) > 1e-4f || normal.at(x, y).y < 0.99f) && wrong++ == 0)
+                ADD_FAILURE() << "pixel " << x << ", " << y << " sees height " << position.at(x, y).y
+                              << " with normal y " << normal.at(x, y).y << ", not height " << want;
         }
     EXPECT_EQ(wrong, 0);
     EXPECT_GT(hole, 100);
     EXPECT_GT(opaque, 100);
+    EXPECT_GT(shelf, 20);
 }
 
 // The sun's RSM (an orthographic view from above) holds the floor through the hole: VPLs sit where
@@ -115,7 +131,7 @@ TEST_F(AlphaMaskTest, ReflectiveShadowMapSeesThroughTheHoles)
         if (p[i + 3] == 0.0f) continue; // no geometry
         const glm::vec3 x(p[i], p[i + 1], p[i + 2]);
         const Under u = under(x);
-        if (u == Under::Elsewhere) continue;
+        if (u == Under::Elsewhere) continue; // the shelf lies beside the quad, seen from the sun
         ++(u == Under::Hole ? hole : opaque);
         const float want = u == Under::Hole ? 0.0f : 1.5f;
         if (std::abs(x.y - want) > 1e-4f && wrong++ == 0)
