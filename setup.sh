@@ -2,7 +2,7 @@
 # First command of the README: installs what is missing, builds, and shows what Bounce is for: the
 # Cornell box (cornell-spot) with direct light only and with global illumination (hierarchical
 # image-space radiosity, `hisr`), each one's GPU time per frame and its error against the path tracer's
-# `full` reference (computed once at 64x64, then cached; about a minute on 2 cores the first time).
+# `full` reference (computed once at 64x64, then cached; under a minute on 2 cores the first time).
 # Writes out/cornell-spot.{exr,png,json} (GI), out/cornell-spot-direct.* and out/cornell-spot-full.exr.
 set -euo pipefail
 cd "$(dirname "$0")"
