@@ -3,11 +3,15 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <random>
 #include <thread>
 
 #include "core/sampling.h"
+#include "gl/frame/bindings.h"
+#include "gl/frame/gpu_scene.h"
 #include "gl/frame/ray_caster.h"
+#include "gl/gl.h"
 #include "ref/embree_scene.h"
 
 namespace bounce::app {
@@ -100,7 +104,14 @@ std::vector<RayThroughput> measureRayThroughput(const core::Scene& scene, int re
     if (threads <= 0) threads = int(std::max(1u, std::thread::hardware_concurrency()));
     const ref::EmbreeScene embree(scene);
     const gl::RayCaster caster(scene);
-    gl::RayBatch batch;
+    gl::RayBatch batch(caster.defines());
+    // Alpha masks: the GPU walk reads materials, uvs and textures, as Embree's filter does (raycast.glsl).
+    std::optional<gl::GpuScene> maskData;
+    if (caster.hasAlphaMask()) {
+        maskData.emplace(scene);
+        maskData->materials().bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_MATERIALS);
+        maskData->bindGeometry();
+    }
 
     // Coherent: the camera's primary rays of a side x side image.
     const int side = std::max(1, int(std::lround(std::sqrt(double(requested)))));

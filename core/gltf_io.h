@@ -8,8 +8,14 @@
 // - only TRIANGLES primitives are read; other modes are skipped with a warning on stderr;
 // - without NORMAL, flat normals are generated (each triangle gets its own three vertices);
 // - without material, a primitive gets glTF's default material (white, metallic 1, roughness 1);
-// - only the baseColor texture is decoded (8-bit RGBA, sRGB as stored), and only TEXCOORD_0 is read;
-//   samplers, alpha, normal/occlusion/emissive/metallic-roughness textures are ignored;
+// - only the baseColor texture is decoded (8-bit RGBA, sRGB as stored, alpha kept for MASK materials),
+//   and only TEXCOORD_0 is read; a metallicRoughness texture's mean (blue: metallic, green: roughness)
+//   multiplies metallicFactor and roughnessFactor (Bounce has no per-texel metallic or roughness);
+//   samplers, occlusion/emissive textures are ignored; normal textures too, with a warning: the
+//   rasteriser and the path tracer both shade with the interpolated vertex normals, so they still agree
+//   (normal maps would need tangents in Mesh, MikkTSpace for files without them, and a second, linear
+//   texture array and unit in the frame; Sponza's change only fine shading detail); alphaMode MASK is kept with its alphaCutoff and baseColorFactor's alpha, BLEND is drawn
+//   OPAQUE with a warning;
 // - the first perspective camera met in a depth-first walk of the scene is used. Without zfar (an
 //   infinite projection) zfar becomes twice the distance from the camera to the farthest corner of the
 //   scene's bounds, which keeps every surface inside the frustum with usable depth precision.

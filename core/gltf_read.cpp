@@ -85,7 +85,8 @@ private:
     std::string path_;
     tinygltf::Model model_;
     Scene scene_;
-    std::map<int, int> textureOfImage_; // glTF image index -> Scene::textures index
+    std::map<int, int> textureOfImage_;               // glTF image index -> Scene::textures index
+    std::map<int, glm::dvec2> meanMetallicRoughness_; // glTF image index -> its mean metallic, roughness
     int defaultMaterial_ = -1;
     bool haveCamera_ = false;
     bool cameraHasZfar_ = false;
@@ -347,6 +348,19 @@ private:
         return t;
     }
 
+    // The mean metallic (blue) and roughness (green) of a metallicRoughness image, linear 0..1.
+    glm::dvec2 meanMetallicRoughness(int imageIndex)
+    {
+        if (const auto it = meanMetallicRoughness_.find(imageIndex); it != meanMetallicRoughness_.end())
+            return it->second;
+        const Texture t = decode(imageIndex);
+        glm::dvec2 sum(0.0);
+        for (std::size_t p = 0; p + 3 < t.rgba8.size(); p += 4) sum += glm::dvec2(t.rgba8[p + 2], t.rgba8[p + 1]);
+        const glm::dvec2 mean = sum / (255.0 * double(std::max<std::size_t>(t.rgba8.size() / 4, 1)));
+        meanMetallicRoughness_[imageIndex] = mean;
+        return mean;
+    }
+
     static double number(const tinygltf::Value& object, const char* key, double fallback)
     {
         if (!object.Has(key) || !object.Get(key).IsNumber()) return fallback;
@@ -371,13 +385,17 @@ private:
 
     void loadMaterials()
     {
+        int normalTextures = 0;
         for (const tinygltf::Material& gm : model_.materials) {
+            if (gm.normalTexture.index >= 0) ++normalTextures;
             Material m;
             m.name = gm.name;
             const tinygltf::PbrMetallicRoughness& pbr = gm.pbrMetallicRoughness;
-            if (pbr.baseColorFactor.size() == 4)
+            if (pbr.baseColorFactor.size() == 4) {
                 m.baseColor = glm::vec3(float(pbr.baseColorFactor[0]), float(pbr.baseColorFactor[1]),
                                         float(pbr.baseColorFactor[2]));
+                m.baseAlpha = float(pbr.baseColorFactor[3]);
+            }
             if (pbr.baseColorTexture.index >= 0) {
                 if (pbr.baseColorTexture.texCoord != 0) warn("material '" + gm.name + "': only TEXCOORD_0 is read");
                 const auto it = textureOfImage_.find(imageOfTexture(pbr.baseColorTexture.index));
@@ -385,6 +403,16 @@ private:
             }
             m.metallic = float(pbr.metallicFactor);
             m.roughness = float(pbr.roughnessFactor);
+            if (pbr.metallicRoughnessTexture.index >= 0) {
+                // No per-texel metallic or roughness in Bounce: the texture's mean multiplies the factors.
+                // Ignoring it would leave metallicFactor's default of 1, a mirror-like metal where the
+                // texture says stone (Crytek Sponza).
+                if (const int image = imageOfTexture(pbr.metallicRoughnessTexture.index); image >= 0) {
+                    const glm::dvec2 mean = meanMetallicRoughness(image);
+                    m.metallic = float(pbr.metallicFactor * mean.x);
+                    m.roughness = float(pbr.roughnessFactor * mean.y);
+                }
+            }
             double strength = 1.0;
             if (const tinygltf::Value* e = extension(gm.extensions, "KHR_materials_emissive_strength"))
                 strength = number(*e, "emissiveStrength", 1.0);
@@ -398,7 +426,22 @@ private:
                 m.specularColor = glm::vec3(colour(*s, "specularColorFactor", glm::dvec3(1.0)));
             }
             m.doubleSided = gm.doubleSided;
+            readAlphaMode(gm, m);
             scene_.materials.push_back(m);
+        }
+        if (normalTextures > 0)
+            warn(std::to_string(normalTextures) +
+                 " material(s) have normal textures; both renderers shade with the vertex normals (gltf_io.h)");
+    }
+
+    // MASK cuts holes wherever alpha < alphaCutoff; BLEND (translucency) has no model in Bounce.
+    void readAlphaMode(const tinygltf::Material& gm, Material& m) const
+    {
+        if (gm.alphaMode == "MASK") {
+            m.alphaMode = AlphaMode::Mask;
+            m.alphaCutoff = float(gm.alphaCutoff);
+        } else if (gm.alphaMode != "OPAQUE") {
+            warn("material '" + gm.name + "': alphaMode '" + gm.alphaMode + "' is drawn OPAQUE");
         }
     }
 

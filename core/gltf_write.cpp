@@ -167,12 +167,17 @@ void appendToString(void* context, void* data, int size)
 
 json materialJson(const Material& m, std::set<std::string>& extensions)
 {
-    json pbr = {{"baseColorFactor", {decimal(m.baseColor.x), decimal(m.baseColor.y), decimal(m.baseColor.z), 1.0}},
+    json pbr = {{"baseColorFactor",
+                 {decimal(m.baseColor.x), decimal(m.baseColor.y), decimal(m.baseColor.z), decimal(m.baseAlpha)}},
                 {"metallicFactor", decimal(m.metallic)},
                 {"roughnessFactor", decimal(m.roughness)}};
     if (m.baseColorTexture >= 0) pbr["baseColorTexture"] = {{"index", m.baseColorTexture}};
     json j = {{"name", m.name}, {"pbrMetallicRoughness", pbr}};
     if (m.doubleSided) j["doubleSided"] = true;
+    if (m.isMasked()) {
+        j["alphaMode"] = "MASK";
+        j["alphaCutoff"] = decimal(m.alphaCutoff);
+    }
     if (m.isEmissive()) {
         const float peak = std::max({m.emission.x, m.emission.y, m.emission.z});
         if (peak <= 1.0f)

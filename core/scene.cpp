@@ -67,6 +67,13 @@ bool Scene::hasGlossy() const
     return false;
 }
 
+bool Scene::hasAlphaMask() const
+{
+    for (const Mesh& m : meshes)
+        if (m.material < materials.size() && materials[m.material].isMasked()) return true;
+    return false;
+}
+
 namespace {
 struct Fnv1a {
     std::uint64_t h = 1469598103934665603ull;
@@ -115,6 +122,9 @@ std::uint64_t Scene::contentHash() const
         f.pod(m.specularColor);
         f.pod(m.emission);
         f.pod(m.doubleSided);
+        f.pod(m.alphaMode);
+        f.pod(m.baseAlpha);
+        f.pod(m.alphaCutoff);
     }
     f.pod(textures.size());
     for (const Texture& t : textures) {
@@ -166,7 +176,8 @@ std::string Scene::validate() const
     for (std::size_t i = 0; i < materials.size(); ++i) {
         const Material& m = materials[i];
         if (!finite(m.baseColor) || !finite(m.emission) || !finite(m.specularColor) || !std::isfinite(m.metallic) ||
-            !std::isfinite(m.roughness) || !std::isfinite(m.specular))
+            !std::isfinite(m.roughness) || !std::isfinite(m.specular) || !std::isfinite(m.baseAlpha) ||
+            !std::isfinite(m.alphaCutoff))
             err << "material " << i << " ('" << m.name << "'): non-finite value\n";
         if (m.baseColorTexture >= int(textures.size())) err << "material " << i << ": texture index out of range\n";
     }

@@ -14,6 +14,10 @@ namespace bounce::core {
 
 inline constexpr float kPi = 3.14159265358979323846f;
 
+// glTF's alphaMode: OPAQUE, or MASK (the surface exists where its alpha reaches alphaCutoff: leaves,
+// fences, chains). BLEND (translucency) has no model here; the reader takes it as OPAQUE with a warning.
+enum class AlphaMode { Opaque, Mask };
+
 // One material, one BRDF (brdf.h): Lambertian diffuse baseColor x (1 - metallic) plus one GGX lobe.
 struct Material {
     std::string name;
@@ -25,13 +29,21 @@ struct Material {
     glm::vec3 specularColor{1.0f}; // KHR_materials_specular specularColorFactor
     glm::vec3 emission{0.0f};      // W/(m^2 sr): emissiveFactor x KHR_materials_emissive_strength
     bool doubleSided = false;      // shading only; every surface blocks light from both sides
+    AlphaMode alphaMode = AlphaMode::Opaque;
+    float baseAlpha = 1.0f;   // baseColorFactor's alpha, multiplied by the texture's alpha
+    float alphaCutoff = 0.5f; // MASK: alpha below this is a hole, in every pass and in the path tracer
 
     bool isEmissive() const { return emission.x > 0.0f || emission.y > 0.0f || emission.z > 0.0f; }
     // True when the GGX lobe contributes (a Lambertian-only scene needs no glossy resources).
     bool isGlossy() const { return metallic > 0.0f || specular > 0.0f; }
+    bool isMasked() const { return alphaMode == AlphaMode::Mask; }
+    // glTF 3.9.4: a masked surface is "fully transparent" where baseColorFactor.a x texture alpha <
+    // alphaCutoff, opaque elsewhere. textureAlpha is 1 without a texture.
+    bool cutsOut(float textureAlpha) const { return isMasked() && baseAlpha * textureAlpha < alphaCutoff; }
 };
 
-// An 8-bit sRGB-encoded RGBA image, row 0 at the top (glTF image convention).
+// An 8-bit RGBA image, colour sRGB-encoded, alpha linear (the mask of MASK materials); row 0 at the top
+// (glTF image convention).
 struct Texture {
     std::string name;
     int width = 0;
@@ -109,6 +121,7 @@ struct Scene {
     std::size_t triangleCount() const;
     bool hasEmission() const;
     bool hasGlossy() const;
+    bool hasAlphaMask() const; // some mesh's material is alpha-masked
     // FNV-1a over geometry, materials, textures and lights (not the camera, not names): the key of
     // cached references together with camera, size and light paths.
     std::uint64_t contentHash() const;

@@ -48,6 +48,34 @@ void collectFilter(const RTCFilterFunctionNArguments* args)
     ctx->out->push_back(h);
 }
 
+// Geometry filter of alpha-masked meshes (closest hit and occlusion): a candidate hit in a hole of the
+// mask is rejected and traversal goes on, as if the triangle were not there.
+void alphaMaskFilter(const RTCFilterFunctionNArguments* args)
+{
+    const auto* scene = static_cast<const EmbreeScene*>(args->geometryUserPtr);
+    for (unsigned i = 0; i < args->N; ++i) {
+        if (args->valid[i] == 0) continue;
+        if (scene->cutOut(RTCHitN_geomID(args->hit, args->N, i), RTCHitN_primID(args->hit, args->N, i),
+                          RTCHitN_u(args->hit, args->N, i), RTCHitN_v(args->hit, args->N, i)))
+            args->valid[i] = 0;
+    }
+}
+
+// Bilinear with repeat wrapping; texel centres at half-integers, row 0 at v = 0 (glTF).
+template <class T>
+T bilinear(const std::vector<T>& texels, int width, int height, const glm::vec2& uv)
+{
+    const float x = uv.x * float(width) - 0.5f;
+    const float y = uv.y * float(height) - 0.5f;
+    const float fx = std::floor(x), fy = std::floor(y);
+    const float ax = x - fx, ay = y - fy;
+    const auto wrap = [](long i, int n) { return int(((i % n) + n) % n); };
+    const int x0 = wrap(long(fx), width), x1 = wrap(long(fx) + 1, width);
+    const int y0 = wrap(long(fy), height), y1 = wrap(long(fy) + 1, height);
+    const auto at = [&](int xx, int yy) { return texels[std::size_t(yy) * std::size_t(width) + std::size_t(xx)]; };
+    return glm::mix(glm::mix(at(x0, y0), at(x1, y0), ax), glm::mix(at(x0, y1), at(x1, y1), ax), ay);
+}
+
 RTCRayHit makeRayHit(const glm::vec3& o, const glm::vec3& d, float tmin, float tmax)
 {
     RTCRayHit rh;
@@ -116,6 +144,11 @@ EmbreeScene::EmbreeScene(const core::Scene& scene, bool withAllHits) : scene_(sc
         if (!vertices || !indices) throwOnDeviceError(device_, "geometry buffer allocation");
         std::memcpy(vertices, mesh.positions.data(), mesh.positions.size() * sizeof(glm::vec3));
         std::memcpy(indices, mesh.indices.data(), triCount * 3 * sizeof(std::uint32_t));
+        if (scene.materials[mesh.material].isMasked()) {
+            rtcSetGeometryUserData(geom, this);
+            rtcSetGeometryIntersectFilterFunction(geom, alphaMaskFilter);
+            rtcSetGeometryOccludedFilterFunction(geom, alphaMaskFilter);
+        }
         rtcCommitGeometry(geom);
         rtcAttachGeometryByID(rtcScene_, geom, unsigned(m));
         rtcReleaseGeometry(geom);
@@ -136,6 +169,14 @@ EmbreeScene::EmbreeScene(const core::Scene& scene, bool withAllHits) : scene_(sc
         lt.texels.resize(std::size_t(t.width) * std::size_t(t.height));
         for (std::size_t p = 0; p < lt.texels.size(); ++p)
             lt.texels[p] = {lut[t.rgba8[4 * p]], lut[t.rgba8[4 * p + 1]], lut[t.rgba8[4 * p + 2]]};
+    }
+    for (const core::Material& m : scene.materials) {
+        if (!m.isMasked() || m.baseColorTexture < 0 || std::size_t(m.baseColorTexture) >= textures_.size()) continue;
+        LinearTexture& lt = textures_[std::size_t(m.baseColorTexture)];
+        if (lt.texels.empty() || !lt.alpha.empty()) continue;
+        const std::vector<std::uint8_t>& rgba = scene.textures[std::size_t(m.baseColorTexture)].rgba8;
+        lt.alpha.resize(lt.texels.size());
+        for (std::size_t p = 0; p < lt.alpha.size(); ++p) lt.alpha[p] = float(rgba[4 * p + 3]) / 255.0f;
     }
 }
 
@@ -222,16 +263,24 @@ glm::vec3 EmbreeScene::textureColor(const core::Material& m, const glm::vec2& uv
     if (m.baseColorTexture < 0 || std::size_t(m.baseColorTexture) >= textures_.size()) return glm::vec3(1.0f);
     const LinearTexture& t = textures_[std::size_t(m.baseColorTexture)];
     if (t.texels.empty()) return glm::vec3(1.0f);
-    // Bilinear with repeat wrapping; texel centres at half-integers, row 0 at v = 0 (glTF).
-    const float x = uv.x * float(t.width) - 0.5f;
-    const float y = uv.y * float(t.height) - 0.5f;
-    const float fx = std::floor(x), fy = std::floor(y);
-    const float ax = x - fx, ay = y - fy;
-    const auto wrap = [](long i, int n) { return int(((i % n) + n) % n); };
-    const int x0 = wrap(long(fx), t.width), x1 = wrap(long(fx) + 1, t.width);
-    const int y0 = wrap(long(fy), t.height), y1 = wrap(long(fy) + 1, t.height);
-    const auto at = [&t](int xx, int yy) { return t.texels[std::size_t(yy) * std::size_t(t.width) + std::size_t(xx)]; };
-    return glm::mix(glm::mix(at(x0, y0), at(x1, y0), ax), glm::mix(at(x0, y1), at(x1, y1), ax), ay);
+    return bilinear(t.texels, t.width, t.height, uv);
+}
+
+float EmbreeScene::textureAlpha(const core::Material& m, const glm::vec2& uv) const
+{
+    if (m.baseColorTexture < 0 || std::size_t(m.baseColorTexture) >= textures_.size()) return 1.0f;
+    const LinearTexture& t = textures_[std::size_t(m.baseColorTexture)];
+    if (t.alpha.empty()) return 1.0f;
+    return bilinear(t.alpha, t.width, t.height, uv);
+}
+
+bool EmbreeScene::cutOut(std::uint32_t mesh, std::uint32_t prim, float u, float v) const
+{
+    const core::Material& m = scene_.materials[scene_.meshes[mesh].material];
+    if (!m.isMasked()) return false;
+    const TriangleRecord& r = triangles_[globalTriangle(mesh, prim)];
+    const glm::vec2 uv = (1.0f - u - v) * r.uv0 + u * r.uv1 + v * r.uv2;
+    return m.cutsOut(textureAlpha(m, uv));
 }
 
 float EmbreeScene::offsetScale(const glm::vec3& p)

@@ -3,7 +3,9 @@
 // tracer shades with: positions, normals, texture coordinates and decoded baseColor textures.
 //
 // Every triangle blocks rays from both sides (no back-face culling): one-sidedness is a shading rule
-// (ref/README.md), never a visibility rule.
+// (ref/README.md), never a visibility rule. Alpha-masked materials (glTF MASK) block rays only where
+// their alpha reaches the cutoff: an Embree filter function on their meshes rejects hits in the holes,
+// for closest hits, occlusion and allHits alike.
 #pragma once
 
 #include <cstdint>
@@ -58,6 +60,11 @@ public:
     void triangle(std::uint32_t global, glm::vec3& p0, glm::vec3& p1, glm::vec3& p2, std::uint32_t& mesh) const;
     // The material's baseColor texture at uv (bilinear, sRGB decoded, repeat wrap); 1 without a texture.
     glm::vec3 textureColor(const core::Material& m, const glm::vec2& uv) const;
+    // The alpha of the material's baseColor texture at uv (bilinear, repeat wrap); 1 without a texture.
+    // Kept for the textures of masked materials only.
+    float textureAlpha(const core::Material& m, const glm::vec2& uv) const;
+    // Whether (u, v) on the triangle lies in a hole of its alpha-masked material (core::Material::cutsOut).
+    bool cutOut(std::uint32_t mesh, std::uint32_t prim, float u, float v) const;
 
     // How far to move a ray origin off a surface at p so the ray cannot hit that surface again: scaled
     // with the coordinates, where float spacing grows (1e-5 relative, 10 micrometres at 1 m).
@@ -73,6 +80,7 @@ private:
     struct LinearTexture {
         int width = 0, height = 0;
         std::vector<glm::vec3> texels; // linear RGB
+        std::vector<float> alpha;      // 0..1; only for textures of masked materials
     };
 
     const core::Scene& scene_;

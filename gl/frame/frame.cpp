@@ -19,6 +19,15 @@ Program directProgram(const GpuScene& scene)
     return Program::graphics("direct", "frame/fullscreen.vert", "frame/direct.frag", kinds);
 }
 
+SceneProgram gbufferProgram(const GpuScene& scene, const FrameSettings& settings)
+{
+    std::vector<Define> defines;
+    if (settings.gbufferConstantFragment) defines.push_back({"GBUFFER_CONSTANT_FRAGMENT", "1"});
+    SceneProgram p("gbuffer", "frame/gbuffer.vert", "frame/gbuffer.frag", defines);
+    p.prepare(scene);
+    return p;
+}
+
 } // namespace
 
 Frame::Frame(const core::Scene& scene, const FrameSettings& settings)
@@ -31,7 +40,7 @@ Frame::Frame(const core::Scene& scene, const FrameSettings& settings)
       directFbo_("direct.fbo"),
       compositeFbo_("composite.fbo"),
       emptyVao_("fullscreen"),
-      gbufferProgram_(Program::graphics("gbuffer", "frame/gbuffer.vert", "frame/gbuffer.frag")),
+      gbufferProgram_(gbufferProgram(gpu_, settings)),
       directProgram_(directProgram(gpu_)),
       compositeProgram_(Program::graphics("composite", "frame/fullscreen.vert", "frame/composite.frag"))
 {
@@ -147,8 +156,7 @@ void Frame::renderGBuffer(PassTimers& timers)
     gbufferProgram_.set("view", view());
     gpu_.materials().bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_MATERIALS);
     gpu_.baseColorTextures().bind(UNIT_BASE_COLOR);
-    gbufferProgram_.use();
-    gpu_.draw();
+    gbufferProgram_.draw(gpu_);
 }
 
 void Frame::bindGBuffer() const

@@ -11,6 +11,7 @@
 #include "core/image.h"
 #include "core/scene.h"
 #include "gl/frame/gpu_scene.h"
+#include "gl/frame/scene_program.h"
 #include "gl/frame/shadow_maps.h"
 #include "gl/resource/framebuffer.h"
 #include "gl/resource/program.h"
@@ -26,6 +27,9 @@ struct FrameSettings {
     int pcfRadius = 1;     // 0: one hard tap per pixel
     bool pcfLinear = true; // hardware 2x2 bilinear comparison
     int textureSize = 512; // base-colour textures are resampled to this size
+    // Profiling only (bench/sponza-gbuffer.json): the G-buffer pass with a fragment shader that writes
+    // constants, to tell fragment work from vertex work and triangle setup. The images are wrong.
+    bool gbufferConstantFragment = false;
 };
 
 // Counters that change when the scene, a light or the camera moves (and only then): progressive
@@ -96,7 +100,8 @@ private:
     Texture position_, normal_, diffuse_, specular_, emission_, depth_, direct_, indirect_, composite_;
     Framebuffer gbufferFbo_, directFbo_, compositeFbo_;
     VertexArray emptyVao_;
-    Program gbufferProgram_, directProgram_, compositeProgram_;
+    SceneProgram gbufferProgram_;
+    Program directProgram_, compositeProgram_;
     int frameIndex_ = -1;
     FrameVersion version_;
     void allocateTargets();

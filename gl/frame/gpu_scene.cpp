@@ -1,6 +1,7 @@
 #include "gl/frame/gpu_scene.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstdio>
 
@@ -29,7 +30,8 @@ void resampleInto(const core::Texture& t, int size, std::uint8_t* out)
 
 } // namespace
 
-GpuScene::GpuScene(const core::Scene& scene, int textureSize) : vao_("scene"), bounds_(scene.bounds())
+GpuScene::GpuScene(const core::Scene& scene, int textureSize)
+    : vao_("scene"), hasAlphaMask_(scene.hasAlphaMask()), bounds_(scene.bounds())
 {
     std::vector<Vertex> vertices;
     std::vector<std::uint32_t> indices;
@@ -72,6 +74,14 @@ GpuScene::GpuScene(const core::Scene& scene, int textureSize) : vao_("scene"), b
                 ++n;
             }
         s.position = sum / float(n) + s.direction * 1e-3f;
+    }
+
+    if (hasAlphaMask_) {
+        std::size_t first = 0;
+        for (const core::Mesh& m : scene.meshes) {
+            (scene.materials[m.material].isMasked() ? maskedRanges_ : opaqueRanges_).add(first, m.indices.size());
+            first += m.indices.size();
+        }
     }
 
     vertices_ = Buffer::fromVector("scene.vertices", vertices);
@@ -146,10 +156,14 @@ GpuScene::GpuScene(const core::Scene& scene, int textureSize) : vao_("scene"), b
         emissive_.update(sizeof header, emissive.size() * sizeof(GpuEmissiveTriangle), emissive.data());
 
     std::vector<GpuMaterial> mats;
-    for (const core::Material& m : scene.materials)
+    for (const core::Material& m : scene.materials) {
+        // base_color.glsl's alphaCutOut: baseAlpha x texture alpha < cutoff, with cutoff 0 (never) when opaque.
+        const float cutoff = m.isMasked() ? m.alphaCutoff : 0.0f;
         mats.push_back({glm::vec4(m.baseColor, m.metallic), glm::vec4(m.emission, m.roughness),
                         glm::vec4(m.specularColor, m.specular),
-                        glm::ivec4(m.baseColorTexture >= 0 ? layerOf[m.baseColorTexture] : -1, m.doubleSided, 0, 0)});
+                        glm::ivec4(m.baseColorTexture >= 0 ? layerOf[m.baseColorTexture] : -1, m.doubleSided,
+                                   std::bit_cast<int>(cutoff), std::bit_cast<int>(m.baseAlpha))});
+    }
     if (mats.empty()) mats.push_back({});
     materials_ = Buffer::fromVector("scene.materials", mats);
 
@@ -176,6 +190,12 @@ void GpuScene::setLights(const std::vector<core::Light>& punctual)
     lights_.insert(lights_.end(), area_.begin(), area_.end());
 }
 
+std::vector<Define> GpuScene::alphaMaskDefines() const
+{
+    if (!hasAlphaMask_) return {};
+    return {{"ALPHA_MASK", "1"}};
+}
+
 void GpuScene::bindGeometry() const
 {
     vertices_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_SCENE_VERTICES);
@@ -188,6 +208,26 @@ void GpuScene::draw() const
 {
     vao_.bind();
     glDrawElements(GL_TRIANGLES, GLsizei(indexCount_), GL_UNSIGNED_INT, nullptr);
+}
+
+void GpuScene::IndexRanges::add(std::size_t first, std::size_t count)
+{
+    if (count == 0) return;
+    if (!counts.empty() && first == end) { // follows the last range: extend it
+        counts.back() += int(count);
+    } else {
+        counts.push_back(int(count));
+        offsets.push_back(reinterpret_cast<const void*>(first * sizeof(std::uint32_t)));
+    }
+    end = first + count;
+}
+
+void GpuScene::draw(Meshes which) const
+{
+    const IndexRanges& r = which == Meshes::Masked ? maskedRanges_ : opaqueRanges_;
+    if (r.counts.empty()) return;
+    vao_.bind();
+    glMultiDrawElements(GL_TRIANGLES, r.counts.data(), GL_UNSIGNED_INT, r.offsets.data(), GLsizei(r.counts.size()));
 }
 
 } // namespace bounce::gl

@@ -1,5 +1,6 @@
 // core::Scene on the GPU: one vertex/index buffer for all meshes (world space), materials, lights and
-// area-light polygons in SSBOs (layouts in glsl/common/scene.glsl), base-colour textures in one array.
+// area-light polygons in SSBOs (layouts in glsl/common/scene.glsl), base-colour textures (with the alpha
+// of masked materials) in one array.
 #pragma once
 
 #include <cstdint>
@@ -10,6 +11,7 @@
 #include "core/scene.h"
 #include "gl/resource/buffer.h"
 #include "gl/resource/framebuffer.h"
+#include "gl/resource/program.h"
 #include "gl/resource/texture.h"
 
 namespace bounce::gl {
@@ -72,6 +74,10 @@ public:
     GpuScene(const core::Scene& scene, int textureSize = 512);
 
     void draw() const; // binds the vertex array and draws every triangle
+    // The meshes of masked materials, or the others, in as few index ranges as their order allows
+    // (gl/frame/scene_program.h draws each with its shader variant).
+    enum class Meshes { Opaque, Masked };
+    void draw(Meshes which) const;
     // Binds vertices, indices and emissive triangles at SSBO_SCENE_* and the textures at UNIT_BASE_COLOR (gl/frame/bindings.h).
     void bindGeometry() const;
     int emissiveTriangleCount() const { return emissiveCount_; }
@@ -79,6 +85,11 @@ public:
     const Buffer& materials() const { return materials_; }
     const Texture& baseColorTextures() const { return textures_; }
     bool hasTextures() const { return hasTextures_; }
+    // Alpha-masked materials (glTF MASK): the passes that rasterise the scene compile their ALPHA_MASK
+    // variant (glsl/common/base_color.glsl) only for such scenes, so other scenes pay no texture fetch
+    // and no discard. Those variants read materials (SSBO_MATERIALS) and textures (UNIT_BASE_COLOR).
+    bool hasAlphaMask() const { return hasAlphaMask_; }
+    std::vector<Define> alphaMaskDefines() const;
     std::size_t triangleCount() const { return indexCount_ / 3; }
     const core::Bounds& bounds() const { return bounds_; }
 
@@ -96,6 +107,15 @@ private:
     int emissiveCount_ = 0;
     Texture textures_;
     bool hasTextures_ = false;
+    bool hasAlphaMask_ = false;
+    // Ranges of the index buffer for glMultiDrawElements.
+    struct IndexRanges {
+        std::vector<int> counts;
+        std::vector<const void*> offsets; // bytes into the index buffer
+        std::size_t end = 0;              // one past the last range's last index
+        void add(std::size_t first, std::size_t count);
+    };
+    IndexRanges opaqueRanges_, maskedRanges_; // only for scenes with masks
     std::size_t indexCount_ = 0;
     core::Bounds bounds_;
     std::vector<core::Light> punctual_;

@@ -9,9 +9,7 @@
 
 namespace bounce::gl {
 
-namespace {} // namespace
-
-RayCaster::RayCaster(const core::Scene& scene) : bvh_(scene)
+RayCaster::RayCaster(const core::Scene& scene) : bvh_(scene), hasAlphaMask_(scene.hasAlphaMask())
 {
     nodes_ = Buffer::fromVector("raycast.bvhNodes", bvh_.nodes());
     // An SSBO may not be empty: a scene without triangles gets one that no leaf names.
@@ -25,9 +23,16 @@ void RayCaster::bind() const
     triangles_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_BVH_TRIANGLES);
 }
 
-RayBatch::RayBatch()
-    : compute_(Program::compute("raycast.batch.compute", "frame/raycast_batch.comp", {})),
-      fragment_(Program::graphics("raycast.batch.fragment", "frame/fullscreen.vert", "frame/raycast_batch.frag", {})),
+std::vector<Define> RayCaster::defines() const
+{
+    if (!hasAlphaMask_) return {};
+    return {{"ALPHA_MASK", "1"}};
+}
+
+RayBatch::RayBatch(const std::vector<Define>& defines)
+    : compute_(Program::compute("raycast.batch.compute", "frame/raycast_batch.comp", defines)),
+      fragment_(
+          Program::graphics("raycast.batch.fragment", "frame/fullscreen.vert", "frame/raycast_batch.frag", defines)),
       vao_("raycast.batch")
 {}
 

@@ -5,6 +5,10 @@
 //   caster.bind();             // binds the SSBOs at SSBO_BVH_NODES, SSBO_BVH_TRIANGLES
 //   program = Program::compute(..., caster.defines());   // or pass the same #defines to any shader
 //
+// A scene with alpha-masked materials: defines() gives ALPHA_MASK, and the walk then skips hits in the
+// masks' holes (raycast.glsl), reading the frame's scene data, which must be bound too
+// (Frame::bindSceneData, or GpuScene::bindGeometry and its materials at SSBO_MATERIALS).
+//
 // RayBatch casts a batch of rays and reads the hits back (tests, `bounce rays`).
 #pragma once
 
@@ -27,12 +31,16 @@ public:
     explicit RayCaster(const core::Scene& scene);
 
     void bind() const;
+    // ALPHA_MASK for scenes with masked materials, else nothing.
+    std::vector<Define> defines() const;
+    bool hasAlphaMask() const { return hasAlphaMask_; }
     const core::Bvh& bvh() const { return bvh_; }
     std::size_t bytes() const { return nodes_.bytes() + triangles_.bytes(); }
 
 private:
     core::Bvh bvh_;
     Buffer nodes_, triangles_;
+    bool hasAlphaMask_ = false;
 };
 
 // std430 mirrors of glsl/frame/raycast_batch.glsl.
@@ -56,7 +64,8 @@ inline constexpr int kQueryClosest = 1, kQueryAny = 2;
 
 class RayBatch {
 public:
-    RayBatch();
+    // defines: the caster's (RayCaster::defines()).
+    explicit RayBatch(const std::vector<Define>& defines = {});
     // Uploads the rays and sizes the results (and, for the fragment stage, a viewport of up to
     // kFragmentWidth x ceil(n / kFragmentWidth) fragments).
     void upload(const std::vector<BatchRay>& rays);

@@ -76,7 +76,7 @@ double RsmPass::exactTexelSolidAngle(double fovRad, int size, int x, int y)
 }
 
 RsmPass::RsmPass(const RsmSettings& settings)
-    : settings_(settings), fbo_("rsm.fbo"), program_(Program::graphics("rsm", "frame/rsm.vert", "frame/rsm.frag"))
+    : settings_(settings), fbo_("rsm.fbo"), program_("rsm", "frame/rsm.vert", "frame/rsm.frag")
 {
     if (settings_.size < 1) throw std::invalid_argument("RSM size must be at least 1");
     if (settings_.levels > 0) {
@@ -200,6 +200,7 @@ void RsmPass::render(Frame& frame, PassTimers& timers)
 void RsmPass::renderViews(Frame& frame)
 {
     if (views_.empty()) return;
+    program_.prepare(frame.gpuScene()); // the ALPHA_MASK variant for a scene with masks, once
     const int size = settings_.size;
     const bool pyramid = settings_.levels > 0;
     PassState state = PassState::fullscreen(fbo_, size, size);
@@ -209,7 +210,6 @@ void RsmPass::renderViews(Frame& frame)
     frame.gpuScene().baseColorTextures().bind(UNIT_BASE_COLOR);
     if (solidAngles_) solidAngles_.bind(UNIT_RSM_SOLID_ANGLES);
     program_.set("exactSolidAngle", settings_.exactSolidAngle ? 1 : 0);
-    program_.use();
     const float empty[4] = {0, 0, 0, 0}, noDepth[4] = {1e30f, 0, 0, 0}, nMin[4] = {2, 2, 2, 0},
                 nMax[4] = {-2, -2, -2, 0};
     for (int i = 0; i < viewCount(); ++i) {
@@ -250,7 +250,7 @@ void RsmPass::renderViews(Frame& frame)
         program_.set("orthoTexelArea", v.orthoTexelArea);
         program_.set("equalSolidAngle", v.orthographic ? 0.0f : float(equalTexelSolidAngle(v.fovRad, size)));
         program_.set("viewLayer", i);
-        frame.gpuScene().draw();
+        program_.draw(frame.gpuScene());
     }
 }
 

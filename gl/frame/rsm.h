@@ -17,6 +17,7 @@
 #include <glm/glm.hpp>
 
 #include "gl/frame/frame.h"
+#include "gl/frame/scene_program.h"
 #include "gl/resource/buffer.h"
 #include "gl/resource/framebuffer.h"
 #include "gl/resource/program.h"
@@ -91,7 +92,8 @@ private:
     Texture position_, normal_, flux_, depthRange_, normalMin_, normalMax_, depth_, solidAngles_;
     std::vector<float> solidAngleFovs_; // the field of view each layer of solidAngles_ was computed for
     Framebuffer fbo_;
-    Program program_, reduce_;
+    SceneProgram program_;
+    Program reduce_;
     Buffer viewsBuffer_;
 
     void buildViews(const Frame& frame);

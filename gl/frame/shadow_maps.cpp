@@ -22,8 +22,9 @@ struct GpuShadowView {
 } // namespace
 
 ShadowMaps::ShadowMaps(const GpuScene& scene, int size)
-    : size_(size), fbo_("shadow.fbo"), program_(Program::graphics("shadow", "frame/shadow.vert", "frame/shadow.frag"))
+    : size_(size), fbo_("shadow.fbo"), program_("shadow", "frame/shadow.vert", "frame/shadow.frag")
 {
+    program_.prepare(scene);
     update(scene);
 }
 
@@ -100,13 +101,16 @@ void ShadowMaps::render(const GpuScene& scene)
     state.depthTest = true; // no culling: every surface blocks light from both sides
     state.polygonOffset = {1.0f, 1.0f};
     state.apply();
-    program_.use();
+    if (scene.hasAlphaMask()) { // shadow.frag cuts the masks' holes
+        scene.materials().bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_MATERIALS);
+        scene.baseColorTextures().bind(UNIT_BASE_COLOR);
+    }
     for (std::size_t i = 0; i < views_.size(); ++i) {
         fbo_.attachLayer(GL_DEPTH_ATTACHMENT, depth_, int(i));
         glNamedFramebufferDrawBuffer(fbo_.id(), GL_NONE);
         glClear(GL_DEPTH_BUFFER_BIT);
         program_.set("viewProj", views_[i].proj * views_[i].view);
-        scene.draw();
+        program_.draw(scene);
     }
 }
 

@@ -10,6 +10,7 @@
 
 #include "gl/frame/gpu_scene.h"
 #include "gl/frame/light_views.h"
+#include "gl/frame/scene_program.h"
 #include "gl/resource/buffer.h"
 #include "gl/resource/framebuffer.h"
 #include "gl/resource/program.h"
@@ -47,7 +48,7 @@ private:
     std::vector<GpuLight> gpuLights_;
     Texture depth_;
     Framebuffer fbo_;
-    Program program_;
+    SceneProgram program_;
     Buffer lightsBuffer_, viewsBuffer_, polygonsBuffer_;
     bool linear_ = true;
     void buildViews(const GpuScene& scene);

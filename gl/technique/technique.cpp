@@ -242,6 +242,8 @@ const std::vector<ParamDecl>& frameParams()
         {"shadow.pcf", ParamType::Int, 1, 0, 4, "PCF kernel radius in texels (0: one tap)"},
         {"shadow.linear", ParamType::Bool, 1, 0, 1, "hardware bilinear depth comparison (off: hard shadow edges)"},
         {"textures.size", ParamType::Int, 512, 1, 4096, "base-colour textures are resampled to this size"},
+        choiceParam("gbuffer.fragment", {"material", "constant"}, 0,
+                    "profiling: constant writes the G-buffer without reading materials or textures (wrong images)"),
     };
     return p;
 }
@@ -255,6 +257,7 @@ FrameSettings frameSettingsFrom(const ParamValues& v, int width, int height)
     s.pcfRadius = v.getInt("shadow.pcf");
     s.pcfLinear = v.getBool("shadow.linear");
     s.textureSize = v.getInt("textures.size");
+    s.gbufferConstantFragment = v.getChoice(frameParams(), "gbuffer.fragment") == "constant";
     return s;
 }
 

@@ -14,11 +14,35 @@
 // per-lane stack array would cost every lane every push; here a lane carries one int.
 // The triangle test is the watertight one of Woop, Benthin & Wald 2013 (JCGT 2(1)); `precise` keeps
 // the compiler from fusing the edge functions differently for the two triangles sharing an edge.
+//
+// Alpha masks (glTF MASK): with ALPHA_MASK defined (RayCaster::defines(), only for scenes that have
+// masked materials) a hit in a mask's hole is skipped and the walk goes on, as Embree's filter does in
+// the path tracer. The test reads the triangle's material, uvs and base-colour texture: the frame's
+// scene data must be bound (Frame::bindSceneData), and a shader that includes common/scene.glsl itself
+// must define SCENE_GEOMETRY before it.
 #ifndef BOUNCE_RAYCAST_GLSL
 #define BOUNCE_RAYCAST_GLSL
 
 // The SSBO binding points (gl/frame/ray_caster.h has the same numbers as C++ constants).
 #include "common/bindings.glsl"
+
+#ifdef ALPHA_MASK
+#ifndef SCENE_GEOMETRY
+#define SCENE_GEOMETRY
+#endif
+#include "common/scene.glsl"
+#include "common/base_color.glsl"
+
+// Whether barycentrics b of the triangle lie in a hole of its material's mask (core::Material::cutsOut).
+bool bvhCutOut(uint triangle, vec2 b)
+{
+    Material m = materials[sceneTriangleMaterial(triangle)];
+    if (!(intBitsToFloat(m.flags.z) > 0.0)) return false; // opaque: no texture read
+    vec2 uv = (1.0 - b.x - b.y) * sceneVertexUv(sceneVertexIndex(triangle, 0)) +
+              b.x * sceneVertexUv(sceneVertexIndex(triangle, 1)) + b.y * sceneVertexUv(sceneVertexIndex(triangle, 2));
+    return alphaCutOut(m, baseColorTexel(m, uv).a);
+}
+#endif
 
 struct BvhNode {
     vec3 lo;
@@ -132,7 +156,11 @@ bool bvhWalk(vec3 origin, vec3 dir, float tMin, float tMax, bool stopAtFirst, ou
                 BvhTriangle tri = bvhTriangles[i];
                 float t;
                 vec2 b;
-                if (bvhHitTriangle(r, tri, tMin, hit.t, t, b)) {
+                bool accepted = bvhHitTriangle(r, tri, tMin, hit.t, t, b);
+#ifdef ALPHA_MASK
+                accepted = accepted && !bvhCutOut(tri.index, b);
+#endif
+                if (accepted) {
                     found = true;
                     hit.triangle = tri.index;
                     hit.t = t;

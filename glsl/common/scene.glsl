@@ -6,7 +6,8 @@ struct Material {
     vec4 baseColorMetallic;       // rgb linear, metallic
     vec4 emissionRoughness;       // rgb W/(m^2 sr), roughness
     vec4 specularColorSpecular;   // rgb, specular factor
-    ivec4 flags;                  // x: texture layer or -1, y: double-sided
+    ivec4 flags;                  // x: texture layer or -1, y: double-sided, z: alpha cutoff (float bits,
+                                  // 0 unless MASK), w: baseColorFactor alpha (float bits)
 };
 
 const int kLightPoint = 0;

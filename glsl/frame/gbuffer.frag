@@ -2,6 +2,7 @@
 // The G-buffer pass: material terms of the one BRDF at each pixel (common/gbuffer.glsl).
 #include "common/brdf.glsl"
 #include "common/scene.glsl"
+#include "common/base_color.glsl"
 
 in vec3 vPosition;
 in vec3 vNormal;
@@ -9,21 +10,33 @@ in vec2 vUv;
 in float vEyeDepth;
 flat in uint vMaterial;
 
-layout(binding = UNIT_BASE_COLOR) uniform sampler2DArray baseColorTextures;
-
 layout(location = 0) out vec4 outPosition;
 layout(location = 1) out vec4 outNormal;
 layout(location = 2) out vec4 outDiffuse;
 layout(location = 3) out vec4 outSpecular;
 layout(location = 4) out vec4 outEmission;
 
+#ifdef GBUFFER_CONSTANT_FRAGMENT
+// Profiling only (frame parameter gbuffer.fragment=constant): no material, no texture.
+void main()
+{
+    outPosition = vec4(0.0, 0.0, 0.0, 1.0);
+    outNormal = vec4(0.0, 1.0, 0.0, 1.0);
+    outDiffuse = vec4(0.5, 0.5, 0.5, 0.0);
+    outSpecular = vec4(0.0);
+    outEmission = vec4(0.0, 0.0, 0.0, 1.0);
+}
+#else
 void main()
 {
     Material m = materials[vMaterial];
     vec3 n = normalize(vNormal);
     bool doubleSided = m.flags.y != 0;
-    vec3 baseColor = m.baseColorMetallic.rgb;
-    if (m.flags.x >= 0) baseColor *= texture(baseColorTextures, vec3(vUv, float(m.flags.x))).rgb;
+    vec4 texel = baseColorTexel(m, vUv);
+#ifdef ALPHA_MASK
+    if (alphaCutOut(m, texel.a)) discard;
+#endif
+    vec3 baseColor = m.baseColorMetallic.rgb * texel.rgb;
     BrdfParams b = brdfParams(baseColor, m.baseColorMetallic.a, m.emissionRoughness.a, m.specularColorSpecular.a,
                               m.specularColorSpecular.rgb);
     vec3 emission = m.emissionRoughness.rgb;
@@ -43,3 +56,4 @@ void main()
     outSpecular = vec4(b.f0, m.emissionRoughness.a);
     outEmission = vec4(emission, 1.0);
 }
+#endif

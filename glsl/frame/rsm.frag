@@ -10,13 +10,13 @@
 // the paper has only spot lights).
 #include "common/brdf.glsl"
 #include "common/scene.glsl"
+#include "common/base_color.glsl"
 
 in vec3 vPosition;
 in vec3 vNormal;
 in vec2 vUv;
 flat in uint vMaterial;
 
-layout(binding = UNIT_BASE_COLOR) uniform sampler2DArray baseColorTextures;
 layout(binding = UNIT_RSM_SOLID_ANGLES) uniform sampler2DArray texelSolidAngles; // exact omega_t per texel, one layer per view
 
 uniform int lightIndex;        // spot, point, directional: index into lights[]
@@ -61,8 +61,11 @@ void main()
 {
     Material m = materials[vMaterial];
     vec3 n = normalize(vNormal);
-    vec3 baseColor = m.baseColorMetallic.rgb;
-    if (m.flags.x >= 0) baseColor *= texture(baseColorTextures, vec3(vUv, float(m.flags.x))).rgb;
+    vec4 texel = baseColorTexel(m, vUv);
+#ifdef ALPHA_MASK
+    if (alphaCutOut(m, texel.a)) discard; // light passes through the hole: no texel, no VPL
+#endif
+    vec3 baseColor = m.baseColorMetallic.rgb * texel.rgb;
     vec3 rho = baseColor * (1.0 - m.baseColorMetallic.a); // the diffuse colour, as in the G-buffer
     bool reflects = true;
     if (!gl_FrontFacing) {

@@ -656,6 +656,24 @@ TEST(Cli, SetupWithAMissingAssetExitsTwoNamingTheFile)
     EXPECT_FALSE(fs::exists(d / "out" / "a.exr"));
 }
 
+// A setup written here (no benchmark asset needed): a glTF without camera or light, and a setup that gives
+// it a spot. It renders lit, without the no-light warning, from the setup's camera.
+TEST(Cli, GeneratedSetupWithALightRendersLit)
+{
+    const fs::path d = outDir("setup-generated");
+    cornellWithoutCameraAndLight(d);
+    std::ofstream(d / "setup.json") << R"({"gltf": "bare.gltf",
+      "camera": {"position": [0.278, 0.273, -0.8], "target": [0.278, 0.273, 0.0], "yfovDeg": 39.3},
+      "lights": [{"type": "spot", "position": [0.278, 0.54, 0.279], "direction": [0, -1, 0], "intensity": 1,
+                  "outerDeg": 40}]})";
+    const CliRun r = run("render --backend osmesa --size 16x16 --frames 1 --warmup 0 --scene " +
+                         (d / "setup.json").string() + " --out " + (d / "render.exr").string());
+    ASSERT_EQ(r.status, 0) << r.output;
+    EXPECT_EQ(r.output.find("no light"), std::string::npos) << r.output;
+    EXPECT_GT(imageMean(bounce::core::readImage((d / "render.exr").string())), 0.01);
+    EXPECT_EQ(nlohmann::json::parse(std::ifstream(d / "render.json"))["cameraSource"], "setup");
+}
+
 // Every setup the project ships loads and renders lit when its asset is there (CI has ../shared beside
 // the project); a missing asset is reported, not failed, since the assets are not part of the project.
 TEST(Cli, ShippedSetupsRenderLit)
