@@ -8,6 +8,7 @@
 #include <fstream>
 #include <iterator>
 #include <limits>
+#include <map>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -18,6 +19,7 @@
 #include "core/gltf_io.h"
 #include "core/image.h"
 #include "core/metrics.h"
+#include "tests/core/gltf_bad_cases.h"
 
 namespace {
 
@@ -107,6 +109,52 @@ TEST(Cli, BadInputExitsTwoAndWritesNothing)
         EXPECT_EQ(r.status, 2) << c.args << "\n" << r.output;
         EXPECT_NE(r.output.find(c.says), std::string::npos) << c.args << "\n" << r.output;
         EXPECT_TRUE(emptyDir(d)) << c.args << " left files behind";
+    }
+}
+
+// The files of a folder, recursively, with their sizes: what a run must leave untouched.
+std::map<std::string, std::uintmax_t> listing(const fs::path& d)
+{
+    std::map<std::string, std::uintmax_t> files;
+    for (const auto& e : fs::recursive_directory_iterator(d))
+        files[e.path().string()] = e.is_regular_file() ? e.file_size() : 0;
+    return files;
+}
+
+// The generated set of malformed glTF/GLB files (tests/core/gltf_bad_cases.h) through `bounce render` and
+// `bounce reference` (lights and cameras): a refused file exits with status 2 (never a signal, never 1) and a message naming
+// the file and the problem, and nothing is written, neither in the output folder nor beside the scene;
+// an allowed one renders and writes its three files.
+TEST(Cli, MalformedGltfExitsTwoWithTheMessageAndLeavesNothing)
+{
+    const fs::path root = outDir("malformed");
+    for (const bounce::core::test::BadGltfCase& c : bounce::core::test::badGltfCases()) {
+        const fs::path scene = root / c.name / "scene", out = root / c.name / "out";
+        fs::create_directories(scene);
+        fs::create_directories(out);
+        const std::string file = c.write(scene);
+        const auto before = listing(scene);
+        const std::string common = " --scene '" + file + "' --size 16x16 --out '";
+        const CliRun r = run("render" + common + (out / "x.exr").string() + "' --frames 1 --warmup 0 --backend osmesa");
+        if (c.words.empty()) {
+            EXPECT_EQ(r.status, 0) << c.name << "\n" << r.output;
+            EXPECT_TRUE(fs::exists(out / "x.exr") && fs::exists(out / "x.png") && fs::exists(out / "x.json")) << c.name;
+            continue;
+        }
+        // The path tracer reads lights and cameras too (the loader is shared; one process start each).
+        const bool traced =
+            c.name.rfind("light", 0) == 0 || c.name.rfind("spot", 0) == 0 || c.name.rfind("camera", 0) == 0;
+        const CliRun ref = !traced ? r
+                                   : run("reference" + common + (out / "r.exr").string() + "' --spp 1 --cache-dir '" +
+                                         (root / "cache").string() + "'");
+        for (const CliRun* x : {&r, &ref}) {
+            const std::string command = x == &r ? "render" : "reference";
+            EXPECT_EQ(x->status, 2) << c.name << " (" << command << ")\n" << x->output;
+            EXPECT_NE(x->output.find(c.words), std::string::npos) << c.name << " (" << command << ")\n" << x->output;
+            EXPECT_NE(x->output.find(fs::path(file).filename().string()), std::string::npos) << c.name;
+        }
+        EXPECT_TRUE(emptyDir(out)) << c.name << " left files behind";
+        EXPECT_EQ(listing(scene), before) << c.name << " changed the scene's folder";
     }
 }
 
