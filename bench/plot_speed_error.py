@@ -10,6 +10,7 @@ and more accurate). Runs under Debian's python3 with python3-matplotlib.
 usage: plot_speed_error.py RESULTS.csv OUT.png [--title TEXT]
 """
 import csv
+import math
 import sys
 
 import matplotlib
@@ -49,7 +50,7 @@ def main(argv):
             points = []
             for technique in sorted({r["technique"] for r in rows if r["scene"] == scene and r["size"] == size}):
                 sel = [r for r in rows if r["scene"] == scene and r["size"] == size and r["technique"] == technique
-                       and r.get(column) not in (None, "", "nan") and float(r[column]) > 0]
+                       and r.get(column) not in (None, "", "nan") and 0 < float(r[column]) < math.inf]
                 sel.sort(key=lambda r: float(r["total_ms"]))
                 if not sel:
                     continue

@@ -266,6 +266,67 @@ TEST(Cli, BenchWritesTheFourFiles)
     EXPECT_NE(report.find("cornell-point"), std::string::npos);
 }
 
+// A bench config is checked whole before anything runs: the wrong shape, unknown keys, wrong types, values
+// out of range, unknown scenes, techniques and parameters (against their declarations), and an empty
+// sweep each exit with status 2 and a message naming the key, and nothing is written (not even --out).
+TEST(Cli, BenchConfigIsCheckedBeforeAnythingRuns)
+{
+    const fs::path d = outDir("bench-config");
+    const std::string direct = R"("runs": [{"technique": "direct"}])";
+    const struct {
+        std::string config, key, says;
+    } cases[] = {
+        {"[]", "the file", "must be an object"},
+        {"{}", "runs", "missing"},
+        {R"({"runs": []})", "runs", "non-empty list"},
+        {R"({"runs": {"technique": "direct"}})", "runs", "non-empty list"},
+        {R"({"runs": [42]})", "runs[0]", "must be an object"},
+        {"{" + direct + R"(, "frame": 3})", "frame", "unknown key"},
+        {R"({"runs": [{"technique": "direct", "sett": {}}]})", "runs[0].sett", "unknown key"},
+        {R"({"runs": [{"set": {}}]})", "runs[0].technique", "missing"},
+        {R"({"runs": [{"technique": "nosuch"}]})", "runs[0].technique", "nosuch"},
+        {R"({"runs": [{"technique": 7}]})", "runs[0].technique", "must be a string"},
+        {R"({"runs": [{"technique": "rsm", "set": {"vpls": 0}}]})", "runs[0].set.vpls", "range"},
+        {R"({"runs": [{"technique": "rsm", "set": {"nokey": 1}}]})", "runs[0].set.nokey", "unknown parameter"},
+        {R"({"runs": [{"technique": "rsm", "set": {"vpls": [1]}}]})", "runs[0].set.vpls",
+         "number, a boolean or a string"},
+        {R"({"runs": [{"technique": "direct", "set": {"shadow.size": 3}}]})", "runs[0].set.shadow.size", "range"},
+        {R"({"runs": [{"technique": "rsm", "sweep": {"vpls": []}}]})", "runs[0].sweep.vpls", "non-empty list"},
+        {R"({"runs": [{"technique": "rsm", "sweep": {}}]})", "runs[0].sweep", "non-empty object"},
+        {R"({"runs": [{"technique": "rsm", "sweep": {"vpls": [16, -3]}}]})", "runs[0].sweep.vpls", "range"},
+        {R"({"runs": [{"technique": "isr", "sweep": {"multires": ["maybe"]}}]})", "runs[0].sweep.multires", "bool"},
+        {R"({"runs": [{"technique": "direct", "against": {"technique": "rsm", "set": {"vpls": "many"}}}]})",
+         "runs[0].against.set.vpls", "vpls"},
+        {R"({"runs": [{"technique": "direct", "temporalFrames": 1}]})", "runs[0].temporalFrames", "at least 2"},
+        {R"({"runs": [{"technique": "direct", "frames": 0}]})", "runs[0].frames", "[1, "},
+        {R"({"runs": [{"technique": "direct", "scenes": ["cornell-area"]}]})", "runs[0].scenes", "cornell-area"},
+        {"{" + direct + R"(, "frames": "5"})", "frames", "whole number"},
+        {"{" + direct + R"(, "warmup": -1})", "warmup", "[0, "},
+        {"{" + direct + R"(, "size": "12"})", "size", "WxH"},
+        {"{" + direct + R"(, "scenes": "cornell-spot"})", "scenes", "non-empty list"},
+        {"{" + direct + R"(, "scenes": ["nosuch"]})", "scenes[0]", "nosuch"},
+        {"{" + direct + R"(, "reference": {"spp": -1}})", "reference.spp", "[1, "},
+        {"{" + direct + R"(, "reference": {"sp": 4}})", "reference.sp", "unknown key"},
+        {"{" + direct + R"(, "reference": {"noise": 5}})", "reference.noise", "(0, 1)"},
+        {"{" + direct + R"(, "reference": {"size": "7x7"}})", "reference.size", "does not divide"},
+        {"{" + direct + R"(, "compareTo": ["twobounce"]})", "compareTo[0]", "twobounce"},
+        {"{" + direct + R"(, "rays": 1.5})", "rays", "whole number"},
+    };
+    int i = 0;
+    for (const auto& c : cases) {
+        const fs::path config = d / ("config" + std::to_string(i++) + ".json");
+        std::ofstream(config) << c.config;
+        const fs::path out = d / "out";
+        const CliRun r = run("bench --backend osmesa --config " + config.string() + " --out " + out.string() +
+                             " --cache " + (d / "cache").string());
+        EXPECT_EQ(r.status, 2) << c.config << "\n" << r.output;
+        EXPECT_NE(r.output.find("bench config: " + c.key + ": "), std::string::npos) << c.config << "\n" << r.output;
+        EXPECT_NE(r.output.find(c.says), std::string::npos) << c.config << "\n" << r.output;
+        EXPECT_FALSE(fs::exists(out)) << c.config << ": wrote " << out;
+        EXPECT_FALSE(fs::exists(d / "cache")) << c.config << ": wrote the cache";
+    }
+}
+
 // "rays" in a bench config adds the GPU-against-Embree table: both kinds of rays per scene, the same
 // triangles found by both, positive rates.
 TEST(Cli, BenchReportsRayCastingAgainstEmbree)
@@ -518,6 +579,23 @@ TEST(Cli, CompareOfANanImageFails)
 } // namespace
 
 namespace {
+
+// A NaN reference makes the render's error infinite, written as "inf" in its record (JSON has no infinity:
+// a plain dump would write null), never 0.
+TEST(Cli, RenderAgainstANanReferenceRecordsAnInfiniteError)
+{
+    const fs::path d = outDir("render-nan-reference");
+    bounce::core::Image nan(8, 8);
+    for (float& v : nan.rgb) v = std::numeric_limits<float>::quiet_NaN();
+    bounce::core::writeImage((d / "nan.exr").string(), nan);
+    const CliRun r =
+        run("render --scene cornell-spot --size 16x16 --frames 1 --warmup 0 --backend osmesa --reference " +
+            (d / "nan.exr").string() + " --out " + (d / "x.exr").string());
+    EXPECT_EQ(r.status, 0) << r.output << " (the image itself is finite)";
+    const nlohmann::json j = nlohmann::json::parse(std::ifstream(d / "x.json"));
+    EXPECT_EQ(j["relativeRmse"], "inf") << j.dump();
+    EXPECT_EQ(j["nonFiniteValues"], 0);
+}
 
 // A run writes its EXR, PNG and JSON as a set: when one cannot be written (here the JSON's path is a
 // folder) the run is refused before rendering and nothing of the set is left behind.
