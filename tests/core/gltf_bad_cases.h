@@ -16,7 +16,7 @@ namespace bounce::core::test {
 
 struct BadGltfCase {
     std::string name;
-    std::string words; // what the message must contain; empty: the file loads
+    std::string words;                                     // what the message must contain; empty: the file loads
     std::function<std::string(const fs::path& dir)> write; // writes the case's files, returns the scene's path
 };
 
@@ -139,8 +139,9 @@ inline std::vector<BadGltfCase> badGltfCases()
     });
 
     // ---- accessors
-    add("index-out-of-range", "index 3 is out of range",
-        edited([](GltfBuilder& b) { b.doc["meshes"][0]["primitives"][0]["indices"] = b.indices({0, 1, 3}); }));
+    add("index-out-of-range", "index 3 is out of range", edited([](GltfBuilder& b) {
+            b.doc["meshes"][0]["primitives"][0]["indices"] = b.indices({0, 1, 3});
+        }));
     add("accessor-out-of-range", "accessor 42 is out of range",
         edited([](GltfBuilder& b) { b.doc["meshes"][0]["primitives"][0]["attributes"]["NORMAL"] = 42; }));
     add("accessor-beyond-view", "beyond the end of bufferView",
@@ -149,14 +150,14 @@ inline std::vector<BadGltfCase> badGltfCases()
         edited([](GltfBuilder& b) { b.doc["bufferViews"][0]["byteOffset"] = 4096; }));
     add("accessor-without-view", "no bufferView",
         edited([](GltfBuilder& b) { b.doc["accessors"][0].erase("bufferView"); }));
-    add("absurd-count", "exceeds the limit",
-        edited([](GltfBuilder& b) { b.doc["accessors"][0]["count"] = 1u << 30; }));
+    add("absurd-count", "exceeds the limit", edited([](GltfBuilder& b) { b.doc["accessors"][0]["count"] = 1u << 30; }));
     add("float-indices", "not an unsigned integer type", edited([](GltfBuilder& b) {
             b.doc["meshes"][0]["primitives"][0]["indices"] = b.accessor<float>({0, 1, 2}, "SCALAR", 5126);
         }));
     add("wrong-accessor-type", "wrong type", edited([](GltfBuilder& b) { b.doc["accessors"][0]["type"] = "VEC2"; }));
-    add("indices-not-triangles", "whole number of triangles",
-        edited([](GltfBuilder& b) { b.doc["meshes"][0]["primitives"][0]["indices"] = b.indices({0, 1}); }));
+    add("indices-not-triangles", "whole number of triangles", edited([](GltfBuilder& b) {
+            b.doc["meshes"][0]["primitives"][0]["indices"] = b.indices({0, 1});
+        }));
 
     // ---- URIs
     add("uri-dotdot", "leaves the scene's folder", [](const fs::path& dir) {
@@ -164,9 +165,8 @@ inline std::vector<BadGltfCase> badGltfCases()
         writeFile(dir / "outside.bin", oneTriangle().bin);
         return withBufferUri(oneTriangle(), dir / "scene", "scene", "../outside.bin");
     });
-    add("uri-absolute", "leaves the scene's folder", [](const fs::path& dir) {
-        return withBufferUri(oneTriangle(), dir, "scene", (dir / "scene.bin").string());
-    });
+    add("uri-absolute", "leaves the scene's folder",
+        [](const fs::path& dir) { return withBufferUri(oneTriangle(), dir, "scene", (dir / "scene.bin").string()); });
     add("uri-empty", "names a folder or nothing",
         [](const fs::path& dir) { return withBufferUri(oneTriangle(), dir, "scene", ""); });
     add("uri-dot", "names a folder or nothing",
@@ -190,7 +190,8 @@ inline std::vector<BadGltfCase> badGltfCases()
     });
 
     // ---- images
-    add("image-missing", "missing", [](const fs::path& dir) { return texturedTriangle("nowhere.png").writeGltf(dir, "scene"); });
+    add("image-missing", "missing",
+        [](const fs::path& dir) { return texturedTriangle("nowhere.png").writeGltf(dir, "scene"); });
     add("image-undecodable", "cannot be decoded", [](const fs::path& dir) {
         writeFile(dir / "junk.png", "this is not a png");
         return texturedTriangle("junk.png").writeGltf(dir, "scene");
@@ -209,8 +210,9 @@ inline std::vector<BadGltfCase> badGltfCases()
         }));
 
     // ---- hierarchy
-    add("cycle-in-scene", "cycle",
-        edited([](GltfBuilder& b) { b.doc["nodes"] = {{{"mesh", 0}, {"children", {1}}}, {{"children", {0}}}}; }));
+    add("cycle-in-scene", "cycle", edited([](GltfBuilder& b) {
+            b.doc["nodes"] = {{{"mesh", 0}, {"children", {1}}}, {{"children", {0}}}};
+        }));
     add("cycle-without-scene", "lies on a cycle", edited([](GltfBuilder& b) {
             b.doc.erase("scenes");
             b.doc.erase("scene");
@@ -220,7 +222,8 @@ inline std::vector<BadGltfCase> badGltfCases()
             b.doc["nodes"] = {{{"children", {2}}}, {{"children", {2}}}, {{"mesh", 0}}};
             b.doc["scenes"][0]["nodes"] = {0, 1};
         }));
-    add("child-out-of-range", "node 7 is out of range", edited([](GltfBuilder& b) { b.doc["nodes"][0]["children"] = {7}; }));
+    add("child-out-of-range", "node 7 is out of range",
+        edited([](GltfBuilder& b) { b.doc["nodes"][0]["children"] = {7}; }));
     add("mesh-out-of-range", "mesh 5 is out of range", edited([](GltfBuilder& b) { b.doc["nodes"][0]["mesh"] = 5; }));
     add("material-out-of-range", "material 3 is out of range",
         edited([](GltfBuilder& b) { b.doc["meshes"][0]["primitives"][0]["material"] = 3; }));
@@ -273,9 +276,8 @@ inline std::vector<BadGltfCase> badGltfCases()
         b.node({{"mesh", 0}});
         return b.writeGltf(dir, "scene");
     });
-    add("count-over-2^28", "exceeds the limit", edited([](GltfBuilder& b) {
-            b.doc["accessors"][0]["count"] = (1u << 28) + 1;
-        }));
+    add("count-over-2^28", "exceeds the limit",
+        edited([](GltfBuilder& b) { b.doc["accessors"][0]["count"] = (1u << 28) + 1; }));
     add("points-primitive", "", edited([](GltfBuilder& b) { b.doc["meshes"][0]["primitives"][0]["mode"] = 0; }));
     return cases;
 }
