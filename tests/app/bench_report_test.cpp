@@ -32,8 +32,8 @@ BenchRow row(const std::string& technique, double error)
     r.ssimOwn = 0.9;
     r.relRmseBaseline = r.flicker = NAN;
     r.relRmseCompareTo = {error};
-    r.record = {{"technique", technique}, {"settings", "defaults"}, {"size", "16x16"}, {"lightPaths", "direct"},
-                {"totalMs", 1.0}, {"passes", nlohmann::json::array()}};
+    r.record = {{"technique", technique}, {"settings", "defaults"}, {"size", "16x16"},
+                {"lightPaths", "direct"}, {"totalMs", 1.0},         {"passes", nlohmann::json::array()}};
     for (const char* paths : {"direct", "full", "onebounce"})
         r.record["error"][paths] = {{"rmse", error}, {"relativeRmse", error}, {"ssim", 0.9}, {"maxError", error}};
     return r;
