@@ -17,16 +17,19 @@ src="$(cd "$(dirname "$0")/.." && pwd)"
 dir="${MUTATE_DIR:-/tmp/bounce-mutate}"
 list="$src/scripts/mutations.ini"
 
-# A fresh copy with the files' own times (tar keeps them): ninja rebuilds only what changed since the last run.
-rm -rf "$dir/tree"
+# A fresh copy with the files' own times (tar keeps them), its build/ kept: ninja rebuilds only what changed
+# since the last run. The build sits where the working tree's does (tree/build), so that ccache, with
+# CCACHE_BASEDIR making paths relative, reuses what scripts/build.sh compiled.
 mkdir -p "$dir/tree"
+find "$dir/tree" -mindepth 1 -maxdepth 1 ! -name build -exec rm -rf {} +
 tar -C "$src" --exclude='./build*' --exclude=./node_modules --exclude=./out --exclude=./.git -cf - . | tar -C "$dir/tree" -xf -
 launcher=()
 command -v ccache >/dev/null 2>&1 && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
-export CCACHE_BASEDIR="$dir"
-cmake -S "$dir/tree" -B "$dir/build" -G Ninja -DCMAKE_BUILD_TYPE=Release "${launcher[@]}" >/dev/null
-echo "mutate: building the unmutated copy in $dir/build"
-cmake --build "$dir/build" -j "$(nproc)" >/dev/null
+export CCACHE_BASEDIR="$dir/tree"
+build="$dir/tree/build"
+cmake -S "$dir/tree" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release "${launcher[@]}" >/dev/null
+echo "mutate: building the unmutated copy in $build"
+cmake --build "$build" -j "$(nproc)" >/dev/null
 
 # name<TAB>file<TAB>tests for every mutation, in file order (or those named on the command line).
 names=$(/usr/bin/python3 - "$list" "$@" <<'PY'
@@ -68,10 +71,10 @@ PY
         continue
     fi
     echo "mutate: $name ($file), tests '$tests'"
-    if ! cmake --build "$dir/build" -j "$(nproc)" >"$dir/$name.build.log" 2>&1; then
+    if ! cmake --build "$build" -j "$(nproc)" >"$dir/$name.build.log" 2>&1; then
         results+="$name: caught (does not build)\n"
         caught=$((caught + 1))
-    elif (cd "$dir/build" && xvfb-run -a -s "-screen 0 1280x1024x24" ctest -R "$tests" --timeout 900 \
+    elif (cd "$build" && xvfb-run -a -s "-screen 0 1280x1024x24" ctest -R "$tests" --timeout 900 \
               >"$dir/$name.log" 2>&1); then
         ran=$(grep -c "Test *#" "$dir/$name.log" || true)
         results+="$name: MISSED ($ran tests passed; $dir/$name.log)\n"
@@ -84,7 +87,7 @@ PY
     cp "$dir/original" "$target"
 done <<<"$names"
 # Leave the copy's build matching the unmutated tree.
-cmake --build "$dir/build" -j "$(nproc)" >/dev/null 2>&1 || true
+cmake --build "$build" -j "$(nproc)" >/dev/null 2>&1 || true
 
 printf "\n%b" "$results"
 echo "mutate: $caught caught, $missed missed or not applied"
