@@ -737,6 +737,28 @@ TEST(Cli, RenderAgainstANanReferenceRecordsAnInfiniteError)
     EXPECT_EQ(j["nonFiniteValues"], 0);
 }
 
+// A size whose render targets need more than half of the available memory (llvmpipe: the system's) is
+// refused before any target is allocated, with status 2, a message naming --size and nothing written.
+TEST(Cli, RenderSizeBeyondMemoryIsRefusedUpFront)
+{
+    std::ifstream meminfo("/proc/meminfo");
+    std::string key, unit;
+    double kib = 0.0, available = 0.0;
+    while (meminfo >> key >> kib >> unit)
+        if (key == "MemAvailable:") available = kib * 1024.0;
+    // 108 bytes of targets per pixel (gl/frame/frame_budget.cpp); --size stops at 16384.
+    const double side = std::ceil(std::sqrt(0.75 * available / 108.0));
+    if (available <= 0.0 || side > 16384.0) GTEST_SKIP() << "this machine's memory holds the largest --size";
+    const fs::path d = outDir("too-big");
+    const std::string size = std::to_string(int(side)) + "x" + std::to_string(int(side));
+    const CliRun r =
+        run("render --scene cornell-spot --backend osmesa --size " + size + " --out " + (d / "x.exr").string());
+    EXPECT_EQ(r.status, 2) << r.output;
+    EXPECT_NE(r.output.find("--size " + size), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("GiB"), std::string::npos) << r.output;
+    EXPECT_TRUE(emptyDir(d));
+}
+
 // A run writes its EXR, PNG and JSON as a set: when one cannot be written (here the JSON's path is a
 // folder) the run is refused before rendering and nothing of the set is left behind.
 TEST(Cli, RenderWritesItsFilesAsASet)
