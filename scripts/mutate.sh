@@ -80,7 +80,7 @@ PY
         results+="$name: MISSED ($ran tests passed; $dir/$name.log)\n"
         missed=$((missed + 1))
     else
-        failed=$(grep -E "^\s+[0-9]+ - " "$dir/$name.log" | sed 's/^ *[0-9]* - //; s/ (.*//' | tr '\n' ' ')
+        failed=$(grep -E "^\s+[0-9]+ - " "$dir/$name.log" | sed 's/^ *[0-9]* - //; s/ *#.*//; s/ (.*//' | tr -s ' \n' ' ')
         results+="$name: caught by $failed\n"
         caught=$((caught + 1))
     fi
