@@ -77,7 +77,11 @@ PY
     elif (cd "$build" && xvfb-run -a -s "-screen 0 1280x1024x24" ctest -R "$tests" --timeout 900 \
               >"$dir/$name.log" 2>&1); then
         ran=$(grep -c "Test *#" "$dir/$name.log" || true)
-        results+="$name: MISSED ($ran tests passed; $dir/$name.log)\n"
+        if [ "$ran" -eq 0 ]; then
+            results+="$name: NO TEST MATCHES '$tests'\n"
+        else
+            results+="$name: MISSED ($ran tests passed; $dir/$name.log)\n"
+        fi
         missed=$((missed + 1))
     else
         failed=$(grep -E "^\s+[0-9]+ - " "$dir/$name.log" | sed 's/^ *[0-9]* - //; s/ *#.*//; s/ (.*//' | tr -s ' \n' ' ')
