@@ -701,7 +701,8 @@ private:
     void checkLight(const tinygltf::Light& gl, const glm::dvec3& colour) const
     {
         const std::string where = "light '" + gl.name + "'";
-        if (!(gl.intensity >= 0.0)) fail(path_, where + ": intensity " + std::to_string(gl.intensity) + " is negative");
+        if (!(gl.intensity >= 0.0))
+            fail(path_, where + ": intensity " + std::to_string(gl.intensity) + " is negative (or not a number)");
         if (!(colour.x >= 0.0 && colour.y >= 0.0 && colour.z >= 0.0))
             fail(path_, where + ": a colour component is negative");
         if (gl.type != "spot") return;

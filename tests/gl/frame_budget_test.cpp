@@ -78,9 +78,9 @@ TEST_F(FrameBudgetTest, DriverLimitsAreRead)
     EXPECT_GE(l.maxTextureSize, 1024);
     EXPECT_GE(l.maxViewportWidth, 1024);
     EXPECT_GE(l.maxFramebufferWidth, 1024);
-    std::printf("[ limits   ] texture %d, viewport %dx%d, framebuffer %dx%d, memory %.2f GiB (%s)\n",
-                l.maxTextureSize, l.maxViewportWidth, l.maxViewportHeight, l.maxFramebufferWidth,
-                l.maxFramebufferHeight, double(l.availableBytes) / double(1ull << 30), l.memorySource.c_str());
+    std::printf("[ limits   ] texture %d, viewport %dx%d, framebuffer %dx%d, memory %.2f GiB (%s)\n", l.maxTextureSize,
+                l.maxViewportWidth, l.maxViewportHeight, l.maxFramebufferWidth, l.maxFramebufferHeight,
+                double(l.availableBytes) / double(1ull << 30), l.memorySource.c_str());
     EXPECT_NO_THROW(gl::checkFrameFits(sized(64, 64)));
 }
 
