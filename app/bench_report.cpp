@@ -8,6 +8,7 @@
 #include <iomanip>
 #include <sstream>
 
+#include "app/render_job.h"
 #include "core/image.h"
 
 namespace bounce::app {
@@ -26,14 +27,14 @@ std::string csvText(const BenchConfig& config, const std::vector<BenchRow>& rows
 {
     std::ostringstream csv;
     csv << "scene,technique,params,size,light_paths,total_ms,rel_rmse_own,rel_rmse_full,rmse_own,ssim_own,baseline,"
-           "rel_rmse_baseline,flicker,passes";
+           "rel_rmse_baseline,flicker,nonfinite_values,passes";
     for (const std::string& p : config.compareTo) csv << ",rel_rmse_" << p;
     csv << "\n";
     for (const BenchRow& r : rows) {
         csv << csvField(r.scene) << "," << r.technique << "," << csvField(r.settings) << "," << r.size << ","
             << r.lightPaths << "," << r.totalMs << "," << r.relRmseOwn << "," << r.relRmseFull << "," << r.rmseOwn
             << "," << r.ssimOwn << "," << csvField(r.baseline) << "," << r.relRmseBaseline << "," << r.flicker << ","
-            << csvField(r.passes);
+            << r.nonFiniteValues << "," << csvField(r.passes);
         for (double v : r.relRmseCompareTo) csv << "," << v;
         csv << "\n";
     }
@@ -158,6 +159,10 @@ std::string markdownText(const BenchConfig& config, const std::vector<BenchRow>&
        << " timed frames (median GPU ms). Timings compare only within this run. Errors leave out the pixels that see"
           " an emitter directly (and a one-pixel margin): emission is the same exact G-buffer value in every"
           " technique, and its edges alias against the box-filtered references.\n\n";
+    for (const BenchRow& r : rows)
+        if (r.nonFiniteValues > 0)
+            md << "**Failed: " << r.technique << " (" << r.settings << ") on " << r.scene << " wrote "
+               << r.nonFiniteValues << " NaN/Inf values; its error figures are infinite.**\n\n";
     for (const auto& sceneName : config.sceneNames) {
         std::vector<const nlohmann::json*> recs;
         for (const BenchRow& r : rows)
@@ -186,7 +191,7 @@ void writeBenchReport(const std::filesystem::path& out, const BenchConfig& confi
     nlohmann::json results = nlohmann::json::array();
     for (const BenchRow& r : rows) results.push_back(r.record);
     core::writeFileAtomic((out / "results.csv").string(), csvText(config, rows));
-    core::writeFileAtomic((out / "results.json").string(), results.dump(2) + "\n");
+    core::writeFileAtomic((out / "results.json").string(), recordText(results));
     std::string md = markdownText(config, rows, context);
     if (!rays.empty()) {
         md += raysMarkdown(rays);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <map>
 
 #include "app/commands.h"
@@ -177,6 +178,23 @@ void compareWithBaseline(const BenchSetting& s, const core::Scene& scene, gl::Re
                               {"relativeRmseIndirect", row.relRmseBaseline}};
 }
 
+} // namespace
+
+// core/metrics.h's rule for images with NaN/Inf, applied to the whole row (flicker and baseline included).
+void markNonFinite(BenchRow& row)
+{
+    const double inf = std::numeric_limits<double>::infinity();
+    row.relRmseOwn = row.relRmseFull = row.rmseOwn = inf;
+    row.ssimOwn = 0.0;
+    for (double& v : row.relRmseCompareTo) v = inf;
+    for (auto& [paths, figures] : row.record["error"].items())
+        for (auto& [name, value] : figures.items()) value = name == "ssim" ? 0.0 : inf;
+    if (!row.baseline.empty()) row.record["baseline"]["relativeRmseIndirect"] = row.relRmseBaseline = inf;
+    if (row.record.contains("temporal")) row.record["temporal"]["meanFrameDifference"] = row.flicker = inf;
+}
+
+namespace {
+
 BenchRow runSetting(const BenchConfig& config, const BenchSetting& s, const std::string& sceneName,
                     const core::Scene& scene, const gl::ContextInfo& context, SceneCache& cache)
 {
@@ -218,6 +236,8 @@ BenchRow runSetting(const BenchConfig& config, const BenchSetting& s, const std:
     }
     row.record["size"] = row.size;
     if (s.curve) row.record["curve"] = curve;
+    row.nonFiniteValues = row.record["nonFiniteValues"].get<std::size_t>();
+    if (row.nonFiniteValues > 0) markNonFinite(row);
     return row;
 }
 

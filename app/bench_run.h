@@ -22,8 +22,15 @@ struct BenchRow {
     double relRmseOwn = 0.0, relRmseFull = 0.0, rmseOwn = 0.0, ssimOwn = 0.0;
     double relRmseBaseline = 0.0, flicker = 0.0;
     std::vector<double> relRmseCompareTo; // one per config.compareTo
-    nlohmann::json record;                // runRecord() + settings, size, error, baseline, temporal
+    // NaN/Inf values in the rendered image: when there are any, every error figure is +inf (SSIM 0), in
+    // the CSV, the JSON and the report, whatever the emitter mask or the downsampling would hide.
+    std::size_t nonFiniteValues = 0;
+    nlohmann::json record; // runRecord() + settings, size, error, baseline, temporal
 };
+
+// A render whose image holds NaN/Inf values failed: sets every error figure of the row and its record to
+// +inf (SSIM 0), also where the emitter mask or the downsampling would have hidden the bad values.
+void markNonFinite(BenchRow& row);
 
 // Renders the sweep, scene by scene in the config's order (references are rendered or read from the
 // cache as they are first needed). Needs a current GL context.

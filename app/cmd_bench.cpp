@@ -77,12 +77,20 @@ int cmdBench(const Args& args)
         }
     writeBenchReport(out, config, rows, rays, context->info());
     int rc = plotSpeedError(out);
-    std::printf("wrote %s/{results.csv,results.json,report.md,speed_error.png}\n", out.string().c_str());
+    std::printf("wrote %s/{results.csv,results.json,report.md%s}\n", out.string().c_str(),
+                rc == 0 ? ",speed_error.png" : "; not speed_error.png: the plot script failed");
     if (hasRoofline(rows)) {
         rc |= plotRoofline(out);
         std::printf("wrote %s/{roofline.csv,roofline.png}: every pass against its bound\n", out.string().c_str());
     }
-    return rc == 0 ? 0 : 1;
+    std::size_t failed = 0;
+    for (const BenchRow& r : rows)
+        if (r.nonFiniteValues > 0) {
+            std::fprintf(stderr, "bounce bench: error: %s (%s) on %s wrote %zu NaN/Inf values\n", r.technique.c_str(),
+                         r.settings.c_str(), r.scene.c_str(), r.nonFiniteValues);
+            ++failed;
+        }
+    return rc == 0 && failed == 0 ? 0 : 1;
 }
 
 } // namespace bounce::app

@@ -152,7 +152,7 @@ int cmdRender(const Args& args)
     core::FileSet files;
     files.addImage(exr.string(), image);
     files.addImage(png.string(), image, exposure);
-    files.add(json.string(), record.dump(2) + "\n");
+    files.add(json.string(), recordText(record));
     try {
         files.commit();
     } catch (const core::ImageError& e) {
@@ -164,6 +164,11 @@ int cmdRender(const Args& args)
     printPassTable(renderer, context->info().renderer);
     for (const gl::Counter& c : renderer.counters()) std::printf("  %s = %g\n", c.name.c_str(), c.value);
     std::printf("wrote %s\n      %s\n      %s\n", exr.string().c_str(), png.string().c_str(), json.string().c_str());
+    // The files are kept (they show where), but a run that wrote NaN or Inf failed.
+    if (const std::size_t bad = record["nonFiniteValues"].get<std::size_t>(); bad > 0) {
+        std::fprintf(stderr, "bounce render: error: the image has %zu non-finite (NaN/Inf) values\n", bad);
+        return 1;
+    }
     return 0;
 }
 

@@ -1,5 +1,7 @@
 #include "app/render_job.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <ctime>
 
@@ -123,8 +125,42 @@ nlohmann::json runRecord(const gl::ContextInfo& ctx, const std::string& scene, g
     if (const nlohmann::json notes = r.notes(); !notes.is_null() && !notes.empty()) j["notes"] = notes;
     j["bytesAllocated"] = gl::Allocations::instance().byLabel();
     j["bytesAllocatedTotal"] = gl::Allocations::instance().totalBytes();
+    j["nonFiniteValues"] = nonFiniteValues(r.image());
     j["time"] = std::time(nullptr);
     return j;
+}
+
+std::size_t nonFiniteValues(const core::Image& image)
+{
+    return std::size_t(std::count_if(image.rgb.begin(), image.rgb.end(), [](float v) { return !std::isfinite(v); }));
+}
+
+namespace {
+
+nlohmann::json withoutInfinities(const nlohmann::json& j)
+{
+    if (j.is_number_float() && !std::isfinite(j.get<double>())) {
+        const double v = j.get<double>();
+        return std::isnan(v) ? nlohmann::json(nullptr) : nlohmann::json(v > 0 ? "inf" : "-inf");
+    }
+    if (j.is_object()) {
+        nlohmann::json out = nlohmann::json::object();
+        for (const auto& [k, v] : j.items()) out[k] = withoutInfinities(v);
+        return out;
+    }
+    if (j.is_array()) {
+        nlohmann::json out = nlohmann::json::array();
+        for (const auto& v : j) out.push_back(withoutInfinities(v));
+        return out;
+    }
+    return j;
+}
+
+} // namespace
+
+std::string recordText(const nlohmann::json& record)
+{
+    return withoutInfinities(record).dump(2) + "\n";
 }
 
 void printPassTable(gl::Renderer& r, const std::string& renderer)

@@ -7,6 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/image.h"
 #include "core/scene.h"
 #include "gl/context/context.h"
 #include "gl/renderer.h"
@@ -34,8 +35,17 @@ std::unique_ptr<gl::Context> createContextForCli(const std::string& backend, boo
 // The run's record: backend, renderer, size, technique, parameters, per-pass GPU ms, counters, bytes.
 nlohmann::json runRecord(const gl::ContextInfo& context, const std::string& scene, gl::Renderer& renderer);
 
+// Values (channels) of the image that are NaN or +-Inf. A run whose image has any must never look like a
+// good one: its record says how many, its error figures are infinite, and the command exits with status 1.
+std::size_t nonFiniteValues(const core::Image& image);
+
+// The record as text: JSON has no infinity, so +-inf is written as the string "inf" / "-inf" (Python's
+// float() reads it) and NaN as null, as `bounce compare --json` does; every other value as dump(2).
+std::string recordText(const nlohmann::json& record);
+
 // Prints the per-pass table (median ms over the timed frames) to stdout, with each pass's bound and
 // efficiency when this renderer's ceilings are cached (`bounce probe`).
 void printPassTable(gl::Renderer& renderer, const std::string& glRenderer);
+
 
 } // namespace bounce::app

@@ -10,6 +10,7 @@ and more accurate). Runs under Debian's python3 with python3-matplotlib.
 usage: plot_speed_error.py RESULTS.csv OUT.png [--title TEXT]
 """
 import csv
+import math
 import sys
 
 import matplotlib
@@ -47,9 +48,10 @@ def main(argv):
     for row, (scene, size) in zip(axes, groups):
         for ax, (column, label) in zip(row, panels):
             points = []
+            named = []  # the CSV row of each point
             for technique in sorted({r["technique"] for r in rows if r["scene"] == scene and r["size"] == size}):
                 sel = [r for r in rows if r["scene"] == scene and r["size"] == size and r["technique"] == technique
-                       and r.get(column) not in (None, "", "nan") and float(r[column]) > 0]
+                       and r.get(column) not in (None, "", "nan") and 0 < float(r[column]) < math.inf]
                 sel.sort(key=lambda r: float(r["total_ms"]))
                 if not sel:
                     continue
@@ -57,7 +59,12 @@ def main(argv):
                 ys = [float(r[column]) for r in sel]
                 ax.plot(xs, ys, "o-", label=technique, markersize=4, color=colour[technique])
                 points += list(zip(xs, ys))
+                named += sel
             front = pareto(points)
+            # The front in words too (tests check it against results.csv): technique, parameters, ms, error.
+            print("pareto front, %s %s, %s: %s" % (scene, size, column, "; ".join(
+                "%s (%s) %s %s" % (named[i]["technique"], named[i]["params"], named[i]["total_ms"], named[i][column])
+                for i in front)))
             if front:
                 ax.step([points[i][0] for i in front], [points[i][1] for i in front], "k--", where="post",
                         linewidth=1, label="Pareto front")

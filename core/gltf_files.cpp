@@ -20,14 +20,30 @@ bool relativeToFolder(const FolderJail& jail, const std::string& absPath, std::s
     return true;
 }
 
+// An absolute URI (joined as "folder//abs") or one with a '..' part: it leaves by its name alone.
+bool leavesByName(const std::string& rel)
+{
+    if (!rel.empty() && rel.front() == '/') return true;
+    for (const fs::path& part : fs::path(rel))
+        if (part == "..") return true;
+    return false;
+}
+
 bool staysInFolder(const FolderJail& jail, const std::string& absPath, const std::string& rel)
 {
-    if (rel.empty() || rel.front() == '/') return false; // absolute URIs are joined as "folder//abs"
-    for (const fs::path& part : fs::path(rel))
-        if (part == "..") return false;
+    if (rel.empty() || leavesByName(rel)) return false;
     std::error_code ec;
     const std::string resolved = fs::weakly_canonical(absPath, ec).string(); // follows symbolic links
     return !ec && resolved.compare(0, jail.prefix.size(), jail.prefix) == 0;
+}
+
+// "", ".", "./", "dir/.": a URI that names the scene's folder (or one below it) or nothing at all, which is
+// no file, whether or not it stays in the folder.
+bool namesNoFile(const std::string& rel)
+{
+    if (rel.empty() || rel.back() == '/') return true;
+    const fs::path last = fs::path(rel).filename();
+    return last == "." || last.empty();
 }
 
 bool jailFileExists(const std::string& absPath, void* user)
@@ -36,13 +52,20 @@ bool jailFileExists(const std::string& absPath, void* user)
     std::string rel;
     // tinygltf also tries the current directory; that is outside the scene and silently absent.
     if (!relativeToFolder(*jail, absPath, &rel)) return false;
+    if (namesNoFile(rel) && !leavesByName(rel)) {
+        jail->notFiles.push_back(rel);
+        return false;
+    }
     if (!staysInFolder(*jail, absPath, rel)) {
         jail->refused.push_back(rel);
         return false;
     }
     std::error_code ec;
     if (fs::is_regular_file(absPath, ec)) return true;
-    jail->missing.push_back(rel);
+    if (fs::is_directory(absPath, ec))
+        jail->notFiles.push_back(rel);
+    else
+        jail->missing.push_back(rel);
     return false;
 }
 

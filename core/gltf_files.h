@@ -24,7 +24,8 @@ struct FolderJail {
     std::string prefix; // canonical scene folder, with a trailing '/'
     std::vector<std::string> refused;
     std::vector<std::string> missing;
-    tinygltf::Model* model = nullptr; // being filled; the image callback checks buffer views against it
+    std::vector<std::string> notFiles; // "", ".", "dir/": URIs that name the folder or nothing, not a file
+    tinygltf::Model* model = nullptr;  // being filled; the image callback checks buffer views against it
 };
 
 // tinygltf's file callbacks confined to the jail: URIs that leave the folder (absolute, '..', or a

@@ -23,9 +23,15 @@
 //   face fills the canonical field of view;
 // - light `range` is ignored (lights follow the inverse square law everywhere); a point light keeps the
 //   default Light::direction, since it has none;
-// - a node hierarchy that is not a tree, indices or offsets outside their buffers, counts over 2^28,
-//   URIs that leave the file's folder (absolute, '..', or through a symbolic link), missing buffers or
-//   images, and non-finite positions are errors (SceneError); ranges are checked before data is read.
+// - a node hierarchy that is not a tree (without a scene too), indices or offsets outside their buffers,
+//   counts over 2^28, index accessors that are not unsigned integers, URIs that leave the file's folder
+//   (absolute, '..', or through a symbolic link) or name no file ("", ".", a folder), missing buffers or
+//   images, images whose header claims more than 2^26 pixels or none, and non-finite positions are
+//   errors (SceneError); ranges are checked before data is read;
+// - values glTF forbids are refused (SceneError), never clamped, so that the rasteriser and the path
+//   tracer cannot disagree about them: a negative light intensity or colour, a spot cone outside
+//   0 <= inner < outer <= pi/2, a camera yfov outside (0, pi), znear <= 0 or zfar <= znear, a fractional
+//   light index.
 //
 // What writing keeps: everything contentHash covers, bit for bit (numbers are written as the shortest
 // decimal that reads back as the same float), plus names and the camera. Not kept: meshes without

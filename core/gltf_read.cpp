@@ -13,6 +13,7 @@
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <numbers>
 #include <set>
 
 #include <glm/gtc/matrix_inverse.hpp>
@@ -57,6 +58,37 @@ glm::dvec3 unitIfNeeded(glm::dvec3 v)
 {
     const double len2 = glm::dot(v, v);
     return std::abs(len2 - 1.0) > 1e-6 ? v / std::sqrt(len2) : v;
+}
+
+std::uint32_t be32(const unsigned char* p)
+{
+    return std::uint32_t(p[0]) << 24 | std::uint32_t(p[1]) << 16 | std::uint32_t(p[2]) << 8 | p[3];
+}
+
+// The size a PNG (IHDR) or baseline/progressive JPEG (SOFn) header claims, read before stb_image sees
+// it: stb refuses a header of 100000^2 pixels as "too large" and then, trying its other formats,
+// reports "unknown image type". False when the bytes are neither.
+bool claimedImageSize(const unsigned char* p, std::size_t size, std::uint64_t& w, std::uint64_t& h)
+{
+    static const unsigned char kPng[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
+    if (size >= 24 && std::memcmp(p, kPng, 8) == 0 && std::memcmp(p + 12, "IHDR", 4) == 0) {
+        w = be32(p + 16);
+        h = be32(p + 20);
+        return true;
+    }
+    if (size < 4 || p[0] != 0xFF || p[1] != 0xD8) return false;
+    for (std::size_t i = 2; i + 9 < size;) {
+        if (p[i] != 0xFF) return false;
+        const unsigned char marker = p[i + 1];
+        const std::size_t length = std::size_t(p[i + 2]) << 8 | p[i + 3];
+        if (marker >= 0xC0 && marker <= 0xCF && marker != 0xC4 && marker != 0xC8 && marker != 0xCC) {
+            h = std::uint64_t(p[i + 5]) << 8 | p[i + 6];
+            w = std::uint64_t(p[i + 7]) << 8 | p[i + 8];
+            return true;
+        }
+        i += 2 + length;
+    }
+    return false;
 }
 
 class GltfReader {
@@ -160,6 +192,9 @@ private:
                 ? loader.LoadBinaryFromMemory(&model_, &err, &warnings, bytes.data(), unsigned(bytes.size()), baseDir)
                 : loader.LoadASCIIFromString(&model_, &err, &warnings, reinterpret_cast<const char*>(bytes.data()),
                                              unsigned(bytes.size()), baseDir);
+        if (!jail.notFiles.empty())
+            fail(path_, "URI '" + jail.notFiles.front() +
+                            "' names a folder or nothing, not a file (a buffer or image needs a file name)");
         if (!jail.refused.empty())
             fail(path_,
                  "URI '" + jail.refused.front() + "' leaves the scene's folder (absolute or '..' path); refused");
@@ -285,11 +320,16 @@ private:
 
     std::vector<std::uint32_t> readIndices(int accessorIndex) const
     {
+        // The component type first: a float index accessor is wrong in kind, whatever its byte range says.
+        if (accessorIndex >= 0 && std::size_t(accessorIndex) < model_.accessors.size()) {
+            const int type = model_.accessors[std::size_t(accessorIndex)].componentType;
+            if (type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+                type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
+                fail(path_, "indices accessor " + std::to_string(accessorIndex) + ": component type " +
+                                std::to_string(type) + (type == TINYGLTF_COMPONENT_TYPE_FLOAT ? " (float)" : "") +
+                                " is not an unsigned integer type (5121, 5123 or 5125, as glTF requires)");
+        }
         const View v = view(accessorIndex, TINYGLTF_TYPE_SCALAR, "indices");
-        if (v.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
-            v.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
-            v.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
-            fail(path_, "indices accessor " + std::to_string(accessorIndex) + ": component type must be unsigned");
         std::vector<std::uint32_t> out(v.count);
         for (std::size_t i = 0; i < v.count; ++i) out[i] = std::uint32_t(component(v, i, 0));
         return out;
@@ -332,6 +372,11 @@ private:
             "image " + std::to_string(imageIndex) + " ('" + (image.uri.empty() ? image.name : image.uri) + "')";
         const auto* bytes = image.image.data();
         const int size = int(image.image.size());
+        std::uint64_t claimedW = 0, claimedH = 0;
+        if (claimedImageSize(bytes, image.image.size(), claimedW, claimedH) &&
+            (claimedW == 0 || claimedH == 0 || claimedW * claimedH > kMaxTexturePixels))
+            fail(path_, where + ": its header claims " + std::to_string(claimedW) + "x" + std::to_string(claimedH) +
+                            " pixels; textures of more than 2^26 pixels (8192 x 8192) or of none are refused");
         int w = 0, h = 0, channels = 0;
         if (!stbi_info_from_memory(bytes, size, &w, &h, &channels))
             fail(path_, where + " cannot be decoded: " + stbi_failure_reason());
@@ -539,6 +584,14 @@ private:
             for (auto c = n.children.rbegin(); c != n.children.rend(); ++c)
                 stack.push_back({*c, node.world, node.identity});
         }
+        // Without a scene every node is drawn; one that no walk from a root reached lies on a cycle (each
+        // node of a cycle is somebody's child, so none of them is a root).
+        if (model_.scenes.empty())
+            for (std::size_t i = 0; i < visited.size(); ++i)
+                if (!visited[i])
+                    fail(path_, "node " + std::to_string(i) +
+                                    " lies on a cycle of the node hierarchy (the file has no scene, so every node is "
+                                    "drawn, and this one has no root)");
     }
 
     void visitNode(const tinygltf::Node& n, const Node& node)
@@ -562,6 +615,8 @@ private:
         }
         if (const tinygltf::Value* e = extension(n.extensions, "KHR_lights_punctual")) {
             const double index = number(*e, "light", -1.0);
+            if (index != std::floor(index))
+                fail(path_, "node light index " + std::to_string(index) + " is not a whole number");
             if (!(index >= 0.0 && index < double(model_.lights.size())))
                 fail(path_, "light " + std::to_string(std::llround(std::clamp(index, -1.0, 1e15))) +
                                 " is out of range (" + std::to_string(model_.lights.size()) + " lights)");
@@ -672,6 +727,7 @@ private:
         }
         const glm::dvec3 colour =
             gl.color.size() == 3 ? glm::dvec3(gl.color[0], gl.color[1], gl.color[2]) : glm::dvec3(1.0);
+        checkLight(gl, colour);
         l.intensity = glm::vec3(colour * gl.intensity); // W/sr (W/m^2 directional), rounded once
         l.position = glm::vec3(node.world[3]);
         if (l.type != LightType::Point)
@@ -683,6 +739,24 @@ private:
         scene_.lights.push_back(l);
     }
 
+    // What KHR_lights_punctual forbids, refused rather than clamped: the rasteriser and the path tracer
+    // would otherwise disagree (a negative intensity is black in one and negative radiance in the other).
+    void checkLight(const tinygltf::Light& gl, const glm::dvec3& colour) const
+    {
+        const std::string where = "light '" + gl.name + "'";
+        if (!(gl.intensity >= 0.0))
+            fail(path_, where + ": intensity " + std::to_string(gl.intensity) + " is negative (or not a number)");
+        if (!(colour.x >= 0.0 && colour.y >= 0.0 && colour.z >= 0.0))
+            fail(path_, where + ": a colour component is negative");
+        if (gl.type != "spot") return;
+        // A float pi/2 written as a double lies just above the double pi/2: allow a float's rounding.
+        const double inner = gl.spot.innerConeAngle, outer = gl.spot.outerConeAngle,
+                     quarter = 0.5 * std::numbers::pi + 1e-6;
+        if (!(inner >= 0.0 && inner < outer && outer <= quarter))
+            fail(path_, where + ": spot cone inner " + std::to_string(inner) + ", outer " + std::to_string(outer) +
+                            " rad; glTF requires 0 <= innerConeAngle < outerConeAngle <= pi/2");
+    }
+
     void addCamera(const tinygltf::Camera& c, const Node& node)
     {
         if (haveCamera_) return;
@@ -690,6 +764,15 @@ private:
             warn("camera '" + c.name + "' is not perspective; ignored");
             return;
         }
+        const tinygltf::PerspectiveCamera& pc = c.perspective;
+        const std::string where = "camera '" + c.name + "'";
+        if (!(pc.yfov > 0.0 && pc.yfov < std::numbers::pi))
+            fail(path_, where + ": yfov " + std::to_string(pc.yfov) + " rad is outside (0, pi)");
+        if (!(pc.znear > 0.0)) fail(path_, where + ": znear " + std::to_string(pc.znear) + " is not positive");
+        // tinygltf reads an absent zfar (an infinite projection) as 0.
+        if (pc.zfar != 0.0 && !(pc.zfar > pc.znear))
+            fail(path_,
+                 where + ": zfar " + std::to_string(pc.zfar) + " is not beyond znear " + std::to_string(pc.znear));
         haveCamera_ = true;
         Camera& cam = scene_.camera;
         cam.position = glm::vec3(node.world[3]);
@@ -699,8 +782,8 @@ private:
         if (std::abs(glm::dot(up, forward)) > 1e-6) up -= glm::dot(up, forward) * forward;
         cam.forward = withoutNegativeZero(glm::vec3(forward));
         cam.up = withoutNegativeZero(glm::vec3(unitIfNeeded(up)));
-        if (c.perspective.yfov > 0.0) cam.yfovRad = float(c.perspective.yfov);
-        if (c.perspective.znear > 0.0) cam.znear = float(c.perspective.znear);
+        cam.yfovRad = float(c.perspective.yfov);
+        cam.znear = float(c.perspective.znear);
         cameraHasZfar_ = c.perspective.zfar > 0.0;
         if (cameraHasZfar_) cam.zfar = float(c.perspective.zfar);
     }

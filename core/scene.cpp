@@ -185,9 +185,19 @@ std::string Scene::validate() const
         const Light& l = lights[i];
         if (!finite(l.position) || !finite(l.direction) || !finite(l.intensity))
             err << "light " << i << " ('" << l.name << "'): non-finite value\n";
+        // Refused, not clamped: the rasteriser would show black where the path tracer adds negative light.
+        if (l.intensity.x < 0.0f || l.intensity.y < 0.0f || l.intensity.z < 0.0f)
+            err << "light " << i << " ('" << l.name << "'): negative intensity\n";
+        // glTF's cone: angles in [0, pi/2] (inner >= outer is the model's hard cone, Light::spotWeight).
+        const float quarter = 0.5f * kPi * (1.0f + 1e-6f);
+        if (l.type == LightType::Spot && !(l.innerConeRad >= 0.0f && l.outerConeRad > 0.0f &&
+                                           l.outerConeRad <= quarter && l.innerConeRad <= quarter))
+            err << "light " << i << " ('" << l.name << "'): spot cone angles outside [0, pi/2]\n";
     }
     if (!finite(camera.position) || !finite(camera.forward) || !finite(camera.up) || !std::isfinite(camera.yfovRad))
         err << "camera: non-finite value\n";
+    if (!(camera.yfovRad > 0.0f && camera.yfovRad < kPi)) err << "camera: vertical field of view outside (0, pi)\n";
+    if (!(camera.znear > 0.0f && camera.zfar > camera.znear)) err << "camera: needs 0 < znear < zfar\n";
     return err.str();
 }
 

@@ -1,6 +1,7 @@
 #include "gl/frame/frame.h"
 
 #include "gl/frame/bindings.h"
+#include "gl/frame/frame_budget.h"
 #include "gl/gl.h"
 #include "gl/resource/pass_state.h"
 
@@ -50,6 +51,7 @@ Frame::Frame(const core::Scene& scene, const FrameSettings& settings)
 
 void Frame::allocateTargets()
 {
+    checkFrameFits(settings_); // before any target: a size the driver cannot hold stops the run at once
     const int w = settings_.width, h = settings_.height;
     position_ = Texture::create2D("gbuffer.position", GL_RGBA32F, w, h);
     normal_ = Texture::create2D("gbuffer.normal", GL_RGBA32F, w, h);

@@ -8,6 +8,7 @@
 
 #include "core/cornell.h"
 #include "core/gltf_io.h"
+#include "gltf_bad_cases.h"
 #include "gltf_test_builder.h"
 
 namespace bounce::core {
@@ -252,6 +253,29 @@ TEST(GltfBadInput, MissingFile)
 {
     const path dir = test::scratchDir();
     expectRefused((dir / "absent.gltf").string(), "cannot open");
+}
+
+// The generated set (gltf_bad_cases.h): each refused case throws SceneError naming the file and saying
+// the case's words; each allowed case loads into a valid scene. tests/app/cli_test.cpp renders the same
+// set through `bounce render`.
+TEST(GltfBadInput, GeneratedCases)
+{
+    const path root = test::scratchDir();
+    for (const test::BadGltfCase& c : test::badGltfCases()) {
+        SCOPED_TRACE(c.name);
+        const path dir = root / c.name;
+        test::fs::create_directories(dir);
+        const std::string file = c.write(dir);
+        if (c.words.empty()) {
+            try {
+                EXPECT_EQ(loadGltf(file).validate(), "");
+            } catch (const SceneError& e) {
+                ADD_FAILURE() << "refused, but glTF allows it: " << e.what();
+            }
+            continue;
+        }
+        expectRefused(file, c.words);
+    }
 }
 
 constexpr int kFuzzRounds = 400; // a second or less per test in a release build

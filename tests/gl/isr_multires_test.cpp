@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <functional>
 #include <memory>
 #include <string>
@@ -333,8 +334,12 @@ TEST_F(IsrMultiresTest, HisrTauZeroEqualsRsmFull)
     EXPECT_GT(perFragment, 100.0);
 }
 
-// With hisr's tree and a positive tau: fewer clusters per fragment than texels, and the image stays
-// close to rsm-full (a loose 10%: the paper's Fig. 13 reports 3-4% at usable thresholds).
+// With hisr's tree and a positive tau: fewer clusters per fragment than texels, and the error against
+// rsm-full grows with tau and stays within bounds set from measurements. At tau 1e-5 Eq. 8 refines
+// nearly every cluster here (measured 0.011% relative RMSE, 2650 of 4096 texels per fragment): at most
+// 0.3%. At tau 1e-4 (a quarter of the clusters) measured 8.0%, at most 10%: above the 3-4% of the
+// paper's Fig. 13, which is measured on its own scenes at 256^2 with its eye-space patches; on
+// cornell-spot a cluster's mean position between two surfaces is a poor VPL (gl/technique/isr/README.md).
 TEST_F(IsrMultiresTest, HisrClustersDropAsTauGrows)
 {
     const core::Scene scene = core::makeCornell("cornell-spot");
@@ -344,20 +349,23 @@ TEST_F(IsrMultiresTest, HisrClustersDropAsTauGrows)
                       {"normalThreshold", "0"},
                       {"lightDepthThreshold", "1e30"},
                       {"lightNormalThreshold", "1e30"}};
-    double previous = 1e30;
+    double previous = 1e30, previousError = 0.0;
     const Rendered full = render(scene, "rsm-full", {{"rsmSize", "64"}}, 32, 32);
-    for (const char* tau : {"0", "1e-5", "1e-4", "1e-3", "1"}) {
+    for (const auto& [tau, bound] : {std::pair{"0", 1e-3}, std::pair{"1e-5", 3e-3}, std::pair{"1e-4", 0.1},
+                                     std::pair{"1e-3", 0.2}, std::pair{"1", 0.3}}) {
         Sets s = eye;
         s.push_back({"tau", tau});
         const Rendered r = render(scene, "hisr", s, 32, 32);
         expectFinite(r.indirect, std::string("hisr tau ") + tau);
         const double perFragment = counter(r.counters, "clusters.perFragment");
+        const double err = core::relativeRmse(r.indirect, full.indirect);
+        std::printf("[ measured ] hisr tau %s against rsm-full: relative RMSE %.4g, %.1f clusters per fragment\n", tau,
+                    err, perFragment);
         EXPECT_LT(perFragment, previous) << "tau " << tau;
+        EXPECT_LE(err, bound) << "tau " << tau;
+        EXPECT_GE(err, previousError) << "tau " << tau << ": coarser clusters, no smaller error";
         previous = perFragment;
-        if (std::string(tau) == "1e-5") {
-            const double err = core::relativeRmse(r.indirect, full.indirect);
-            EXPECT_LT(err, 0.1) << "hisr tau 1e-5 against rsm-full";
-        }
+        previousError = err;
     }
     EXPECT_LE(previous, 16.0 * 16.0) << "tau above the light's intensity never refines: the 16x16 top patches";
 }
@@ -394,7 +402,11 @@ TEST_F(IsrMultiresTest, HisrTraversalMatchesCpuTraversal)
     tree.build(rsm, timers);
     timers.endFrame(false);
     const std::vector<Node> nodes = tree.nodes().download<Node>();
-    const float T = float(gl::hisrRefineConstant(gl::hisrPeakIntensity(frame.gpuScene().lights()), tau, kRsm));
+    // Eq. 8's T from the paper, not from the code under test: T = 2 (I - tau) / (3 tau RSM_res^2), with I
+    // the light's peak intensity (W/sr: the spot's brightest channel).
+    const glm::vec3 I3 = scene.lights.at(0).intensity;
+    const double I = std::max({I3.x, I3.y, I3.z});
+    const float T = float(2.0 * (I - tau) / (3.0 * tau * double(kRsm) * double(kRsm)));
     ASSERT_GT(T, 0.0f);
     const std::vector<float> P = frame.position().readFloats(0, 4), N = frame.normal().readFloats(0, 4),
                              D = frame.diffuse().readFloats(0, 4);

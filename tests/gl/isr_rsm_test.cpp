@@ -451,7 +451,11 @@ TEST_F(IsrRsmTest, IsrClustersConserveFlux)
     EXPECT_LT(previous, 64 * 64 / 16) << "with no discontinuity test most patches are coarse";
 }
 
-// rsm with one VPL per RSM texel and rsm-full are the same computation; relative RMSE below 1e-3.
+// rsm with one VPL per RSM texel and rsm-full are the same computation; relative RMSE below 1e-3. Both
+// share the RSM, the sampling and the gather kernel, so that equality alone would miss a gather that
+// skips VPLs: the regular-grid pipeline (sampler and gather) is also checked against the sum over every
+// lit texel of the RSM read back, on the CPU from the paper's equations (Eq. 3: A_j = omega_j |x_j -
+// x_light|^2; Eqs. 1 and 5 in double), 1e-3 relative RMSE (float against double).
 TEST_F(IsrRsmTest, RsmWithAllTexelsEqualsRsmFull)
 {
     const core::Scene scene = core::makeCornell("cornell-spot");
@@ -461,6 +465,65 @@ TEST_F(IsrRsmTest, RsmWithAllTexelsEqualsRsmFull)
     EXPECT_EQ(counter(grid.counters, "vpls"), 1024);
     testing::expectImagesClose("rsm_all_texels_vs_rsm_full", grid.indirect, full.indirect,
                                testing::ImageMetric::relativeRmse(), 1e-3, "the same computation, float");
+
+    constexpr int kSize = 32, kRsm = 32;
+    gl::Frame frame(scene, smallFrame(kSize, kSize));
+    gl::PassTimers timers;
+    frame.beginFrame();
+    frame.renderGBuffer(timers);
+    frame.clearIndirect();
+    gl::RsmSettings rs;
+    rs.size = kRsm;
+    gl::RsmPass rsm(rs);
+    rsm.render(frame, timers);
+    gl::VplSampler sampler;
+    gl::Buffer cache("test.cache", gl::vplCacheBytes(kRsm * kRsm));
+    const int count = sampler.sample(rsm, cache, kRsm, timers);
+    gl::VplGather gather;
+    gather.gather(frame, cache, count, timers);
+    timers.endFrame(false);
+    ASSERT_EQ(rsm.viewCount(), 1);
+    ASSERT_FALSE(rsm.views()[0].orthographic);
+
+    const std::vector<float> RP = rsm.position().readFloats(0, 4), RN = rsm.normal().readFloats(0, 4),
+                             RF = rsm.flux().readFloats(0, 4);
+    const glm::dvec3 origin(rsm.views()[0].origin);
+    struct Texel {
+        glm::dvec3 x, n, flux;
+        double area;
+    };
+    std::vector<Texel> texels;
+    for (std::size_t t = 0; t < std::size_t(kRsm) * kRsm; ++t) {
+        const float* f = &RF[4 * t];
+        if (std::max({f[0], f[1], f[2]}) <= 0.0f) continue;
+        const glm::dvec3 x(RP[4 * t], RP[4 * t + 1], RP[4 * t + 2]);
+        const double omega = f[3];
+        texels.push_back({x, glm::dvec3(RN[4 * t], RN[4 * t + 1], RN[4 * t + 2]), glm::dvec3(f[0], f[1], f[2]),
+                          std::max(omega * glm::dot(x - origin, x - origin), 1e-12)});
+    }
+    ASSERT_GT(texels.size(), std::size_t(kRsm * kRsm / 4)) << "the spot lights a good part of its RSM";
+    const std::vector<float> P = frame.position().readFloats(0, 4), N = frame.normal().readFloats(0, 4),
+                             D = frame.diffuse().readFloats(0, 4);
+    core::Image want(kSize, kSize);
+    for (int y = 0; y < kSize; ++y)
+        for (int x = 0; x < kSize; ++x) {
+            const std::size_t i = (std::size_t(y) * kSize + x) * 4;
+            if (P[i + 3] == 0.0f) continue;
+            const glm::dvec3 p(P[i], P[i + 1], P[i + 2]), n(N[i], N[i + 1], N[i + 2]), rho(D[i], D[i + 1], D[i + 2]);
+            glm::dvec3 sum(0.0);
+            for (const Texel& t : texels) {
+                const glm::dvec3 d = t.x - p;
+                const double r2 = glm::dot(d, d);
+                if (r2 <= 0.0) continue;
+                const double cosI = std::max(glm::dot(n, d), 0.0) / std::sqrt(r2);
+                const double cosJ = std::max(-glm::dot(t.n, d), 0.0) / std::sqrt(r2);
+                sum += rho / kPi * t.flux * (cosI * cosJ / (kPi * r2 + t.area)); // Eqs. 1 and 5
+            }
+            want.set(x, kSize - 1 - y, glm::vec3(sum));
+        }
+    testing::expectImagesClose("rsm_grid_vs_cpu_sum_over_texels", frame.read(frame.indirect()), want,
+                               testing::ImageMetric::relativeRmse(), 1e-3,
+                               "float on the GPU against double on the CPU, the same texels");
 }
 
 // With both thresholds at 0 and the finest level at one texel, every lit texel is its own VPL, so isr

@@ -1,0 +1,102 @@
+// The bench's files for a render that wrote NaN/Inf: every error figure of its row is infinite in the CSV
+// (with the count of non-finite values in its own column), in results.json (as "inf": JSON has no
+// infinity) and in report.md, which says the render failed; the other rows keep their figures.
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "app/bench_report.h"
+#include "app/bench_run.h"
+
+namespace bounce::app {
+namespace {
+
+namespace fs = std::filesystem;
+
+BenchRow row(const std::string& technique, double error)
+{
+    BenchRow r;
+    r.scene = "cornell-spot";
+    r.technique = technique;
+    r.settings = "defaults";
+    r.size = "16x16";
+    r.lightPaths = "direct";
+    r.totalMs = 1.0;
+    r.relRmseOwn = r.relRmseFull = r.rmseOwn = error;
+    r.ssimOwn = 0.9;
+    r.relRmseBaseline = r.flicker = NAN;
+    r.relRmseCompareTo = {error};
+    r.record = {{"technique", technique}, {"settings", "defaults"}, {"size", "16x16"},
+                {"lightPaths", "direct"}, {"totalMs", 1.0},         {"passes", nlohmann::json::array()}};
+    for (const char* paths : {"direct", "full", "onebounce"})
+        r.record["error"][paths] = {{"rmse", error}, {"relativeRmse", error}, {"ssim", 0.9}, {"maxError", error}};
+    return r;
+}
+
+std::vector<std::string> csvLine(const std::string& line)
+{
+    std::vector<std::string> out(1);
+    for (char c : line)
+        if (c == ',')
+            out.emplace_back();
+        else
+            out.back().push_back(c);
+    return out;
+}
+
+TEST(BenchReport, NonFiniteRenderHasInfiniteErrorsEverywhere)
+{
+    const fs::path d = fs::path(BOUNCE_TEST_OUT) / "bench-report";
+    fs::remove_all(d);
+    fs::create_directories(d);
+    BenchConfig config;
+    config.sceneNames = {"cornell-spot"};
+    config.compareTo = {"onebounce"};
+    std::vector<BenchRow> rows = {row("direct", 0.05), row("rsm", 0.0)};
+    rows[1].nonFiniteValues = 12;
+    rows[1].record["nonFiniteValues"] = 12;
+    markNonFinite(rows[1]);
+    gl::ContextInfo context;
+    writeBenchReport(d, config, rows, {}, context);
+
+    std::ifstream csv(d / "results.csv");
+    std::string header, good, bad;
+    std::getline(csv, header);
+    std::getline(csv, good);
+    std::getline(csv, bad);
+    const std::vector<std::string> names = csvLine(header), g = csvLine(good), b = csvLine(bad);
+    const auto column = [&names](const std::string& name) {
+        for (std::size_t i = 0; i < names.size(); ++i)
+            if (names[i] == name) return i;
+        ADD_FAILURE() << "no column " << name;
+        return std::size_t(0);
+    };
+    for (const char* c : {"rel_rmse_own", "rel_rmse_full", "rmse_own", "rel_rmse_onebounce"}) {
+        EXPECT_EQ(b.at(column(c)), "inf") << c;
+        EXPECT_EQ(g.at(column(c)), "0.05") << c;
+    }
+    EXPECT_EQ(b.at(column("ssim_own")), "0");
+    EXPECT_EQ(b.at(column("nonfinite_values")), "12");
+    EXPECT_EQ(g.at(column("nonfinite_values")), "0");
+
+    const nlohmann::json results = nlohmann::json::parse(std::ifstream(d / "results.json"));
+    for (const char* paths : {"direct", "full", "onebounce"}) {
+        EXPECT_EQ(results[1]["error"][paths]["relativeRmse"], "inf") << paths;
+        EXPECT_EQ(results[1]["error"][paths]["rmse"], "inf") << paths;
+        EXPECT_EQ(results[1]["error"][paths]["ssim"], 0.0) << paths;
+        EXPECT_EQ(results[0]["error"][paths]["relativeRmse"], 0.05) << paths;
+    }
+    std::stringstream md;
+    md << std::ifstream(d / "report.md").rdbuf();
+    EXPECT_NE(md.str().find("Failed: rsm"), std::string::npos) << md.str();
+    EXPECT_EQ(md.str().find("Failed: direct"), std::string::npos);
+}
+
+} // namespace
+} // namespace bounce::app
