@@ -5,6 +5,7 @@
 #include "gl/technique/isr/isr_technique.h"
 #include "gl/technique/isr/multires_technique.h"
 #include "gl/technique/isr/rsm_technique.h"
+#include "gl/technique/microrender/microrender_technique.h"
 #include "gl/technique/technique.h"
 
 namespace bounce::gl {
@@ -20,6 +21,7 @@ const std::vector<TechniqueInfo>& techniques()
         t.push_back(multiresSplatTechniqueInfo());
         t.push_back(isrTechniqueInfo());
         t.push_back(hisrTechniqueInfo());
+        t.push_back(microrenderTechniqueInfo());
         return t;
     }();
     return all;

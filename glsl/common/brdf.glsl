@@ -38,11 +38,15 @@ float smithVis(float NdotL, float NdotV, float a2)
     return 0.5 / (gv + gl);
 }
 
-// f(wo, wi) without the cosine; zero below either horizon.
-vec3 brdfEval(BrdfParams p, vec3 n, vec3 wo, vec3 wi)
+// The two lobes of f(wo, wi) apart, zero below either horizon: f = diffuseFactor c_diff + glossy, with
+// diffuseFactor what the interface transmits in and out over pi (without the diffuse colour, which
+// point-based gathers leave to the receiver's full-resolution G-buffer) and glossy = w F D Vis.
+void brdfEvalLobes(BrdfParams p, vec3 n, vec3 wo, vec3 wi, out vec3 diffuseFactor, out vec3 glossy)
 {
+    diffuseFactor = vec3(0.0);
+    glossy = vec3(0.0);
     float NdotL = dot(n, wi), NdotV = dot(n, wo);
-    if (NdotL <= 0.0 || NdotV <= 0.0) return vec3(0.0);
+    if (NdotL <= 0.0 || NdotV <= 0.0) return;
     vec3 h = normalize(wo + wi);
     float VdotH = max(dot(wo, h), 0.0);
     vec3 F = p.f0 + (1.0 - p.f0) * pow(1.0 - VdotH, 5.0);
@@ -50,10 +54,18 @@ vec3 brdfEval(BrdfParams p, vec3 n, vec3 wo, vec3 wi)
     // The diffuse part keeps what the glossy interface transmits on the way in and on the way out.
     vec3 transmitted = (1.0 - p.weight * (p.f0 + (1.0 - p.f0) * pow(1.0 - NdotV, 5.0))) *
                        (1.0 - p.weight * (p.f0 + (1.0 - p.f0) * pow(1.0 - NdotL, 5.0)));
-    vec3 diffuse = transmitted * p.diffuse / kPi;
-    if (p.weight <= 0.0) return diffuse;
+    diffuseFactor = transmitted / kPi;
+    if (p.weight <= 0.0) return;
     float a2 = p.alpha * p.alpha;
-    return diffuse + wF * ggxD(max(dot(n, h), 0.0), a2) * smithVis(NdotL, NdotV, a2);
+    glossy = wF * ggxD(max(dot(n, h), 0.0), a2) * smithVis(NdotL, NdotV, a2);
+}
+
+// f(wo, wi) without the cosine; zero below either horizon.
+vec3 brdfEval(BrdfParams p, vec3 n, vec3 wo, vec3 wi)
+{
+    vec3 diffuseFactor, glossy;
+    brdfEvalLobes(p, n, wo, wi, diffuseFactor, glossy);
+    return diffuseFactor * p.diffuse + glossy;
 }
 
 #endif
