@@ -15,7 +15,8 @@ constexpr int kSubsamples = 8; // per bin side: the midpoint rule on 8 x 8 point
 constexpr double kHalfPi = 1.57079632679489661923;
 
 // The table's density over (a, v): f(w) (pi / 2) s^2, with wx = sin(pi a / 2), s = cos(pi a / 2), wy = v s.
-template <class F> std::vector<float> tabulate(int bins, F f)
+template <class F>
+std::vector<float> tabulate(int bins, F f)
 {
     std::vector<double> mass(std::size_t(bins) * bins, 0.0);
     double total = 0.0;

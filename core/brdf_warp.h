@@ -39,10 +39,10 @@
 namespace bounce::core {
 
 struct BrdfWarpTables {
-    int bins = 0;                  // K
-    std::vector<float> cosThetaO;  // grid of cos theta_o (bin centres of (0, 1])
-    std::vector<float> alphas;     // grid of GGX alpha, ascending
-    std::vector<float> mass;       // tables x K x K, row i (wx) major; each table sums to 1
+    int bins = 0;                 // K
+    std::vector<float> cosThetaO; // grid of cos theta_o (bin centres of (0, 1])
+    std::vector<float> alphas;    // grid of GGX alpha, ascending
+    std::vector<float> mass;      // tables x K x K, row i (wx) major; each table sums to 1
     int tableCount() const { return int(mass.size()) / (bins * bins); }
     // Table 1 + ia * cosThetaO.size() + ic for the grid point nearest (cos theta_o, alpha in log scale).
     int ggxTable(float cosThetaO, float alpha) const;
@@ -86,8 +86,8 @@ public:
     static glm::ivec2 cellOf(glm::vec2 u, int resolution);
 
     int bins() const { return bins_; }
-    const std::vector<float>& marginalCdf() const { return marginal_; }   // K + 1 entries
-    const std::vector<float>& conditionalCdf() const { return rows_; }     // K rows of K + 1 entries
+    const std::vector<float>& marginalCdf() const { return marginal_; } // K + 1 entries
+    const std::vector<float>& conditionalCdf() const { return rows_; }  // K rows of K + 1 entries
     const std::vector<float>& mass() const { return mass_; }
 
 private:

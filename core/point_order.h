@@ -33,8 +33,8 @@ std::vector<std::uint32_t> medianSplitOrder(const std::vector<glm::vec3>& positi
 
 // The surface points in that order (positions from evaluateSurfacePoint on `scene`): the order of the
 // shared point cloud (gl/technique/points/point_cloud.h).
-std::vector<SurfacePoint> orderSurfacePoints(const Scene& scene, const std::vector<SurfacePoint>& points,
-                                             int levels, SplitAxis rule = SplitAxis::Longest);
+std::vector<SurfacePoint> orderSurfacePoints(const Scene& scene, const std::vector<SurfacePoint>& points, int levels,
+                                             SplitAxis rule = SplitAxis::Longest);
 
 // log2 of a power of two; -1 otherwise.
 int exactLog2(std::uint64_t n);

@@ -81,8 +81,9 @@ std::vector<std::uint32_t> carryAllocate(const std::vector<float>& importance, s
     float carry = 0.0f;
     std::uint32_t assigned = 0;
     for (std::size_t c = 0; c + 1 < k; ++c) {
-        const float p = sum > 0.0 ? ((std::isfinite(importance[c]) && importance[c] > 0.0f) ? float(importance[c] / sum) : 0.0f)
-                                  : 1.0f / float(k);
+        const float p =
+            sum > 0.0 ? ((std::isfinite(importance[c]) && importance[c] > 0.0f) ? float(importance[c] / sum) : 0.0f)
+                      : 1.0f / float(k);
         float f = float(total) * p + carry;
         auto nk = std::uint32_t(std::max(f, 0.0f));
         f -= float(nk);

@@ -15,6 +15,7 @@
 
 #include "gl/frame/bindings.h"
 #include "gl/technique/isr/bindings.h"
+#include "gl/technique/microrender/bindings.h"
 
 namespace fs = std::filesystem;
 
@@ -111,6 +112,27 @@ TEST(Bindings, NoTwoNamesShareASlot)
                 used[key] = name;
             }
         }
+    // The point families: the shared cloud's slots and each family's own, never run together with isr's.
+    const auto points = table(root() / "glsl/technique/points/bindings.glsl");
+    ASSERT_FALSE(points.empty());
+    for (const char* family : {"glsl/technique/microrender/bindings.glsl", "glsl/technique/pointproj/bindings.glsl"}) {
+        if (!fs::exists(root() / family)) continue;
+        const auto own = table(root() / family);
+        ASSERT_FALSE(own.empty()) << family;
+        std::map<std::string, std::string> slots;
+        for (const auto* t : {&frame, &points, &own})
+            for (const auto& [name, value] : *t) {
+                if (std::find(passLocal.begin(), passLocal.end(), name) != passLocal.end()) continue;
+                const std::string kind = name.substr(0, name.find('_'));
+                for (int i = 0; i < span(name); ++i) {
+                    const std::string key = kind + " " + std::to_string(value + i);
+                    EXPECT_EQ(slots.count(key), 0u)
+                        << name << " and " << slots[key] << " share " << key << " (" << family << ")";
+                    slots[key] = name;
+                }
+            }
+    }
+    EXPECT_EQ(SSBO_MICRO_NODES, table(root() / "glsl/technique/microrender/bindings.glsl").at("SSBO_MICRO_NODES"));
     // The C++ side is the same file: spot-check that the macros are what the table says.
     EXPECT_EQ(SSBO_BVH_NODES, frame.at("SSBO_BVH_NODES"));
     EXPECT_EQ(UNIT_ISR_VPL_TREE_TEXELS, isr.at("UNIT_ISR_VPL_TREE_TEXELS"));

@@ -17,12 +17,12 @@ constexpr int kWarpBins = 32;
 
 MicroGather::MicroGather(Frame& frame, const MicroGatherSettings& settings, const PointHierarchy& hierarchy,
                          bool atPoints)
-    : settings_(settings), cpuTables_(core::makeBrdfWarpTables(kWarpBins)),
+    : settings_(settings),
+      cpuTables_(core::makeBrdfWarpTables(kWarpBins)),
       statsBuffer_("microrender.stats", sizeof(MicroStats))
 {
     if (settings_.resolution != 8 && settings_.resolution != 16 && settings_.resolution != 24)
-        throw std::invalid_argument("micro-buffer of " + std::to_string(settings_.resolution) +
-                                    " pixels: 8, 16 or 24");
+        throw std::invalid_argument("micro-buffer of " + std::to_string(settings_.resolution) + " pixels: 8, 16 or 24");
     if (hierarchy.leafCount() < kGroup)
         throw std::invalid_argument("micro-rendering needs at least " + std::to_string(kGroup) + " points");
     // Depth bits left beside the node index in the 32-bit key (§3.1 uses 8 + 24).
@@ -37,10 +37,8 @@ Program MicroGather::makeProgram(Frame& frame, const PointHierarchy& hierarchy, 
 {
     const int res = settings_.resolution;
     std::vector<Define> d = {
-        {"MICRO_RES", std::to_string(res)},
-        {"MICRO_GROUP", std::to_string(kGroup)},
-        {"WARP_BINS", std::to_string(kWarpBins)},
-        {"KEY_INDEX_BITS", std::to_string(hierarchy.levels() + 1)},
+        {"MICRO_RES", std::to_string(res)},       {"MICRO_GROUP", std::to_string(kGroup)},
+        {"WARP_BINS", std::to_string(kWarpBins)}, {"KEY_INDEX_BITS", std::to_string(hierarchy.levels() + 1)},
         {"LIST_CAP", std::to_string(res * res)}, // §3.1: "the post-traversal list of the same size"
     };
     if (settings_.rayCast) d.push_back({"RAY_CAST", "1"});
@@ -57,6 +55,7 @@ void MicroGather::setUniforms(Program& program, Frame& frame, const PointCloud& 
     const float diagonal = std::max(glm::length(b.extent()), 1e-6f);
     const float depthMax = float((1u << (32 - (hierarchy.levels() + 1))) - 2u);
     program.set("leafCount", unsigned(hierarchy.leafCount()));
+    program.set("cutScale", settings_.cut);
     program.set("depthScale", depthMax / (1.01f * diagonal));
     // Half a point's disc radius: the gather point's own surface sinks under its horizon.
     program.set("gatherOffset", 0.5f * cloud.discRadius());
@@ -88,7 +87,8 @@ void MicroGather::gatherPixels(Frame& frame, PixelGather& targets, const PointCl
         targets.bindForGather(frame, pixels_);
         setUniforms(pixels_, frame, cloud, hierarchy);
         dispatchPerTarget(pixels_, targets.count(), kGroup);
-        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT |
+                        GL_BUFFER_UPDATE_BARRIER_BIT);
     }
     statsBuffer_.download(0, sizeof(MicroStats), &stats_);
 }

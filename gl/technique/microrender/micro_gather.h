@@ -21,9 +21,13 @@
 namespace bounce::gl {
 
 struct MicroGatherSettings {
-    int resolution = 24;  // micro-buffer side: 8, 16 or 24 (§5: "24 x 24 pixels ... is the maximum we can fit")
-    bool warp = true;     // importance warping by the BRDF (§2.3); false: the Nusselt (cosine) mapping
-    bool rayCast = true;  // the post-traversal list and its rays (§2.2); false: large leaves rasterised as points
+    int resolution = 24; // micro-buffer side: 8, 16 or 24 (§5: "24 x 24 pixels ... is the maximum we can fit")
+    bool warp = true;    // importance warping by the BRDF (§2.3); false: the Nusselt (cosine) mapping
+    bool rayCast = true; // the post-traversal list and its rays (§2.2); false: large leaves rasterised as points
+    // A node is rasterised once its solid angle is at most cut x the micro-pixel's at its direction (§2.2:
+    // 1). Larger values rasterise coarser nodes (fewer node centres per pixel: less of the silhouette
+    // dilation of point rasterisation) and leave holes that the rays fill.
+    float cut = 1.0f;
 };
 
 // gather.comp's counters of the last pixel gather.
@@ -51,6 +55,7 @@ public:
                       int stride, Buffer& gathered, PassTimers& timers);
     const MicroStats& stats() const { return stats_; }
     std::size_t tableBytes() const { return tables_.bytes(); }
+    void setCut(float cut) { settings_.cut = cut; }
 
 private:
     MicroGatherSettings settings_;

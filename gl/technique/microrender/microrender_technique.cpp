@@ -26,8 +26,12 @@ struct MicrorenderSettings {
 class Microrender final : public Technique {
 public:
     Microrender(Frame& frame, const MicrorenderSettings& s)
-        : settings_(s), cloud_(frame, std::size_t(s.points), 1, s.bounces > 1), hierarchy_(cloud_),
-          caster_(frame.scene()), gather_(frame, s.gather, hierarchy_, s.bounces > 1), targets_(frame, s.multires)
+        : settings_(s),
+          cloud_(frame, std::size_t(s.points), 1, s.bounces > 1),
+          hierarchy_(cloud_),
+          caster_(frame.scene()),
+          gather_(frame, s.gather, hierarchy_, s.bounces > 1),
+          targets_(frame, s.multires)
     {
         // §4: "gathering incident illumination at the hierarchy level 12 (4 k nodes)": one representative
         // point per node of the level with bounceNodes nodes.
@@ -53,6 +57,7 @@ public:
     void setUniforms(const ParamValues& values) override
     {
         targets_.setThresholds(float(values.get("depthThreshold")), float(values.get("normalThreshold")));
+        gather_.setCut(float(values.get("cut")));
     }
 
     std::vector<Counter> counters() const override
@@ -106,8 +111,7 @@ TechniqueInfo microrenderTechniqueInfo()
         {"gather", "one micro-buffer per gather location: cut, rasterise, ray cast, convolve", ""},
         {"upsample", "joint bilateral upsampling to every pixel", ""},
     };
-    info.reads = {GBufferChannel::Position, GBufferChannel::Normal, GBufferChannel::Diffuse,
-                  GBufferChannel::Specular};
+    info.reads = {GBufferChannel::Position, GBufferChannel::Normal, GBufferChannel::Diffuse, GBufferChannel::Specular};
     info.params = {
         {"points", ParamType::Int, 65536, 256, 8388608,
          "surface points, the hierarchy's leaves (a power of two; the paper: about 1M)", true},
@@ -115,6 +119,10 @@ TechniqueInfo microrenderTechniqueInfo()
         {"warp", ParamType::Bool, 1, 0, 1, "importance warping by the BRDF (§2.3); 0: the cosine (Nusselt) mapping"},
         {"rayCast", ParamType::Bool, 1, 0, 1,
          "ray cast the leaves larger than a micro-pixel and the holes (§2.2); 0: rasterise them as points (Fig. 11)"},
+        {"cut", ParamType::Float, 1.0, 0.05, 64,
+         "a node is rasterised when its solid angle is at most this x the micro-pixel's (§2.2: 1); larger: coarser "
+         "cut, holes ray cast",
+         false, ParamUpdate::Uniform},
         {"bounces", ParamType::Int, 1, 1, 8, "indirect bounces; > 1 gathers at the points first (§4)"},
         {"bounceNodes", ParamType::Int, 4096, 64, 1048576,
          "gather locations of each extra bounce: one per node of the hierarchy level with this many nodes", true},
@@ -135,6 +143,7 @@ TechniqueInfo microrenderTechniqueInfo()
         s.gather.resolution = std::stoi(v.getChoice(microrenderTechniqueInfo().params, "microBuffer"));
         s.gather.warp = v.getBool("warp");
         s.gather.rayCast = v.getBool("rayCast");
+        s.gather.cut = float(v.get("cut"));
         s.bounces = v.getInt("bounces");
         s.bounceNodes = v.getInt("bounceNodes");
         s.multires = multiresSettingsFrom(v);

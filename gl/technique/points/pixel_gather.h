@@ -31,7 +31,10 @@ public:
     void bindForGather(Frame& frame, Program& program);
     // "upsample": both buffers into frame.indirect().
     void upsample(Frame& frame, PassTimers& timers);
-    void setThresholds(float depthThreshold, float normalThreshold) { pyramid_.setThresholds(depthThreshold, normalThreshold); }
+    void setThresholds(float depthThreshold, float normalThreshold)
+    {
+        pyramid_.setThresholds(depthThreshold, normalThreshold);
+    }
 
     int count() const { return count_; }
     const MultiresPyramid& pyramid() const { return pyramid_; }

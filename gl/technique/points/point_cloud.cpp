@@ -28,8 +28,8 @@ static_assert(sizeof(GpuPointSample) == 16, "point_cloud.glsl's PointSample");
 
 } // namespace
 
-std::shared_ptr<const std::vector<core::SurfacePoint>> orderedSurfacePoints(const core::Scene& scene,
-                                                                            std::size_t count, std::uint64_t seed)
+std::shared_ptr<const std::vector<core::SurfacePoint>> orderedSurfacePoints(const core::Scene& scene, std::size_t count,
+                                                                            std::uint64_t seed)
 {
     using Key = std::tuple<std::uint64_t, std::size_t, std::uint64_t>;
     static std::mutex mutex;
@@ -128,7 +128,8 @@ void PointCloud::light(Frame& frame, PassTimers& timers)
     if (count_ == 0) return;
     const GpuScene& scene = frame.gpuScene();
     // The demo may add or remove a kind of light (setLights): the program follows, as the direct pass's.
-    if (punctual_ != (scene.punctualLightCount() > 0) || area_ != (int(scene.lights().size()) > scene.punctualLightCount()))
+    if (punctual_ != (scene.punctualLightCount() > 0) ||
+        area_ != (int(scene.lights().size()) > scene.punctualLightCount()))
         makeLightProgram(scene);
     frame.bindSceneData();
     bind();

@@ -31,8 +31,8 @@ struct GpuPointSample {
 // The points of `scene`, `count` of them from the surface sampler with `seed`, in median-split order:
 // computed once per (scene content, count, seed) and kept for the process (the sampler is the slow part,
 // and tests and the bench make many renderers of one scene).
-std::shared_ptr<const std::vector<core::SurfacePoint>> orderedSurfacePoints(const core::Scene& scene,
-                                                                            std::size_t count, std::uint64_t seed);
+std::shared_ptr<const std::vector<core::SurfacePoint>> orderedSurfacePoints(const core::Scene& scene, std::size_t count,
+                                                                            std::uint64_t seed);
 
 // The surface point as the GPU reads it: core's (b0, b1) with p = b0 p0 + b1 p1 + (1 - b0 - b1) p2 become
 // scene.glsl's (b1, b2) with p = (1 - b1 - b2) v0 + b1 v1 + b2 v2.

@@ -37,6 +37,7 @@ layout(std430, binding = SSBO_MICRO_STATS) buffer MicroStats { uint microStats[8
 
 uniform uint leafCount;
 uniform float depthScale;   // key depth = distance x depthScale, KEY_DEPTH_MAX at most
+uniform float cutScale;
 uniform float gatherOffset; // the gather point is lifted this far along its normal (m): its own surface's
                             // points then lie under its horizon
 
@@ -136,7 +137,7 @@ void main()
                     omega = nd.areaM2 * abs(dot(nd.cone.xyz, v)) / max(d2 * d, 1e-30); // the disc's solid angle
                 else
                     omega = d2 > r * r ? 2.0 * kConeAll * (1.0 - sqrt(1.0 - r * r / d2)) : 1e30; // the sphere's
-                bool large = omega > warpPixelSolidAngle(wl);
+                bool large = omega > cutScale * warpPixelSolidAngle(wl);
                 if (large && !isLeaf) {
                     descend = true;
                 } else if (h >= 0.0) {
@@ -220,8 +221,9 @@ void main()
     uint empty = 0u;
     for (int p = int(lid); p < kPixels && cosO > 0.0; p += MICRO_GROUP) {
         uint key = microKeys[p];
+        vec3 wl = warpToDirection(warpCellSample(ivec2(p % MICRO_RES, p / MICRO_RES), jitter));
         if (key == kEmptyKey) {
-            ++empty;
+            if (wl.z > 0.0) ++empty; // (a direction on the horizon weighs nothing, and no ray is cast along it)
             continue;
         }
 #ifdef RAY_CAST
@@ -229,7 +231,6 @@ void main()
 #else
         vec3 radiance = unpackRadiance(microNodes[key & kIndexMask].radiance);
 #endif
-        vec3 wl = warpToDirection(warpCellSample(ivec2(p % MICRO_RES, p / MICRO_RES), jitter));
         vec3 wi = tangent * wl.x + bitangent * wl.y + n * wl.z;
         float cs = warpCosineSolidAngle(wl);
         vec3 fd, fg;

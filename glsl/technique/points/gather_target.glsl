@@ -12,6 +12,8 @@
 #ifndef BOUNCE_GATHER_TARGET_GLSL
 #define BOUNCE_GATHER_TARGET_GLSL
 
+// Included before any #if: the shader preprocessor takes each file once, also inside an inactive branch.
+#include "common/bindings.glsl"
 #include "common/brdf.glsl"
 #ifdef GATHER_AT_POINTS
 #define POINT_SURFELS
