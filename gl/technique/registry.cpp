@@ -6,6 +6,7 @@
 #include "gl/technique/isr/multires_technique.h"
 #include "gl/technique/isr/rsm_technique.h"
 #include "gl/technique/microrender/microrender_technique.h"
+#include "gl/technique/pointproj/pointproj_technique.h"
 #include "gl/technique/technique.h"
 
 namespace bounce::gl {
@@ -22,6 +23,7 @@ const std::vector<TechniqueInfo>& techniques()
         t.push_back(isrTechniqueInfo());
         t.push_back(hisrTechniqueInfo());
         t.push_back(microrenderTechniqueInfo());
+        t.push_back(pointprojTechniqueInfo());
         return t;
     }();
     return all;

@@ -26,23 +26,15 @@
 namespace bounce {
 namespace {
 
+using testing::allFiniteNonNegative;
+using testing::interiorOf;
+using testing::meanOver;
 using testing::PointRender;
 using testing::renderPoints;
+using testing::versus;
+using testing::Versus;
 
 class MicrorenderTest : public GlTest {};
-
-double meanOver(const core::Image& img, const core::Image& mask, int channel)
-{
-    double sum = 0.0;
-    int n = 0;
-    for (int y = 0; y < img.height; ++y)
-        for (int x = 0; x < img.width; ++x)
-            if (mask.at(x, y).x > 0.0f) {
-                sum += img.at(x, y)[channel];
-                ++n;
-            }
-    return n ? sum / n : 0.0;
-}
 
 float halfToFloat(std::uint32_t h)
 {
@@ -173,38 +165,6 @@ TEST_F(MicrorenderTest, FurnaceReturnsRhoLWithAndWithoutWarping)
     }
 }
 
-// The mean of the image's channels over a mask, and the error figures against the path tracer.
-struct Versus {
-    double meanRatio; // mean(got) / mean(want) over the mask
-    double relRmse;
-};
-
-Versus versus(const core::Image& got, const core::Image& want, const std::vector<bool>& mask)
-{
-    double g = 0.0, w = 0.0;
-    for (int y = 0; y < got.height; ++y)
-        for (int x = 0; x < got.width; ++x)
-            if (mask[std::size_t(y) * got.width + x])
-                for (int c = 0; c < 3; ++c) g += got.at(x, y)[c], w += want.at(x, y)[c];
-    return {w > 0.0 ? g / w : 0.0, testing::measureImages(got, want, testing::ImageMetric::relativeRmse(), &mask)};
-}
-
-// Pixels whose 3 x 3 neighbourhood lies inside `m` (> 0.5) and inside the image: the path tracer box-filters
-// each pixel, the gather shades its centre, so pixels on a silhouette or on the image's border (the Cornell
-// box's open front meets the border here) are left out.
-std::vector<bool> interiorOf(const core::Image& m)
-{
-    std::vector<bool> out(std::size_t(m.width) * m.height, false);
-    for (int y = 1; y + 1 < m.height; ++y)
-        for (int x = 1; x + 1 < m.width; ++x) {
-            bool all = true;
-            for (int dy = -1; dy <= 1; ++dy)
-                for (int dx = -1; dx <= 1; ++dx) all = all && m.at(x + dx, y + dy).x > 0.5f;
-            out[std::size_t(y) * m.width + x] = all;
-        }
-    return out;
-}
-
 // Against the path tracer's one bounce (onebounce-indirect, 8192 spp at 24 x 24: about 3% noise per pixel),
 // gathering at every pixel with 24^2 warped micro-buffers and rays, on interior pixels. Point rasterisation
 // dilates silhouettes by up to a micro-pixel (a pixel takes the nearest node whose centre falls in it, also
@@ -220,7 +180,8 @@ TEST_F(MicrorenderTest, MatchesThePathTracersOneBounce)
         const core::Image want = testing::pathTracedOneBounce(scene, size, size, 8192);
         for (const char* cut : {"1"}) {
             SCOPED_TRACE(std::string(name) + " cut " + cut);
-            const PointRender r = renderPoints(scene, "microrender", {{"coarsestLevel", "0"}, {"cut", cut}}, size, size);
+            const PointRender r =
+                renderPoints(scene, "microrender", {{"coarsestLevel", "0"}, {"cut", cut}}, size, size);
             const std::vector<bool> mask = interiorOf(r.mask);
             ASSERT_GT(std::count(mask.begin(), mask.end(), true), size * size / 2);
             const Versus v = versus(r.indirect, want, mask);
@@ -248,8 +209,8 @@ TEST_F(MicrorenderTest, GlossyGatherOnTheMetalBlockMatchesThePathTracer)
     const core::Image want = testing::pathTracedOneBounce(scene, size, size, 8192);
     double rmse[2] = {0.0, 0.0};
     for (int warp : {1, 0}) {
-        const PointRender r = renderPoints(
-            scene, "microrender", {{"coarsestLevel", "0"}, {"warp", std::to_string(warp)}}, size, size);
+        const PointRender r =
+            renderPoints(scene, "microrender", {{"coarsestLevel", "0"}, {"warp", std::to_string(warp)}}, size, size);
         const std::vector<bool> block = interiorOf(r.glossy);
         ASSERT_GT(std::count(block.begin(), block.end(), true), 8);
         const Versus v = versus(r.indirect, want, block);
@@ -264,15 +225,6 @@ TEST_F(MicrorenderTest, GlossyGatherOnTheMetalBlockMatchesThePathTracer)
     EXPECT_LT(rmse[1], 0.7 * rmse[0]) << "importance warping did not help the glossy gather";
 }
 
-bool allFiniteNonNegative(const core::Image& img)
-{
-    for (int y = 0; y < img.height; ++y)
-        for (int x = 0; x < img.width; ++x)
-            for (int c = 0; c < 3; ++c)
-                if (!std::isfinite(img.at(x, y)[c]) || img.at(x, y)[c] < 0.0f) return false;
-    return true;
-}
-
 // The gather point in a corner, inside the bounding spheres of the nodes around it: a small micro-buffer
 // (8^2: a post-traversal list of 64) and a fine cut (cut 0.05: every leaf above a twentieth of a micro-pixel
 // is listed; about 24 / cut leaves near a corner whatever the point count) overflow the list there; the
@@ -284,7 +236,8 @@ TEST_F(MicrorenderTest, HardCaseGatherPointInACornerOverflowsTheList)
     scene.camera.forward = glm::normalize(glm::vec3(0.5496f, 0.0f, 0.5592f) - scene.camera.position);
     scene.camera.up = {0.0f, 1.0f, 0.0f};
     const PointRender r =
-        renderPoints(scene, "microrender", {{"coarsestLevel", "0"}, {"microBuffer", "8"}, {"points", "4096"}, {"cut", "0.05"}}, 16, 16);
+        renderPoints(scene, "microrender",
+                     {{"coarsestLevel", "0"}, {"microBuffer", "8"}, {"points", "4096"}, {"cut", "0.05"}}, 16, 16);
     std::printf("[ corner   ] list overflows %.0f of %.0f micro-buffers, %.0f with rays\n", r.counter("listOverflows"),
                 r.counter("gatherSamples"), r.counter("microBuffersWithRays"));
     EXPECT_TRUE(allFiniteNonNegative(r.indirect));

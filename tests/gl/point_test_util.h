@@ -3,6 +3,7 @@
 // one-bounce indirect light of the same view (cached on disk).
 #pragma once
 
+#include <cmath>
 #include <cstdio>
 #include <string>
 #include <utility>
@@ -14,11 +15,11 @@
 #include "core/scene.h"
 #include "gl/renderer.h"
 #include "ref/reference.h"
+#include "tests/image_expect.h"
 
 namespace bounce::testing {
 
 using Sets = std::vector<std::pair<std::string, std::string>>;
-
 
 struct PointRender {
     core::Image indirect;
@@ -27,7 +28,6 @@ struct PointRender {
     std::vector<gl::Counter> counters;
     double counter(const std::string& name) const;
 };
-
 
 // A closed box, 1 m on a side, inward-facing, every surface Lambertian albedo rho emitting L_e, one mesh;
 // the camera inside looking at a corner. One bounce of indirect light is exactly rho^2 L_e everywhere
@@ -76,8 +76,8 @@ inline double PointRender::counter(const std::string& name) const
 }
 
 // Renders `frames` frames of `technique` with its defaults changed by `sets` (shadow maps 512^2).
-inline PointRender renderPoints(const core::Scene& scene, const std::string& technique, const Sets& sets, int w,
-                                int h, int frames = 1)
+inline PointRender renderPoints(const core::Scene& scene, const std::string& technique, const Sets& sets, int w, int h,
+                                int frames = 1)
 {
     const gl::TechniqueInfo& info = gl::findTechnique(technique);
     gl::ParamValues frameValues(gl::frameParams()), values(info.params);
@@ -110,6 +110,60 @@ inline core::Image pathTracedOneBounce(const core::Scene& scene, int w, int h, i
     std::printf("[ reference] %s onebounce-indirect %dx%d, %d spp%s\n", scene.name.c_str(), w, h, r.spp,
                 r.fromCache ? " (cached)" : "");
     return r.image;
+}
+
+inline double meanOver(const core::Image& img, const core::Image& mask, int channel)
+{
+    double sum = 0.0;
+    int n = 0;
+    for (int y = 0; y < img.height; ++y)
+        for (int x = 0; x < img.width; ++x)
+            if (mask.at(x, y).x > 0.0f) {
+                sum += img.at(x, y)[channel];
+                ++n;
+            }
+    return n ? sum / n : 0.0;
+}
+
+inline bool allFiniteNonNegative(const core::Image& img)
+{
+    for (int y = 0; y < img.height; ++y)
+        for (int x = 0; x < img.width; ++x)
+            for (int c = 0; c < 3; ++c)
+                if (!std::isfinite(img.at(x, y)[c]) || img.at(x, y)[c] < 0.0f) return false;
+    return true;
+}
+
+// The mean of the image's channels over a mask, and the error figures against the path tracer.
+struct Versus {
+    double meanRatio; // mean(got) / mean(want) over the mask
+    double relRmse;
+};
+
+inline Versus versus(const core::Image& got, const core::Image& want, const std::vector<bool>& mask)
+{
+    double g = 0.0, w = 0.0;
+    for (int y = 0; y < got.height; ++y)
+        for (int x = 0; x < got.width; ++x)
+            if (mask[std::size_t(y) * got.width + x])
+                for (int c = 0; c < 3; ++c) g += got.at(x, y)[c], w += want.at(x, y)[c];
+    return {w > 0.0 ? g / w : 0.0, measureImages(got, want, ImageMetric::relativeRmse(), &mask)};
+}
+
+// Pixels whose 3 x 3 neighbourhood lies inside `m` (> 0.5) and inside the image: the path tracer box-filters
+// each pixel, the gather shades its centre, so pixels on a silhouette or on the image's border (the Cornell
+// box's open front meets the border here) are left out.
+inline std::vector<bool> interiorOf(const core::Image& m)
+{
+    std::vector<bool> out(std::size_t(m.width) * m.height, false);
+    for (int y = 1; y + 1 < m.height; ++y)
+        for (int x = 1; x + 1 < m.width; ++x) {
+            bool all = true;
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dx = -1; dx <= 1; ++dx) all = all && m.at(x + dx, y + dy).x > 0.5f;
+            out[std::size_t(y) * m.width + x] = all;
+        }
+    return out;
 }
 
 } // namespace bounce::testing

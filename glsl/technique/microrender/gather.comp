@@ -100,7 +100,7 @@ void main()
     // micro-pixel's direction is taken at a point of it jittered per target, and a frame without a glossy
     // lobe to align with is turned about the normal by a random angle. Seeded by the target's texel (or
     // point), so that the image is the same in every run.
-    uint seed = hashU(uint(g.texel.x) * 73856093u ^ uint(g.texel.y) * 19349663u ^ k * 83492791u);
+    uint seed = hashU(uint(g.texel.x) * 73856093u ^ uint(g.texel.y) * 19349663u);
     vec2 jitter = (vec2(float(seed & 0xFFFFu), float(seed >> 16)) + 0.5) / 65536.0 - 0.5;
     if (share == 0.0) {
         float turn = 2.0 * kPi * float(hashU(seed) & 0xFFFFu) / 65536.0;

@@ -25,7 +25,8 @@ struct GatherSample {
     vec3 normal;       // unit
     vec3 wo;           // unit, towards the viewer (the normal at points: they reflect diffusely)
     BrdfParams brdf;
-    ivec2 texel;       // where the result goes (pixel targets)
+    ivec2 texel;       // where the result goes (pixel targets), (k, 0) at points: what random numbers are keyed by
+                       // (never the list index k of a pixel target, which follows the select pass's thread timing)
     float alpha;       // 1 + the neighbour mask (pixel targets)
 };
 
@@ -47,7 +48,7 @@ GatherSample loadGatherSample(uint k)
     g.brdf.f0 = vec3(0.0);
     g.brdf.weight = 0.0;
     g.brdf.alpha = 1.0;
-    g.texel = ivec2(0);
+    g.texel = ivec2(int(k), 0); // identifies the target (random numbers are keyed by it)
     g.alpha = 0.0;
     return g;
 }
