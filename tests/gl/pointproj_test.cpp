@@ -50,8 +50,7 @@ TEST_F(PointprojTest, FurnaceReturnsRhoL)
     const core::Scene scene = testing::pointFurnaceBox(rho, le);
     for (const char* projection : {"all", "importance", "uniform"}) {
         SCOPED_TRACE(projection);
-        const PointRender r = renderPoints(
-            scene, "pointproj", with(kSmall, {{"projection", projection}}), 10, 10);
+        const PointRender r = renderPoints(scene, "pointproj", with(kSmall, {{"projection", projection}}), 10, 10);
         const double mean = meanOver(r.indirect, r.mask, 0);
         const double empty = r.counter("emptyTexelsPerPixel");
         std::printf("[ furnace  ] %s: mean %.4f (closed form %.4f), empty texels per pixel %.1f\n", projection, mean,
@@ -95,8 +94,8 @@ TEST_F(PointprojTest, ImportanceIsNearerTheBruteForceThanUniform)
     const std::vector<bool> mask = interiorOf(all.mask);
     double err[2];
     for (int k = 0; k < 2; ++k) {
-        const PointRender r = renderPoints(
-            scene, "pointproj", with(kSmall, {{"projection", k == 0 ? "importance" : "uniform"}}), 16, 16);
+        const PointRender r =
+            renderPoints(scene, "pointproj", with(kSmall, {{"projection", k == 0 ? "importance" : "uniform"}}), 16, 16);
         err[k] = versus(r.indirect, all.indirect, mask).relRmse;
     }
     std::printf("[ fig 9    ] relative RMSE against the brute force: importance %.4f, uniform %.4f\n", err[0], err[1]);
@@ -127,7 +126,8 @@ TEST_F(PointprojTest, HardCases)
     floor.lights.push_back(light);
     floor.camera.position = {0.0f, 1.5f, 2.0f};
     floor.camera.forward = glm::normalize(glm::vec3(0.0f, -1.5f, -2.0f));
-    floor.camera.up = glm::normalize(glm::cross(glm::cross(floor.camera.forward, glm::vec3(0, 1, 0)), floor.camera.forward));
+    floor.camera.up =
+        glm::normalize(glm::cross(glm::cross(floor.camera.forward, glm::vec3(0, 1, 0)), floor.camera.forward));
     ASSERT_EQ(floor.validate(), "");
     const PointRender flat = renderPoints(floor, "pointproj", with(kSmall, {{"points", "4096"}}), 8, 8);
     EXPECT_TRUE(allFiniteNonNegative(flat.indirect));
@@ -143,8 +143,8 @@ TEST_F(PointprojTest, HardCases)
     EXPECT_GT(close.counter("clampedSplats"), 0.0) << "no splat reached the clamp";
 
     for (const auto& [w, h] : std::vector<std::pair<int, int>>{{1, 1}, {3, 5}}) {
-        const PointRender r =
-            renderPoints(core::makeCornell("cornell-spot"), "pointproj", {{"points", "4096"}, {"progressive", "0"}}, w, h);
+        const PointRender r = renderPoints(core::makeCornell("cornell-spot"), "pointproj",
+                                           {{"points", "4096"}, {"progressive", "0"}}, w, h);
         EXPECT_TRUE(allFiniteNonNegative(r.indirect)) << w << "x" << h;
     }
     const PointRender ceiling = renderPoints(core::makeCornell("cornell-point-ceiling"), "pointproj", kSmall, 8, 8);

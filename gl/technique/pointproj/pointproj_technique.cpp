@@ -4,9 +4,9 @@
 #include <memory>
 #include <string>
 
+#include "gl/technique/pointproj/projection_gather.h"
 #include "gl/technique/points/adaptive_pixels.h"
 #include "gl/technique/points/point_cloud.h"
-#include "gl/technique/pointproj/projection_gather.h"
 
 namespace bounce::gl {
 
@@ -24,8 +24,10 @@ struct PointprojSettings {
 class Pointproj final : public Technique {
 public:
     Pointproj(Frame& frame, const PointprojSettings& s)
-        : settings_(s), cloud_(frame, std::size_t(s.points), 1, s.bounces > 1),
-          gather_(cloud_, s.projection, s.bounces > 1), pixels_(frame, s.adaptive)
+        : settings_(s),
+          cloud_(frame, std::size_t(s.points), 1, s.bounces > 1),
+          gather_(cloud_, s.projection, s.bounces > 1),
+          pixels_(frame, s.adaptive)
     {
         stride_ = std::max(1, cloud_.count() / std::clamp(s.bounceNodes, 1, cloud_.count()));
         if (s.bounces > 1) gathered_ = Buffer("pointproj.bounceGathered", std::size_t(cloud_.count() / stride_) * 16);
@@ -107,21 +109,23 @@ TechniqueInfo pointprojTechniqueInfo()
         {"point-light", "direct light at every point from the shadow maps, half floats", ""},
         {"bounce-gather", "point projection at every stride-th point", "bounces > 1"},
         {"relight", "the points' radiance: direct + the gathered bounce", "bounces > 1"},
-        {"adaptive-select", "the pixels to gather at: the 4x4 grid, then where the coherence metric exceeds epsilon", ""},
+        {"adaptive-select", "the pixels to gather at: the 4x4 grid, then where the coherence metric exceeds epsilon",
+         ""},
         {"gather", "one micro-buffer per pixel: importance, carry allocation, splats, BRDF", ""},
         {"interpolate", "joint bilateral interpolation of the pixels not gathered", ""},
         {"compose", "diffuse colour x diffuse part + glossy part, the progressive mean", ""},
     };
-    info.reads = {GBufferChannel::Position, GBufferChannel::Normal, GBufferChannel::Diffuse,
-                  GBufferChannel::Specular};
+    info.reads = {GBufferChannel::Position, GBufferChannel::Normal, GBufferChannel::Diffuse, GBufferChannel::Specular};
     info.params = {
         {"points", ParamType::Int, 65536, 1024, 8388608, "surface points (a power of two; the paper: 256K)", true},
         {"clusters", ParamType::Int, 512, 16, 4096, "equal kd-tree clusters of the points (§3.2: 512, 9 levels)", true},
         {"samples", ParamType::Int, 2048, 0, 65536, "N_s, importance samples per pixel (§4: 4 x 512)"},
         {"randomPerCluster", ParamType::Int, 2, 1, 16, "N_rnd, random points per cluster for its importance (§3.2: 2)"},
-        choiceParam("projection", {"importance", "uniform", "all"}, 0,
-                    "which points are projected: by importance, uniformly (Fig. 9's random), or every point (brute force)"),
-        choiceParam("splat", {"adaptive", "1", "2", "3"}, 0, "splat size: Eq. 5's adaptive size, or fixed texels (Fig. 7)"),
+        choiceParam(
+            "projection", {"importance", "uniform", "all"}, 0,
+            "which points are projected: by importance, uniformly (Fig. 9's random), or every point (brute force)"),
+        choiceParam("splat", {"adaptive", "1", "2", "3"}, 0,
+                    "splat size: Eq. 5's adaptive size, or fixed texels (Fig. 7)"),
         {"adaptive", ParamType::Bool, 1, 0, 1, "image-space adaptive sampling (§3.3); 0: gather at every pixel"},
         {"epsilon", ParamType::Float, 0.3, 0, 100, "the coherence threshold of the first refinement, doubled per level",
          false, ParamUpdate::Uniform},

@@ -7,8 +7,8 @@
 #include "core/point_order.h"
 #include "core/point_projection.h"
 #include "gl/gl.h"
-#include "gl/technique/points/pixel_gather.h"
 #include "gl/technique/pointproj/bindings.h"
+#include "gl/technique/points/pixel_gather.h"
 
 namespace bounce::gl {
 
@@ -22,8 +22,7 @@ ProjectionGather::ProjectionGather(const PointCloud& cloud, const ProjectionSett
                                     std::to_string(settings_.clusters) + " clusters, not " + std::to_string(n));
     if (32 - keyIndexBits_ < 8)
         throw std::invalid_argument("point projection's 32-bit (depth, point) key holds at most 2^24 points");
-    texelSolidAngles_ =
-        Buffer::fromVector("pointproj.texelSolidAngles", core::hemiOctTexelSolidAngles(kResolution));
+    texelSolidAngles_ = Buffer::fromVector("pointproj.texelSolidAngles", core::hemiOctTexelSolidAngles(kResolution));
     pixels_ = makeProgram(false);
     if (atPoints) points_ = makeProgram(true);
 }
@@ -41,8 +40,8 @@ Program ProjectionGather::makeProgram(bool atPoints) const
         {"SPLAT_FIXED", std::to_string(settings_.fixedSplat)},
     };
     if (atPoints) d.push_back({"GATHER_AT_POINTS", "1"});
-    return Program::compute(atPoints ? "pointproj.bounceGather" : "pointproj.gather",
-                            "technique/pointproj/gather.comp", d);
+    return Program::compute(atPoints ? "pointproj.bounceGather" : "pointproj.gather", "technique/pointproj/gather.comp",
+                            d);
 }
 
 void ProjectionGather::setUniforms(Program& program, Frame& frame, const PointCloud& cloud, std::uint32_t seed)

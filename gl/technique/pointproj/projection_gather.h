@@ -18,16 +18,16 @@
 namespace bounce::gl {
 
 struct ProjectionSettings {
-    int clusters = 512;        // §3.2: "We typically create 512 clusters" (9 kd-tree levels)
-    int randomPerCluster = 2;  // N_rnd (§3.2: 2)
-    int samples = 2048;        // N_s: (2 + 4) x 512 = 3K points projected in all (§4)
+    int clusters = 512;       // §3.2: "We typically create 512 clusters" (9 kd-tree levels)
+    int randomPerCluster = 2; // N_rnd (§3.2: 2)
+    int samples = 2048;       // N_s: (2 + 4) x 512 = 3K points projected in all (§4)
     enum class Mode { Importance, Uniform, All } mode = Mode::Importance; // Fig. 9: importance, random, brute force
-    int fixedSplat = 0;        // Fig. 7: 0 adaptive (Eq. 5), else n x n texels
+    int fixedSplat = 0; // Fig. 7: 0 adaptive (Eq. 5), else n x n texels
 };
 
 struct ProjectionStats {
     std::uint32_t targets = 0;
-    std::uint32_t projected = 0;   // points splatted
+    std::uint32_t projected = 0; // points splatted
     std::uint32_t emptyTexels = 0;
     std::uint32_t uniformFallbacks = 0; // targets whose p_k were all zero
     std::uint32_t clampedSplats = 0;

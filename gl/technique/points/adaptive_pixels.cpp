@@ -16,7 +16,8 @@ constexpr int kCoarseGrid = 4; // §3.3: "starting with pixels on an initial 4 x
 } // namespace
 
 AdaptivePixels::AdaptivePixels(Frame& frame, const AdaptiveSettings& settings)
-    : settings_(settings), select_(Program::compute("points.adaptiveSelect", "technique/points/adaptive_select.comp")),
+    : settings_(settings),
+      select_(Program::compute("points.adaptiveSelect", "technique/points/adaptive_select.comp")),
       interpolate_(Program::compute("points.adaptiveInterpolate", "technique/points/adaptive_interpolate.comp")),
       compose_(Program::compute("points.adaptiveCompose", "technique/points/adaptive_compose.comp")),
       count_("points.adaptiveCount", sizeof(std::uint32_t))

@@ -23,9 +23,9 @@
 namespace bounce::gl {
 
 struct AdaptiveSettings {
-    bool adaptive = true;  // false: gather at every pixel (one level)
-    float epsilon = 0.3f;  // the first refinement's threshold (§3.3: 0.3), doubled per level
-    float lambda = 8.0f;   // the radiance term's weight (§3.3: 8)
+    bool adaptive = true; // false: gather at every pixel (one level)
+    float epsilon = 0.3f; // the first refinement's threshold (§3.3: 0.3), doubled per level
+    float lambda = 8.0f;  // the radiance term's weight (§3.3: 8)
 };
 
 class AdaptivePixels {

@@ -8,7 +8,8 @@
 //   1. warp: the mixture of the BRDF's lobe tables and its CDFs in shared memory (warp.glsl, §2.3);
 //   2. cut: each invocation walks one subtree under hierarchy level log2(MICRO_GROUP) depth first without a
 //      stack (heap indices give the skip pointers, §2.1), descending while the node's solid angle exceeds the
-//      micro-pixel's at its direction (§2.2, "Point Hierarchy Cut"), and rasterises the others into the
+//      micro-pixel's at its direction (§2.2, "Point Hierarchy Cut"; a leaf: its disc, A cos / d^2; an
+//      interior node: what its surfels can subtend, min(its sphere's, A / d^2)), and rasterises the others into the
 //      shared micro-buffer: depth and node index in one 32-bit key, atomicMin (§3.1: 8 + 24 bits there);
 //      back-facing nodes (normal cones) and nodes under the horizon are culled;
 //   3. rays (RAY_CAST, §2.2 "On-demand Ray Casting"): leaves still larger than a micro-pixel go to the
@@ -135,8 +136,10 @@ void main()
                 float omega;
                 if (isLeaf)
                     omega = nd.areaM2 * abs(dot(nd.cone.xyz, v)) / max(d2 * d, 1e-30); // the disc's solid angle
-                else
-                    omega = d2 > r * r ? 2.0 * kConeAll * (1.0 - sqrt(1.0 - r * r / d2)) : 1e30; // the sphere's
+                else if (d2 <= r * r)
+                    omega = 1e30; // inside its sphere: always descend
+                else // what its surfels subtend: at most their area over d^2, at most the sphere's solid angle
+                    omega = min(2.0 * kConeAll * (1.0 - sqrt(1.0 - r * r / d2)), nd.areaM2 / d2);
                 bool large = omega > cutScale * warpPixelSolidAngle(wl);
                 if (large && !isLeaf) {
                     descend = true;
