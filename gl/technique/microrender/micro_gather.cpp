@@ -37,9 +37,12 @@ Program MicroGather::makeProgram(Frame& frame, const PointHierarchy& hierarchy, 
 {
     const int res = settings_.resolution;
     std::vector<Define> d = {
-        {"MICRO_RES", std::to_string(res)},       {"MICRO_GROUP", std::to_string(kGroup)},
-        {"WARP_BINS", std::to_string(kWarpBins)}, {"KEY_INDEX_BITS", std::to_string(hierarchy.levels() + 1)},
+        {"MICRO_RES", std::to_string(res)},
+        {"MICRO_GROUP", std::to_string(kGroup)},
+        {"WARP_BINS", std::to_string(kWarpBins)},
+        {"KEY_INDEX_BITS", std::to_string(hierarchy.levels() + 1)},
         {"LIST_CAP", std::to_string(res * res)}, // §3.1: "the post-traversal list of the same size"
+        {"MICRO_STAGES", std::to_string(settings_.stages)},
     };
     if (settings_.rayCast) d.push_back({"RAY_CAST", "1"});
     if (!settings_.warp) d.push_back({"NO_WARP", "1"});

@@ -28,6 +28,9 @@ struct MicroGatherSettings {
     // 1). Larger values rasterise coarser nodes (fewer node centres per pixel: less of the silhouette
     // dilation of point rasterisation) and leave holes that the rays fill.
     float cut = 1.0f;
+    // Run the kernel up to this stage only (1 warp, 2 cut and rasterisation, 3 rays, 4 convolution): the
+    // time split by stage of §5 from the differences; below 4 the image is black.
+    int stages = 4;
 };
 
 // gather.comp's counters of the last pixel gather.

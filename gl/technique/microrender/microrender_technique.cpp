@@ -124,6 +124,8 @@ TechniqueInfo microrenderTechniqueInfo()
          "cut, holes ray cast",
          false, ParamUpdate::Uniform},
         {"bounces", ParamType::Int, 1, 1, 8, "indirect bounces; > 1 gathers at the points first (§4)"},
+        {"stages", ParamType::Int, 4, 1, 4,
+         "profiling: the gather kernel stops after stage 1 warp, 2 cut, 3 rays, 4 convolution (below 4: no light)"},
         {"bounceNodes", ParamType::Int, 4096, 64, 1048576,
          "gather locations of each extra bounce: one per node of the hierarchy level with this many nodes", true},
     };
@@ -144,6 +146,7 @@ TechniqueInfo microrenderTechniqueInfo()
         s.gather.warp = v.getBool("warp");
         s.gather.rayCast = v.getBool("rayCast");
         s.gather.cut = float(v.get("cut"));
+        s.gather.stages = v.getInt("stages");
         s.bounces = v.getInt("bounces");
         s.bounceNodes = v.getInt("bounceNodes");
         s.multires = multiresSettingsFrom(v);

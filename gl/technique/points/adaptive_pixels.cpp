@@ -63,6 +63,8 @@ int AdaptivePixels::select(Frame& frame, int level, PassTimers& timers)
     select_.set("firstGrid", level == 0 ? (settings_.adaptive ? kCoarseGrid : 1) : 0);
     select_.set("epsilon", settings_.epsilon * float(1 << std::max(level - 1, 0)));
     select_.set("lambda", settings_.lambda);
+    if (level == 1) radianceScale_ = meanSampledLuminance(frame);
+    select_.set("radianceScale", radianceScale_ > 0.0f ? 1.0f / radianceScale_ : 0.0f);
     state_.bindImage(0, GL_READ_WRITE, 0, GL_R8UI);
     diffuse_.bindImage(1, GL_READ_ONLY, 0, GL_RGBA32F);
     glossy_.bindImage(2, GL_READ_ONLY, 0, GL_RGBA32F);
@@ -75,6 +77,26 @@ int AdaptivePixels::select(Frame& frame, int level, PassTimers& timers)
     count_.download(0, sizeof(n), &n);
     sampled_ = level == 0 ? int(n) : sampled_ + int(n);
     return int(n);
+}
+
+float AdaptivePixels::meanSampledLuminance(Frame& frame) const
+{
+    // The first level's samples: a quarter-by-quarter grid, read back once per frame (what the paper's
+    // display-scaled L_o gets from its tone mapping).
+    glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
+    const std::vector<float> d = diffuse_.readFloats(0, 4), g = glossy_.readFloats(0, 4),
+                             c = frame.diffuse().readFloats(0, 4);
+    double sum = 0.0;
+    int n = 0;
+    for (std::size_t i = 0; i + 3 < d.size(); i += 4) {
+        if (d[i + 3] < 1.0f) continue; // not gathered
+        double l = 0.0;
+        const double w[3] = {0.2126, 0.7152, 0.0722};
+        for (int k = 0; k < 3; ++k) l += w[k] * (double(c[i + k]) * d[i + k] + g[i + k]);
+        sum += l;
+        ++n;
+    }
+    return n > 0 ? float(sum / n) : 0.0f;
 }
 
 void AdaptivePixels::bindForGather(Frame& frame, Program& program)

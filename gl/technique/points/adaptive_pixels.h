@@ -57,7 +57,9 @@ private:
     Texture state_, diffuse_, glossy_, accumulated_;
     Buffer targets_, count_;
     int sampled_ = 0;
+    float radianceScale_ = 0.0f; // the mean outgoing luminance of the first level's samples
     void allocate(int width, int height);
+    float meanSampledLuminance(Frame& frame) const;
     void setCommon(Frame& frame, Program& program, int spacing);
 };
 

@@ -20,7 +20,8 @@
 //      Jacobian), summed: with the warp proportional to f this is rho times the mean of the micro-pixels.
 // Results: the diffuse part without the receiver's diffuse colour and the glossy part (gather_target.glsl).
 // Defines: MICRO_RES (8, 16, 24), MICRO_GROUP (64), WARP_BINS, KEY_INDEX_BITS, LIST_CAP, RAY_CAST,
-// GATHER_AT_POINTS, PUNCTUAL_LIGHTS / AREA_LIGHTS (the lights at ray hits).
+// GATHER_AT_POINTS, PUNCTUAL_LIGHTS / AREA_LIGHTS (the lights at ray hits), MICRO_STAGES (4; fewer runs
+// only the first stages, for the time split by stage of §5: 1 the warp, 2 + the cut, 3 + the rays).
 #define SCENE_GEOMETRY
 #include "technique/points/gather_target.glsl"
 #include "technique/microrender/hierarchy.glsl"
@@ -118,7 +119,7 @@ void main()
 
     vec3 x = g.position + n * gatherOffset;
     uint visited = 0u, rasterised = 0u;
-    if (cosO > 0.0) {
+    if (cosO > 0.0 && MICRO_STAGES >= 2) {
         uint start = uint(MICRO_GROUP) + lid;
         uint node = start;
         while (true) {
@@ -177,7 +178,7 @@ void main()
     uint listed = min(listCount, uint(LIST_CAP));
     bool everyPixel = listCount > 0u;
     uint rays = 0u, taken = 0u;
-    for (int p = int(lid); p < kPixels && cosO > 0.0; p += MICRO_GROUP) {
+    for (int p = int(lid); p < kPixels && cosO > 0.0 && MICRO_STAGES >= 3; p += MICRO_GROUP) {
         uint key = microKeys[p];
         if (!everyPixel && key != kEmptyKey) continue;
         vec3 wl = warpToDirection(warpCellSample(ivec2(p % MICRO_RES, p / MICRO_RES), jitter));
@@ -222,7 +223,7 @@ void main()
     // Convolution: sum of L_in f cos Omega over the micro-pixels, the diffuse and glossy lobes apart.
     vec3 sumDiffuse = vec3(0.0), sumGlossy = vec3(0.0);
     uint empty = 0u;
-    for (int p = int(lid); p < kPixels && cosO > 0.0; p += MICRO_GROUP) {
+    for (int p = int(lid); p < kPixels && cosO > 0.0 && MICRO_STAGES >= 4; p += MICRO_GROUP) {
         uint key = microKeys[p];
         vec3 wl = warpToDirection(warpCellSample(ivec2(p % MICRO_RES, p / MICRO_RES), jitter));
         if (key == kEmptyKey) {

@@ -2,8 +2,8 @@
 // "adaptive-select": one level of §3.3's subdivision. First level (spacing 0 in the uniform): every pixel of
 // the 4 x 4 grid with geometry is sampled (or of the 1 x 1 grid: every pixel, without adaptive sampling).
 // Later levels: a candidate is sampled when the coherence metric over its parents exceeds epsilon, else
-// marked for interpolation. Departure: L_o differences are taken relative to the parents' mean luminance
-// (the paper's 8-bit L_o is display-scaled; radiance here is absolute, so lambda needs a scale).
+// marked for interpolation. Departure: L_o is scaled by 1 / the mean luminance of the first level's
+// samples (the paper's 8-bit L_o is display-scaled; radiance here is absolute, so lambda needs a scale).
 #include "common/bindings.glsl"
 #include "technique/points/adaptive.glsl"
 #include "technique/points/bindings.glsl"
@@ -17,6 +17,7 @@ layout(std430, binding = SSBO_GATHER_COUNT) buffer GatherCount { uint gatherCoun
 uniform int firstGrid;   // > 0: the first level, every pixel of this grid
 uniform float epsilon;
 uniform float lambda;
+uniform float radianceScale; // 1 / the mean outgoing luminance of the first level's samples (0: none)
 
 float outgoingLuminance(ivec2 px)
 {
@@ -47,7 +48,7 @@ void main()
         parentBox(px, spacing, lo, hi);
         ivec2 parents[4] = ivec2[4](lo, ivec2(hi.x, lo.y), ivec2(lo.x, hi.y), hi);
         vec3 pc = texelFetch(gPosition, px, 0).xyz, nc = texelFetch(gNormal, px, 0).xyz;
-        float geometric = 0.0, l[4], mean = 0.0;
+        float geometric = 0.0, l[4];
         for (int i = 0; i < 4; ++i) {
             if (!hasGeometry(parents[i])) {
                 geometric = 1e30; // a parent off the surface: an edge
@@ -55,13 +56,11 @@ void main()
                 continue;
             }
             geometric = max(geometric, geometricTerm(parents[i], pc, nc));
-            l[i] = outgoingLuminance(parents[i]);
-            mean += 0.25 * l[i];
+            l[i] = outgoingLuminance(parents[i]) * radianceScale;
         }
         float radiance = 0.0;
         for (int j = 0; j < 4; ++j)
             for (int k = j + 1; k < 4; ++k) radiance += abs(l[j] - l[k]);
-        radiance = mean > 0.0 ? radiance / mean : 0.0;
         take = geometric + lambda * radiance > epsilon;
         if (!take) imageStore(pixelState, px, uvec4(kInterpolated));
     }
