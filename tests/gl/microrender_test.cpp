@@ -255,8 +255,8 @@ TEST_F(MicrorenderTest, HardCasesStayFinite)
         testing::Sets sets;
     };
     const std::vector<Case> cases = {
-        {"cornell-slats", 16, 16, {{"points", "16384"}, {"microBuffer", "16"}}},
-        {"cornell-point-ceiling", 16, 16, {{"points", "16384"}, {"microBuffer", "16"}}},
+        {"cornell-slats", 12, 12, {{"points", "16384"}, {"microBuffer", "8"}}},
+        {"cornell-point-ceiling", 12, 12, {{"points", "16384"}, {"microBuffer", "8"}}},
         {"cornell-spot", 1, 1, {{"points", "4096"}}},
         {"cornell-spot", 3, 5, {{"points", "4096"}, {"coarsestLevel", "0"}}},
     };
