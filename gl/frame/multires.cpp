@@ -166,7 +166,8 @@ void MultiresPyramid::build(Frame& frame, PassTimers& timers)
     }
 }
 
-void MultiresPyramid::upsample(Frame& frame, const Texture& illumination, PassTimers& timers)
+void MultiresPyramid::upsample(Frame& frame, const Texture& illumination, PassTimers& timers,
+                               const Texture* unmodulated)
 {
     // multires_upsample.comp per pixel: its position, the levels up to its fragment's, four neighbours
     // and the diffuse colour; one image store.
@@ -180,8 +181,13 @@ void MultiresPyramid::upsample(Frame& frame, const Texture& illumination, PassTi
     bind();
     illumination.bind(UNIT_MULTIRES_ILLUMINATION);
     frame.indirect().bindImage(0, GL_WRITE_ONLY, 0, GL_RGBA32F);
-    setUniforms(upsample_);
-    upsample_.use();
+    if (unmodulated && !upsampleUnmodulated_)
+        upsampleUnmodulated_ =
+            Program::compute("multires.upsample.unmodulated", "frame/multires_upsample.comp", {{"UNMODULATED", "1"}});
+    Program& program = unmodulated ? upsampleUnmodulated_ : upsample_;
+    if (unmodulated) unmodulated->bindImage(1, GL_READ_ONLY, 0, GL_RGBA32F);
+    setUniforms(program);
+    program.use();
     // The technique rendered (or stored) into the illumination buffer; the upsampling fetches it as a texture.
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
     glDispatchCompute(GLuint(ceilDiv(width_, 8)), GLuint(ceilDiv(height_, 8)), 1);

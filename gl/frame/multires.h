@@ -56,8 +56,9 @@ public:
     // "upsample": frame.indirect() from `illumination`, a flattenedSize() RGBA32F texture holding at each
     // valid fragment rgb the light without the receiver's diffuse colour and alpha 1 + the mask of the
     // neighbours it may be interpolated with (glsl/common/multires.glsl: sameSurfaceNeighbours), and
-    // alpha 0 elsewhere.
-    void upsample(Frame& frame, const Texture& illumination, PassTimers& timers);
+    // alpha 0 elsewhere. `unmodulated`, when given (same size, RGBA32F), is interpolated with the same
+    // weights and added without the diffuse colour: glossy reflected radiance.
+    void upsample(Frame& frame, const Texture& illumination, PassTimers& timers, const Texture* unmodulated = nullptr);
 
     // Binds the pyramid textures (units UNIT_MULTIRES_FIRST + 0..5, gl/frame/bindings.h) and sets the layout and threshold
     // uniforms of glsl/common/multires.glsl on `program`.
@@ -86,7 +87,7 @@ private:
     glm::ivec2 flattened_{0};
     std::vector<glm::ivec4> rects_;
     Texture position_, normal_, diffuse_, depth_, normalMin_, normalMax_;
-    Program reduce_, upsample_;
+    Program reduce_, upsample_, upsampleUnmodulated_;
 };
 
 // Layout of the flattened buffer for a width x height image with at most `coarsestLevel` levels above

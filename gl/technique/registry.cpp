@@ -7,6 +7,8 @@
 #include "gl/technique/isr/multires_technique.h"
 #include "gl/technique/isr/rsm_technique.h"
 #include "gl/technique/photon/photon_technique.h"
+#include "gl/technique/microrender/microrender_technique.h"
+#include "gl/technique/pointproj/pointproj_technique.h"
 #include "gl/technique/technique.h"
 
 namespace bounce::gl {
@@ -24,6 +26,8 @@ const std::vector<TechniqueInfo>& techniques()
         t.push_back(hisrTechniqueInfo());
         t.push_back(grbTechniqueInfo());
         t.push_back(photonTechniqueInfo());
+        t.push_back(microrenderTechniqueInfo());
+        t.push_back(pointprojTechniqueInfo());
         return t;
     }();
     return all;

@@ -61,14 +61,25 @@ vec3 brdfGlossy(BrdfParams p, vec3 n, vec3 wo, vec3 wi)
     return p.weight * F * ggxD(max(dot(n, h), 0.0), a2) * smithVis(NdotL, NdotV, a2);
 }
 
+// The two lobes of f(wo, wi) apart, zero below either horizon: f = diffuseFactor c_diff + glossy, with
+// diffuseFactor what the interface transmits in and out over pi (without the diffuse colour, which
+// point-based gathers leave to the receiver's full-resolution G-buffer) and glossy = w F D Vis.
+void brdfEvalLobes(BrdfParams p, vec3 n, vec3 wo, vec3 wi, out vec3 diffuseFactor, out vec3 glossy)
+{
+    diffuseFactor = vec3(0.0);
+    glossy = vec3(0.0);
+    float NdotL = dot(n, wi), NdotV = dot(n, wo);
+    if (NdotL <= 0.0 || NdotV <= 0.0) return;
+    diffuseFactor = brdfTransmission(p, NdotV) * brdfTransmission(p, NdotL) / kPi;
+    glossy = brdfGlossy(p, n, wo, wi);
+}
+
 // f(wo, wi) without the cosine; zero below either horizon.
 vec3 brdfEval(BrdfParams p, vec3 n, vec3 wo, vec3 wi)
 {
-    float NdotL = dot(n, wi), NdotV = dot(n, wo);
-    if (NdotL <= 0.0 || NdotV <= 0.0) return vec3(0.0);
-    // The diffuse part keeps what the glossy interface transmits on the way in and on the way out.
-    vec3 diffuse = brdfTransmission(p, NdotV) * brdfTransmission(p, NdotL) * p.diffuse / kPi;
-    return diffuse + brdfGlossy(p, n, wo, wi);
+    vec3 diffuseFactor, glossy;
+    brdfEvalLobes(p, n, wo, wi, diffuseFactor, glossy);
+    return diffuseFactor * p.diffuse + glossy;
 }
 
 #endif

@@ -11,12 +11,20 @@
 //     renormalised. So light is blended across patch borders on smooth surfaces, never across edges,
 //     and never with fragments of other levels;
 //  3. times the pixel's own diffuse colour rho_i (the gather left it out): Eq. 5's rho_i at full resolution.
+// UNMODULATED: a second buffer (image 1, rgb) is interpolated with the same weights and added as it is,
+// not times rho_i: glossy reflected radiance (point-based final gathering, gl/technique/points/).
 #include "common/multires.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
 layout(binding = UNIT_MULTIRES_ILLUMINATION) uniform sampler2D mrIllumination;
 layout(rgba32f, binding = 0) uniform writeonly image2D indirectOut;
+#ifdef UNMODULATED
+layout(rgba32f, binding = 1) uniform readonly image2D unmodulated;
+vec3 unmodulatedAt(int level, ivec2 t) { return imageLoad(unmodulated, levelOrigin[level] + t).rgb; }
+#else
+vec3 unmodulatedAt(int level, ivec2 t) { return vec3(0.0); }
+#endif
 
 vec4 illuminationAt(int level, ivec2 t) { return texelFetch(mrIllumination, levelOrigin[level] + t, 0); }
 
@@ -29,9 +37,10 @@ void main()
         int k = -1;
         for (int l = 0; l <= coarsestLevel && k < 0; ++l)
             if (illuminationAt(l, px >> l).a >= 1.0) k = l;
-        vec3 e = vec3(0.0);
+        vec3 e = vec3(0.0), g = vec3(0.0);
         if (k == 0) {
             e = illuminationAt(0, px).rgb;
+            g = unmodulatedAt(0, px);
         } else if (k > 0) {
             ivec2 own = px >> k;
             vec4 ownValue = illuminationAt(k, own);
@@ -48,14 +57,17 @@ void main()
                 if (c != own) {
                     if ((neighbours & neighbourBit(c - own)) == 0u) continue;
                     e += w * illuminationAt(k, c).rgb;
+                    g += w * unmodulatedAt(k, c);
                 } else {
                     e += w * ownValue.rgb;
+                    g += w * unmodulatedAt(k, own);
                 }
                 wsum += w;
             }
             e /= wsum; // the own patch's weight is at least 1/4
+            g /= wsum;
         }
-        result = texelFetch(gDiffuse, px, 0).rgb * e;
+        result = texelFetch(gDiffuse, px, 0).rgb * e + g;
     }
     imageStore(indirectOut, px, vec4(result, 1.0));
 }

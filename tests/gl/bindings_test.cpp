@@ -16,6 +16,7 @@
 #include "gl/frame/bindings.h"
 #include "gl/technique/grb/bindings.h"
 #include "gl/technique/isr/bindings.h"
+#include "gl/technique/microrender/bindings.h"
 #include "gl/technique/photon/bindings.h"
 
 namespace fs = std::filesystem;
@@ -95,23 +96,16 @@ TEST(Bindings, NoTwoNamesShareASlot)
 {
     const auto frame = table(root() / "glsl/common/bindings.glsl");
     ASSERT_FALSE(frame.empty());
-    // Families never run together: each is checked against the frame's slots, not against each other.
-    std::vector<std::string> families; // every glsl/technique/<family>/bindings.glsl
-    for (const auto& e : fs::directory_iterator(root() / "glsl/technique"))
-        if (fs::exists(e.path() / "bindings.glsl")) families.push_back(e.path().filename().string());
-    ASSERT_GE(families.size(), 2u);
-    for (const std::string& family : families) {
-        SCOPED_TRACE(family);
-        const auto familyTable = table(root() / "glsl/technique" / family / "bindings.glsl");
-        ASSERT_FALSE(familyTable.empty());
-        // The passes that read no G-buffer (composite, tone map, joint upsampling) reuse the first units.
-        const std::vector<std::string> passLocal{"UNIT_COMPOSITE_DIRECT",       "UNIT_COMPOSITE_INDIRECT",
-                                                 "UNIT_TONEMAP_RADIANCE",       "UNIT_UPSAMPLE_COARSE_INDIRECT",
-                                                 "UNIT_UPSAMPLE_COARSE_NORMAL", "UNIT_UPSAMPLE_FULL_NORMAL"};
-        // RSM and multires pyramid names are the first of six units each.
-        auto span = [](const std::string& n) { return n == "UNIT_RSM_FIRST" || n == "UNIT_MULTIRES_FIRST" ? 6 : 1; };
+    // The passes that read no G-buffer (composite, tone map, joint upsampling) reuse the first units.
+    const std::vector<std::string> passLocal{"UNIT_COMPOSITE_DIRECT",       "UNIT_COMPOSITE_INDIRECT",
+                                             "UNIT_TONEMAP_RADIANCE",       "UNIT_UPSAMPLE_COARSE_INDIRECT",
+                                             "UNIT_UPSAMPLE_COARSE_NORMAL", "UNIT_UPSAMPLE_FULL_NORMAL"};
+    // RSM and multires pyramid names are the first of six units each.
+    auto span = [](const std::string& n) { return n == "UNIT_RSM_FIRST" || n == "UNIT_MULTIRES_FIRST" ? 6 : 1; };
+    // Tables bound together in one run must not share a slot.
+    const auto checkTogether = [&](const std::vector<const std::map<std::string, int>*>& tables) {
         std::map<std::string, std::string> used; // "SSBO 4" -> name
-        for (const auto* t : {&frame, &familyTable})
+        for (const auto* t : tables)
             for (const auto& [name, value] : *t) {
                 if (std::find(passLocal.begin(), passLocal.end(), name) != passLocal.end()) continue;
                 const std::string kind = name.substr(0, name.find('_'));
@@ -121,6 +115,23 @@ TEST(Bindings, NoTwoNamesShareASlot)
                     used[key] = name;
                 }
             }
+    };
+    // Families never run together: each is checked against the frame's slots, not against each other;
+    // the point families (microrender, pointproj) bind the shared cloud's slots (points/) too.
+    std::vector<std::string> families; // every glsl/technique/<family>/bindings.glsl
+    for (const auto& e : fs::directory_iterator(root() / "glsl/technique"))
+        if (fs::exists(e.path() / "bindings.glsl")) families.push_back(e.path().filename().string());
+    ASSERT_GE(families.size(), 2u);
+    const auto points = table(root() / "glsl/technique/points/bindings.glsl");
+    ASSERT_FALSE(points.empty());
+    for (const std::string& family : families) {
+        SCOPED_TRACE(family);
+        const auto own = table(root() / "glsl/technique" / family / "bindings.glsl");
+        ASSERT_FALSE(own.empty());
+        if (family == "microrender" || family == "pointproj")
+            checkTogether({&frame, &points, &own});
+        else
+            checkTogether({&frame, &own});
     }
     // The C++ side is the same file: spot-check that the macros are what the table says.
     EXPECT_EQ(SSBO_BVH_NODES, frame.at("SSBO_BVH_NODES"));
@@ -128,4 +139,5 @@ TEST(Bindings, NoTwoNamesShareASlot)
               table(root() / "glsl/technique/isr/bindings.glsl").at("UNIT_ISR_VPL_TREE_TEXELS"));
     EXPECT_EQ(UNIT_GRB_KBUFFER, table(root() / "glsl/technique/grb/bindings.glsl").at("UNIT_GRB_KBUFFER"));
     EXPECT_EQ(SSBO_PHOTON_NODES, table(root() / "glsl/technique/photon/bindings.glsl").at("SSBO_PHOTON_NODES"));
+    EXPECT_EQ(SSBO_MICRO_NODES, table(root() / "glsl/technique/microrender/bindings.glsl").at("SSBO_MICRO_NODES"));
 }

@@ -1,0 +1,49 @@
+#include "gl/technique/microrender/point_hierarchy.h"
+
+#include <stdexcept>
+#include <string>
+
+#include "core/point_order.h"
+#include "gl/gl.h"
+#include "gl/resource/dispatch.h"
+#include "gl/technique/microrender/bindings.h"
+
+namespace bounce::gl {
+
+static_assert(sizeof(GpuMicroNode) == 48, "hierarchy.glsl's MicroNode");
+
+PointHierarchy::PointHierarchy(const PointCloud& cloud)
+    : leaves_(cloud.count()),
+      leavesProgram_(Program::compute("microrender.hierarchyLeaves", "technique/microrender/hierarchy_leaves.comp")),
+      levelProgram_(Program::compute("microrender.hierarchyLevel", "technique/microrender/hierarchy_level.comp"))
+{
+    levels_ = core::exactLog2(std::uint64_t(leaves_));
+    if (levels_ < 0)
+        throw std::invalid_argument("micro-rendering's hierarchy needs a power-of-two point count, not " +
+                                    std::to_string(leaves_));
+    // Heap order: node 0 unused, 1 the root, leaves at [n, 2n).
+    nodes_ = Buffer("microrender.hierarchy", std::size_t(2 * leaves_) * sizeof(GpuMicroNode));
+}
+
+void PointHierarchy::bind() const
+{
+    nodes_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_MICRO_NODES);
+}
+
+void PointHierarchy::build(const PointCloud& cloud, PassTimers& timers)
+{
+    auto t = timers.scope("hierarchy");
+    cloud.bind();
+    bind();
+    leavesProgram_.set("leafCount", unsigned(leaves_));
+    dispatchCompute(leavesProgram_, {leaves_, 1, 1}, {64, 1, 1});
+    for (int level = levels_ - 1; level >= 0; --level) {
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+        const int first = 1 << level;
+        levelProgram_.set("first", unsigned(first));
+        dispatchCompute(levelProgram_, {first, 1, 1}, {64, 1, 1});
+    }
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
+} // namespace bounce::gl

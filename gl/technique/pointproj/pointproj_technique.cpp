@@ -1,0 +1,164 @@
+#include "gl/technique/pointproj/pointproj_technique.h"
+
+#include <algorithm>
+#include <memory>
+#include <string>
+
+#include "gl/technique/pointproj/projection_gather.h"
+#include "gl/technique/points/adaptive_pixels.h"
+#include "gl/technique/points/point_cloud.h"
+
+namespace bounce::gl {
+
+namespace {
+
+struct PointprojSettings {
+    int points = 65536;
+    ProjectionSettings projection;
+    AdaptiveSettings adaptive;
+    bool progressive = true;
+    int bounces = 1;
+    int bounceNodes = 4096;
+};
+
+class Pointproj final : public Technique {
+public:
+    Pointproj(Frame& frame, const PointprojSettings& s)
+        : settings_(s),
+          cloud_(frame, std::size_t(s.points), 1, s.bounces > 1),
+          gather_(cloud_, s.projection, s.bounces > 1),
+          pixels_(frame, s.adaptive)
+    {
+        stride_ = std::max(1, cloud_.count() / std::clamp(s.bounceNodes, 1, cloud_.count()));
+        if (s.bounces > 1) gathered_ = Buffer("pointproj.bounceGathered", std::size_t(cloud_.count() / stride_) * 16);
+    }
+
+    void render(Frame& frame, PassTimers& timers) override
+    {
+        if (!(frame.version() == version_)) {
+            version_ = frame.version();
+            steps_ = 0;
+        }
+        const auto seed = std::uint32_t(settings_.progressive ? steps_ : 0);
+        cloud_.update(frame, timers);
+        cloud_.light(frame, timers);
+        for (int b = 1; b < settings_.bounces; ++b) {
+            gather_.gatherPoints(frame, cloud_, stride_, gathered_, seed * 7919u + std::uint32_t(b), timers);
+            cloud_.relight(gathered_, stride_, timers);
+        }
+        gather_.clearStats();
+        for (int level = 0; level < pixels_.levels(); ++level) {
+            const int n = pixels_.select(frame, level, timers);
+            gather_.gatherPixels(frame, pixels_, n, cloud_, seed, timers);
+            pixels_.interpolate(frame, level, timers);
+        }
+        ++steps_;
+        pixels_.compose(frame, settings_.progressive ? 1.0f / float(steps_) : 1.0f, timers);
+        stats_ = gather_.stats();
+    }
+
+    void setUniforms(const ParamValues& values) override
+    {
+        pixels_.setThresholds(float(values.get("epsilon")), float(values.get("lambda")));
+        restart(); // the running mean belongs to the old thresholds
+    }
+
+    void restart() override { steps_ = 0; }
+    int accumulatedSteps() const override { return steps_; }
+
+    std::vector<Counter> counters() const override
+    {
+        const double targets = std::max<double>(stats_.targets, 1.0);
+        return {
+            {"points", double(cloud_.count())},
+            {"clusters", double(settings_.projection.clusters)},
+            {"gatherPixels", double(stats_.targets)},
+            {"pointsProjectedPerPixel", double(stats_.projected) / targets},
+            {"emptyTexelsPerPixel", double(stats_.emptyTexels) / targets},
+            {"uniformFallbacks", double(stats_.uniformFallbacks)},
+            {"clampedSplats", double(stats_.clampedSplats)},
+            {"accumulatedFrames", double(steps_)},
+        };
+    }
+
+private:
+    PointprojSettings settings_;
+    PointCloud cloud_;
+    ProjectionGather gather_;
+    AdaptivePixels pixels_;
+    Buffer gathered_;
+    int stride_ = 1;
+    int steps_ = 0;
+    FrameVersion version_{~0ull, ~0ull, ~0ull};
+    ProjectionStats stats_;
+};
+
+} // namespace
+
+TechniqueInfo pointprojTechniqueInfo()
+{
+    TechniqueInfo info;
+    info.name = "pointproj";
+    info.paper = "Maletz, Wang & Bowers 2011";
+    info.lightPaths = core::LightPaths::OneBounce;
+    info.progressive = true;
+    info.summary = "final gathering by importance-sampled, clustered point splats into hemi-octahedral micro-buffers, "
+                   "with image-space adaptive sampling";
+    info.passes = {
+        {"point-update", "surface points from (triangle, barycentrics) on the scene as it is", ""},
+        {"point-light", "direct light at every point from the shadow maps, half floats", ""},
+        {"bounce-gather", "point projection at every stride-th point", "bounces > 1"},
+        {"relight", "the points' radiance: direct + the gathered bounce", "bounces > 1"},
+        {"adaptive-select", "the pixels to gather at: the 4x4 grid, then where the coherence metric exceeds epsilon",
+         ""},
+        {"gather", "one micro-buffer per pixel: importance, carry allocation, splats, BRDF", ""},
+        {"interpolate", "joint bilateral interpolation of the pixels not gathered", ""},
+        {"compose", "diffuse colour x diffuse part + glossy part, the progressive mean", ""},
+    };
+    info.reads = {GBufferChannel::Position, GBufferChannel::Normal, GBufferChannel::Diffuse, GBufferChannel::Specular};
+    info.params = {
+        {"points", ParamType::Int, 65536, 1024, 8388608, "surface points (a power of two; the paper: 256K)", true},
+        {"clusters", ParamType::Int, 512, 16, 4096, "equal kd-tree clusters of the points (§3.2: 512, 9 levels)", true},
+        {"samples", ParamType::Int, 2048, 0, 65536, "N_s, importance samples per pixel (§4: 4 x 512)"},
+        {"randomPerCluster", ParamType::Int, 2, 1, 16, "N_rnd, random points per cluster for its importance (§3.2: 2)"},
+        choiceParam(
+            "projection", {"importance", "uniform", "all"}, 0,
+            "which points are projected: by importance, uniformly (Fig. 9's random), or every point (brute force)"),
+        choiceParam("splat", {"adaptive", "1", "2", "3"}, 0,
+                    "splat size: Eq. 5's adaptive size, or fixed texels (Fig. 7)"),
+        {"adaptive", ParamType::Bool, 1, 0, 1, "image-space adaptive sampling (§3.3); 0: gather at every pixel"},
+        {"epsilon", ParamType::Float, 0.3, 0, 100, "the coherence threshold of the first refinement, doubled per level",
+         false, ParamUpdate::Uniform},
+        {"lambda", ParamType::Float, 8, 0, 1000, "the weight of the radiance term of the coherence metric", false,
+         ParamUpdate::Uniform},
+        {"progressive", ParamType::Bool, 1, 0, 1,
+         "each frame draws new random points and is averaged in, until something moves"},
+        {"bounces", ParamType::Int, 1, 1, 8, "indirect bounces; > 1 gathers at the points first (§4)"},
+        {"bounceNodes", ParamType::Int, 4096, 64, 1048576,
+         "gather locations of each extra bounce: one per run of points / this many", true},
+    };
+    info.create = [](Frame& frame, const ParamValues& v) -> std::unique_ptr<Technique> {
+        const std::vector<ParamDecl>& decls = pointprojTechniqueInfo().params;
+        PointprojSettings s;
+        s.points = v.getInt("points");
+        s.projection.clusters = v.getInt("clusters");
+        s.projection.samples = v.getInt("samples");
+        s.projection.randomPerCluster = v.getInt("randomPerCluster");
+        const std::string mode = v.getChoice(decls, "projection");
+        s.projection.mode = mode == "uniform" ? ProjectionSettings::Mode::Uniform
+                            : mode == "all"   ? ProjectionSettings::Mode::All
+                                              : ProjectionSettings::Mode::Importance;
+        const std::string splat = v.getChoice(decls, "splat");
+        s.projection.fixedSplat = splat == "adaptive" ? 0 : std::stoi(splat);
+        s.adaptive.adaptive = v.getBool("adaptive");
+        s.adaptive.epsilon = float(v.get("epsilon"));
+        s.adaptive.lambda = float(v.get("lambda"));
+        s.progressive = v.getBool("progressive");
+        s.bounces = v.getInt("bounces");
+        s.bounceNodes = v.getInt("bounceNodes");
+        return std::make_unique<Pointproj>(frame, s);
+    };
+    return info;
+}
+
+} // namespace bounce::gl

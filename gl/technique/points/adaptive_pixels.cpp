@@ -1,0 +1,145 @@
+#include "gl/technique/points/adaptive_pixels.h"
+
+#include <algorithm>
+
+#include "gl/frame/bindings.h"
+#include "gl/gl.h"
+#include "gl/resource/dispatch.h"
+#include "gl/technique/points/bindings.h"
+
+namespace bounce::gl {
+
+namespace {
+
+constexpr int kCoarseGrid = 4; // §3.3: "starting with pixels on an initial 4 x 4 sampling grid"
+
+} // namespace
+
+AdaptivePixels::AdaptivePixels(Frame& frame, const AdaptiveSettings& settings)
+    : settings_(settings),
+      select_(Program::compute("points.adaptiveSelect", "technique/points/adaptive_select.comp")),
+      interpolate_(Program::compute("points.adaptiveInterpolate", "technique/points/adaptive_interpolate.comp")),
+      compose_(Program::compute("points.adaptiveCompose", "technique/points/adaptive_compose.comp")),
+      count_("points.adaptiveCount", sizeof(std::uint32_t))
+{
+    allocate(frame.width(), frame.height());
+}
+
+void AdaptivePixels::allocate(int width, int height)
+{
+    width_ = width;
+    height_ = height;
+    state_ = Texture::create2D("points.adaptive.state", GL_R8UI, width, height);
+    diffuse_ = Texture::create2D("points.adaptive.diffuse", GL_RGBA32F, width, height);
+    glossy_ = Texture::create2D("points.adaptive.glossy", GL_RGBA32F, width, height);
+    accumulated_ = Texture::create2D("points.adaptive.accumulated", GL_RGBA32F, width, height);
+    targets_ = Buffer("points.adaptiveTargets", std::size_t(width) * height * 8);
+}
+
+void AdaptivePixels::setCommon(Frame& frame, Program& program, int spacing)
+{
+    const core::Bounds& b = frame.gpuScene().bounds();
+    program.set("viewSize", glm::ivec2(width_, height_));
+    program.set("spacing", spacing);
+    program.set("sceneDiagonal", std::max(glm::length(b.extent()), 1e-6f));
+}
+
+int AdaptivePixels::select(Frame& frame, int level, PassTimers& timers)
+{
+    if (frame.width() != width_ || frame.height() != height_) allocate(frame.width(), frame.height());
+    auto t = timers.scope("adaptive-select");
+    if (level == 0) {
+        const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+        diffuse_.clear(0, zero);
+        glossy_.clear(0, zero);
+        const GLuint undecided = 0;
+        glClearTexImage(state_.id(), 0, GL_RED_INTEGER, GL_UNSIGNED_BYTE, &undecided);
+    }
+    count_.clearToZero();
+    frame.bindGBuffer();
+    // Level l >= 1 refines the grid of spacing 4 / 2^(l - 1): its candidates lie on the grid half as wide.
+    const int spacing = level == 0 ? 0 : kCoarseGrid >> (level - 1);
+    setCommon(frame, select_, spacing);
+    select_.set("firstGrid", level == 0 ? (settings_.adaptive ? kCoarseGrid : 1) : 0);
+    select_.set("epsilon", settings_.epsilon * float(1 << std::max(level - 1, 0)));
+    select_.set("lambda", settings_.lambda);
+    if (level == 1) radianceScale_ = meanSampledLuminance(frame);
+    select_.set("radianceScale", radianceScale_ > 0.0f ? 1.0f / radianceScale_ : 0.0f);
+    state_.bindImage(0, GL_READ_WRITE, 0, GL_R8UI);
+    diffuse_.bindImage(1, GL_READ_ONLY, 0, GL_RGBA32F);
+    glossy_.bindImage(2, GL_READ_ONLY, 0, GL_RGBA32F);
+    targets_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_GATHER_TARGETS);
+    count_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_GATHER_COUNT);
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
+    dispatchCompute(select_, {width_, height_, 1}, {8, 8, 1});
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+    std::uint32_t n = 0;
+    count_.download(0, sizeof(n), &n);
+    sampled_ = level == 0 ? int(n) : sampled_ + int(n);
+    return int(n);
+}
+
+float AdaptivePixels::meanSampledLuminance(Frame& frame) const
+{
+    // The first level's samples: a quarter-by-quarter grid, read back once per frame (what the paper's
+    // display-scaled L_o gets from its tone mapping).
+    glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
+    const std::vector<float> d = diffuse_.readFloats(0, 4), g = glossy_.readFloats(0, 4),
+                             c = frame.diffuse().readFloats(0, 4);
+    double sum = 0.0;
+    int n = 0;
+    for (std::size_t i = 0; i + 3 < d.size(); i += 4) {
+        if (d[i + 3] < 1.0f) continue; // not gathered
+        double l = 0.0;
+        const double w[3] = {0.2126, 0.7152, 0.0722};
+        for (int k = 0; k < 3; ++k) l += w[k] * (double(c[i + k]) * d[i + k] + g[i + k]);
+        sum += l;
+        ++n;
+    }
+    return n > 0 ? float(sum / n) : 0.0f;
+}
+
+void AdaptivePixels::bindForGather(Frame& frame, Program& program)
+{
+    frame.bindGBuffer();
+    // gather_target.glsl reads level-0 targets through multires.glsl's layout: the image alone.
+    program.set("levelOrigin[0]", glm::ivec2(0));
+    program.set("levelSize[0]", glm::ivec2(width_, height_));
+    program.set("coarsestLevel", 0);
+    program.set("cameraPosition", frame.camera().position);
+    targets_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_GATHER_TARGETS);
+    count_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_GATHER_COUNT);
+    diffuse_.bindImage(0, GL_WRITE_ONLY, 0, GL_RGBA32F);
+    glossy_.bindImage(1, GL_WRITE_ONLY, 0, GL_RGBA32F);
+}
+
+void AdaptivePixels::interpolate(Frame& frame, int level, PassTimers& timers)
+{
+    auto t = timers.scope("interpolate");
+    if (level == 0) return;
+    frame.bindGBuffer();
+    setCommon(frame, interpolate_, kCoarseGrid >> (level - 1));
+    state_.bindImage(0, GL_READ_ONLY, 0, GL_R8UI);
+    diffuse_.bindImage(1, GL_READ_WRITE, 0, GL_RGBA32F);
+    glossy_.bindImage(2, GL_READ_WRITE, 0, GL_RGBA32F);
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    dispatchCompute(interpolate_, {width_, height_, 1}, {8, 8, 1});
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+}
+
+void AdaptivePixels::compose(Frame& frame, float newWeight, PassTimers& timers)
+{
+    auto t = timers.scope("compose");
+    frame.bindGBuffer();
+    setCommon(frame, compose_, 1);
+    compose_.set("newWeight", newWeight);
+    diffuse_.bindImage(0, GL_READ_ONLY, 0, GL_RGBA32F);
+    glossy_.bindImage(1, GL_READ_ONLY, 0, GL_RGBA32F);
+    accumulated_.bindImage(2, GL_READ_WRITE, 0, GL_RGBA32F);
+    frame.indirect().bindImage(3, GL_WRITE_ONLY, 0, GL_RGBA32F);
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    dispatchCompute(compose_, {width_, height_, 1}, {8, 8, 1});
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
+}
+
+} // namespace bounce::gl

@@ -1,0 +1,66 @@
+// Image-space adaptive sampling (Maletz, Wang & Bowers 2011, §3.3; glsl/technique/points/adaptive*.{glsl,
+// comp}): shared by the point-based gathers. Level 0 gathers at the 4 x 4 grid; levels 1 and 2 gather at
+// the 2 x 2 and 1 x 1 grids' pixels whose coherence metric exceeds epsilon (0.3, doubled per level) and
+// interpolate the others by joint bilateral weights; compose multiplies the diffuse part by each pixel's
+// diffuse colour and adds the glossy part, averaged over frames in progressive mode. Passes (summed over
+// the levels): "adaptive-select", the technique's "gather", "interpolate", "compose".
+//
+//   for (int level = 0; level < pixels.levels(); ++level) {
+//       const int n = pixels.select(frame, level, timers);
+//       pixels.bindForGather(frame, program);   // the targets for glsl/technique/points/gather_target.glsl
+//       dispatchPerTarget(program, n, group);
+//       pixels.interpolate(frame, level, timers);
+//   }
+//   pixels.compose(frame, weight, timers);
+#pragma once
+
+#include "gl/frame/frame.h"
+#include "gl/resource/buffer.h"
+#include "gl/resource/program.h"
+#include "gl/resource/texture.h"
+#include "gl/resource/timer.h"
+
+namespace bounce::gl {
+
+struct AdaptiveSettings {
+    bool adaptive = true; // false: gather at every pixel (one level)
+    float epsilon = 0.3f; // the first refinement's threshold (§3.3: 0.3), doubled per level
+    float lambda = 8.0f;  // the radiance term's weight (§3.3: 8)
+};
+
+class AdaptivePixels {
+public:
+    AdaptivePixels(Frame& frame, const AdaptiveSettings& settings);
+
+    int levels() const { return settings_.adaptive ? 3 : 1; }
+    // "adaptive-select": the pixels to gather at on this level, listed; returns how many.
+    int select(Frame& frame, int level, PassTimers& timers);
+    // The targets, G-buffer and light images, and gather_target.glsl's uniforms.
+    void bindForGather(Frame& frame, Program& program);
+    // "interpolate": this level's candidates that were not sampled (nothing on level 0).
+    void interpolate(Frame& frame, int level, PassTimers& timers);
+    // "compose": frame.indirect() = c_diff x diffuse + glossy, blended into the running mean with
+    // `newWeight` (1 without progressive accumulation).
+    void compose(Frame& frame, float newWeight, PassTimers& timers);
+    void setThresholds(float epsilon, float lambda)
+    {
+        settings_.epsilon = epsilon;
+        settings_.lambda = lambda;
+    }
+
+    int sampledLastFrame() const { return sampled_; } // gather targets over every level of the last frame
+
+private:
+    AdaptiveSettings settings_;
+    int width_ = 0, height_ = 0;
+    Program select_, interpolate_, compose_;
+    Texture state_, diffuse_, glossy_, accumulated_;
+    Buffer targets_, count_;
+    int sampled_ = 0;
+    float radianceScale_ = 0.0f; // the mean outgoing luminance of the first level's samples
+    void allocate(int width, int height);
+    float meanSampledLuminance(Frame& frame) const;
+    void setCommon(Frame& frame, Program& program, int spacing);
+};
+
+} // namespace bounce::gl

@@ -1,0 +1,79 @@
+#include "gl/technique/points/pixel_gather.h"
+
+#include <algorithm>
+
+#include "gl/frame/bindings.h"
+#include "gl/gl.h"
+#include "gl/resource/dispatch.h"
+#include "gl/technique/points/bindings.h"
+
+namespace bounce::gl {
+
+PixelGather::PixelGather(Frame& frame, const MultiresSettings& settings)
+    : pyramid_(frame.width(), frame.height(), settings),
+      select_(Program::compute("points.gatherSelect", "technique/points/gather_select.comp")),
+      count_buffer_("points.gatherCount", sizeof(std::uint32_t))
+{
+    allocate();
+}
+
+void PixelGather::allocate()
+{
+    const glm::ivec2 f = pyramid_.flattenedSize();
+    // At most one target per texel of the flattened buffer (one valid fragment per pixel in the worst case).
+    targets_ = Buffer("points.gatherTargets", std::size_t(f.x) * f.y * 8);
+    diffuse_ = Texture::create2D("points.illumination.diffuse", GL_RGBA32F, f.x, f.y);
+    glossy_ = Texture::create2D("points.illumination.glossy", GL_RGBA32F, f.x, f.y);
+}
+
+int PixelGather::select(Frame& frame, PassTimers& timers)
+{
+    if (pyramid_.resize(frame.width(), frame.height())) allocate();
+    pyramid_.build(frame, timers);
+    auto t = timers.scope("gather-select");
+    const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    diffuse_.clear(0, zero); // alpha 0: no valid fragment (what the upsampling reads)
+    glossy_.clear(0, zero);
+    count_buffer_.clearToZero();
+    frame.bindGBuffer();
+    pyramid_.bind();
+    pyramid_.setUniforms(select_);
+    targets_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_GATHER_TARGETS);
+    count_buffer_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_GATHER_COUNT);
+    const glm::ivec2 f = pyramid_.flattenedSize();
+    select_.set("flattenedSize", f);
+    dispatchCompute(select_, {f.x, f.y, 1}, {8, 8, 1});
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+    std::uint32_t n = 0;
+    count_buffer_.download(0, sizeof(n), &n);
+    count_ = int(n);
+    return count_;
+}
+
+void PixelGather::bindForGather(Frame& frame, Program& program)
+{
+    frame.bindGBuffer();
+    pyramid_.bind();
+    pyramid_.setUniforms(program);
+    targets_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_GATHER_TARGETS);
+    count_buffer_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_GATHER_COUNT);
+    diffuse_.bindImage(0, GL_WRITE_ONLY, 0, GL_RGBA32F);
+    glossy_.bindImage(1, GL_WRITE_ONLY, 0, GL_RGBA32F);
+    program.set("cameraPosition", frame.camera().position);
+}
+
+void PixelGather::upsample(Frame& frame, PassTimers& timers)
+{
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+    pyramid_.upsample(frame, diffuse_, timers, &glossy_);
+}
+
+void dispatchPerTarget(const Program& program, int count, int localSize)
+{
+    if (count <= 0) return;
+    constexpr int kMaxX = 65535;
+    const int x = std::min(count, kMaxX), y = (count + kMaxX - 1) / kMaxX;
+    dispatchCompute(program, {x * localSize, y, 1}, {localSize, 1, 1});
+}
+
+} // namespace bounce::gl

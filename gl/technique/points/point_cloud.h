@@ -1,0 +1,76 @@
+// The shared lit point cloud of the point-based final gathers (micro-rendering, Ritschel et al. 2009;
+// importance-driven point projection, Maletz, Wang & Bowers 2011): N points of the frame's surface sampler
+// (core/surface_points.h, blue noise, each (triangle, barycentrics) with its area), in the median-split
+// order of core/point_order.h (the leaves of micro-rendering's hierarchy and point projection's 512
+// clusters at once), on the GPU (glsl/technique/points/point_cloud.glsl). Passes:
+//   "point-update"  every point's position, normal and diffuse colour from (triangle, barycentrics) on the
+//                   scene as it is now (point_update.comp)
+//   "point-light"   direct light at every point from the frame's shadow maps, half floats (point_light.comp)
+//   "relight"       direct + the diffuse light gathered at the points' representatives (bounces > 1)
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "core/surface_points.h"
+#include "gl/frame/frame.h"
+#include "gl/resource/buffer.h"
+#include "gl/resource/program.h"
+#include "gl/resource/timer.h"
+
+namespace bounce::gl {
+
+// std430 mirror of point_cloud.glsl's PointSample.
+struct GpuPointSample {
+    std::uint32_t triangle;
+    float areaM2;
+    glm::vec2 barycentrics; // scene.glsl's (b1, b2); after areaM2 so that std430 packs it at offset 8
+};
+
+// The points of `scene`, `count` of them from the surface sampler with `seed`, in median-split order:
+// computed once per (scene content, count, seed) and kept for the process (the sampler is the slow part,
+// and tests and the bench make many renderers of one scene).
+std::shared_ptr<const std::vector<core::SurfacePoint>> orderedSurfacePoints(const core::Scene& scene, std::size_t count,
+                                                                            std::uint64_t seed);
+
+// The surface point as the GPU reads it: core's (b0, b1) with p = b0 p0 + b1 p1 + (1 - b0 - b1) p2 become
+// scene.glsl's (b1, b2) with p = (1 - b1 - b2) v0 + b1 v1 + b2 v2.
+GpuPointSample toGpuPointSample(const core::SurfacePoint& p);
+
+class PointCloud {
+public:
+    // keepDirect: keep the direct light apart (multiple bounces add gathered light to it every frame).
+    PointCloud(Frame& frame, std::size_t count, std::uint64_t seed, bool keepDirect);
+
+    void update(Frame& frame, PassTimers& timers); // "point-update"
+    void light(Frame& frame, PassTimers& timers);  // "point-light"
+    // "relight": radiance = direct + diffuse colour x gathered[i / stride] (vec4 per representative).
+    void relight(const Buffer& gathered, int stride, PassTimers& timers);
+    // Samples, surfels, radiance (and direct) at their SSBO slots.
+    void bind() const;
+
+    int count() const { return count_; }
+    double totalAreaM2() const { return totalArea_; }
+    // The radius of a point's disc, sqrt(area / pi), over the cloud (all points carry the same area).
+    float discRadius() const { return discRadius_; }
+    const Buffer& radiance() const { return radiance_; }
+    const Buffer& surfels() const { return surfels_; }
+
+private:
+    int count_ = 0;
+    double totalArea_ = 0.0;
+    float discRadius_ = 0.0f;
+    bool keepDirect_ = false;
+    bool punctual_ = false, area_ = false;
+    Buffer samples_, surfels_, radiance_, direct_;
+    Program update_, light_, relight_;
+    void makeLightProgram(const GpuScene& scene);
+};
+
+// The #defines of the kinds of light a scene has (PUNCTUAL_LIGHTS, AREA_LIGHTS), as the direct pass has them.
+std::vector<Define> lightKindDefines(const GpuScene& scene);
+// Sets the uniforms of glsl/technique/points/point_light.glsl and common/shadow.glsl.
+void setPointLightUniforms(Program& program, const Frame& frame);
+
+} // namespace bounce::gl

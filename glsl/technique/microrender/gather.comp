@@ -1,0 +1,263 @@
+#version 450 core
+// "gather" (pixel targets) and "bounce-gather" (GATHER_AT_POINTS): micro-rendering (Ritschel et al. 2009),
+// one work group per gather sample, the §3.2 single kernel: "each thread first computes the BRDF warping
+// functions, and then continues to compute the point hierarchy cut ... The output of this first step is a
+// partially finished micro-buffer and the post-traversal list. ... The threads with a non-empty list cast
+// one ray for every micro-pixel ... After filling the micro-buffers, each thread computes the reflected
+// radiance by summing up its content." Here the group's MICRO_GROUP invocations share one sample:
+//   1. warp: the mixture of the BRDF's lobe tables and its CDFs in shared memory (warp.glsl, §2.3);
+//   2. cut: each invocation walks one subtree under hierarchy level log2(MICRO_GROUP) depth first without a
+//      stack (heap indices give the skip pointers, §2.1), descending while the node's solid angle exceeds the
+//      micro-pixel's at its direction (§2.2, "Point Hierarchy Cut"; a leaf: its disc, A cos / d^2; an
+//      interior node: what its surfels can subtend, min(its sphere's, A / d^2)), and rasterises the others into the
+//      shared micro-buffer: depth and node index in one 32-bit key, atomicMin (§3.1: 8 + 24 bits there);
+//      back-facing nodes (normal cones) and nodes under the horizon are culled;
+//   3. rays (RAY_CAST, §2.2 "On-demand Ray Casting"): leaves still larger than a micro-pixel go to the
+//      post-traversal list instead; when it is not empty, one ray per micro-pixel through the frame's GPU
+//      ray casting (common/raycast.glsl); a hit nearer than the pixel's node takes the pixel, with the
+//      radiance of the listed leaf whose disc holds the hit, else the lights' at the hit;
+//   4. convolution: each micro-pixel's radiance times f cos Omega at its direction (Omega from the warp's
+//      Jacobian), summed: with the warp proportional to f this is rho times the mean of the micro-pixels.
+// Results: the diffuse part without the receiver's diffuse colour and the glossy part (gather_target.glsl).
+// Defines: MICRO_RES (8, 16, 24), MICRO_GROUP (64), WARP_BINS, KEY_INDEX_BITS, LIST_CAP, RAY_CAST,
+// GATHER_AT_POINTS, PUNCTUAL_LIGHTS / AREA_LIGHTS (the lights at ray hits), MICRO_STAGES (4; fewer runs
+// only the first stages, for the time split by stage of §5: 1 the warp, 2 + the cut, 3 + the rays).
+#define SCENE_GEOMETRY
+#include "technique/points/gather_target.glsl"
+#include "technique/microrender/hierarchy.glsl"
+#include "technique/microrender/warp.glsl"
+#ifdef RAY_CAST
+#include "common/raycast.glsl"
+#include "technique/points/point_light.glsl"
+#endif
+
+layout(local_size_x = MICRO_GROUP) in;
+layout(std430, binding = SSBO_MICRO_NODES) readonly buffer MicroNodes { MicroNode microNodes[]; };
+// 0 samples, 1 samples with a post-traversal list, 2 lists that overflowed, 3 micro-pixels left empty,
+// 4 nodes visited, 5 nodes rasterised, 6 rays cast, 7 micro-pixels taken by a ray
+layout(std430, binding = SSBO_MICRO_STATS) buffer MicroStats { uint microStats[8]; };
+
+uniform uint leafCount;
+uniform float depthScale;   // key depth = distance x depthScale, KEY_DEPTH_MAX at most
+uniform float cutScale;
+uniform float gatherOffset; // the gather point is lifted this far along its normal (m): its own surface's
+                            // points then lie under its horizon
+
+const uint kEmptyKey = 0xFFFFFFFFu;
+const uint kRayKey = 0xFFFFFFFEu;
+const uint kIndexMask = (1u << KEY_INDEX_BITS) - 1u;
+const float kDepthMax = float((1u << (32 - KEY_INDEX_BITS)) - 2u);
+const int kPixels = MICRO_RES * MICRO_RES;
+
+shared uint microKeys[kPixels];
+shared vec3 partDiffuse[MICRO_GROUP];
+shared vec3 partGlossy[MICRO_GROUP];
+shared uint groupStats[8];
+#ifdef RAY_CAST
+shared vec3 microHit[kPixels];
+shared uint listNodes[LIST_CAP];
+shared uint listCount;
+#endif
+
+uint hashU(uint x)
+{
+    x ^= x >> 16;
+    x *= 0x7feb352du;
+    x ^= x >> 15;
+    x *= 0x846ca68bu;
+    x ^= x >> 16;
+    return x;
+}
+
+// A node faces away from x when no normal of its cone can see x from any point of its sphere: the angle
+// between the cone axis and the direction to x exceeds 90 degrees + the cone's half angle + the sphere's
+// angular radius seen from x.
+bool backFacing(vec4 cone, vec3 v, float d2, float r)
+{
+    if (cone.w >= kConeAll || d2 <= r * r) return false;
+    float d = sqrt(d2);
+    float alpha = acos(clamp(dot(cone.xyz, -v) / d, -1.0, 1.0));
+    return alpha > 0.5 * kConeAll + cone.w + asin(r / d);
+}
+
+void main()
+{
+    uint k = gatherTargetIndex();
+    if (k >= gatherTargetCount()) return; // the whole group: one target per group
+    uint lid = gl_LocalInvocationIndex;
+    GatherSample g = loadGatherSample(k);
+    vec3 n = g.normal;
+    // The local frame: the view direction's tangent part on +x, where the GGX tables put it.
+    vec3 tangent = g.wo - n * dot(n, g.wo);
+    if (dot(tangent, tangent) < 1e-8) tangent = abs(n.x) < 0.9 ? cross(n, vec3(1, 0, 0)) : cross(n, vec3(0, 1, 0));
+    tangent = normalize(tangent);
+    vec3 bitangent = cross(n, tangent);
+    float cosO = dot(n, g.wo);
+    float share = warpSpecularShare(g.brdf, cosO);
+#ifdef NO_WARP
+    share = 0.0; // the Nusselt (cosine) mapping for every BRDF, weighted by f at the convolution
+#endif
+    warpBuild(share, share > 0.0 ? warpGgxTable(cosO, g.brdf.alpha) : 0, lid);
+    // §2.3: "we jitter the local coordinate system slightly at every gather sample to avoid banding": each
+    // micro-pixel's direction is taken at a point of it jittered per target, and a frame without a glossy
+    // lobe to align with is turned about the normal by a random angle. Seeded by the target's texel (or
+    // point), so that the image is the same in every run.
+    uint seed = hashU(uint(g.texel.x) * 73856093u ^ uint(g.texel.y) * 19349663u);
+    vec2 jitter = (vec2(float(seed & 0xFFFFu), float(seed >> 16)) + 0.5) / 65536.0 - 0.5;
+    if (share == 0.0) {
+        float turn = 2.0 * kPi * float(hashU(seed) & 0xFFFFu) / 65536.0;
+        vec3 t2 = cos(turn) * tangent + sin(turn) * bitangent;
+        bitangent = cross(n, t2);
+        tangent = t2;
+    }
+    for (int p = int(lid); p < kPixels; p += MICRO_GROUP) microKeys[p] = kEmptyKey;
+    if (lid < 8u) groupStats[lid] = 0u;
+#ifdef RAY_CAST
+    if (lid == 0u) listCount = 0u;
+#endif
+    barrier();
+
+    vec3 x = g.position + n * gatherOffset;
+    uint visited = 0u, rasterised = 0u;
+    if (cosO > 0.0 && MICRO_STAGES >= 2) {
+        uint start = uint(MICRO_GROUP) + lid;
+        uint node = start;
+        while (true) {
+            MicroNode nd = microNodes[node];
+            vec3 v = nd.sphere.xyz - x;
+            float r = nd.sphere.w, d2 = dot(v, v), h = dot(v, n);
+            bool isLeaf = node >= leafCount;
+            bool descend = false;
+            ++visited;
+            if (h > -r && !backFacing(nd.cone, v, d2, r) && !(isLeaf && h <= 0.0)) {
+                float d = sqrt(d2);
+                // A node straddling the horizon is judged at the top of its sphere, the part that can be seen.
+                vec3 top = h >= 0.0 ? v : v + n * r;
+                vec3 wl = normalize(vec3(dot(top, tangent), dot(top, bitangent), dot(top, n)));
+                float omega;
+                if (isLeaf)
+                    omega = nd.areaM2 * abs(dot(nd.cone.xyz, v)) / max(d2 * d, 1e-30); // the disc's solid angle
+                else if (d2 <= r * r)
+                    omega = 1e30; // inside its sphere: always descend
+                else // what its surfels subtend: at most their area over d^2, at most the sphere's solid angle
+                    omega = min(2.0 * kConeAll * (1.0 - sqrt(1.0 - r * r / d2)), nd.areaM2 / d2);
+                bool large = omega > cutScale * warpPixelSolidAngle(wl);
+                if (large && !isLeaf) {
+                    descend = true;
+                } else if (h >= 0.0) {
+#ifdef RAY_CAST
+                    if (large) {
+                        uint slot = atomicAdd(listCount, 1u);
+                        if (slot < uint(LIST_CAP)) listNodes[slot] = node;
+                    } else
+#endif
+                    {
+                        ivec2 c = warpCellOf(warpToUnit(wl));
+                        uint q = uint(min(d * depthScale, kDepthMax));
+                        atomicMin(microKeys[c.y * MICRO_RES + c.x], (q << KEY_INDEX_BITS) | node);
+                        ++rasterised;
+                    }
+                }
+            }
+            if (descend) {
+                node = 2u * node;
+                continue;
+            }
+            while (node != start && (node & 1u) == 1u) node >>= 1u;
+            if (node == start) break;
+            node += 1u;
+        }
+    }
+    atomicAdd(groupStats[4], visited);
+    atomicAdd(groupStats[5], rasterised);
+    barrier();
+
+#ifdef RAY_CAST
+    // Rays through every micro-pixel when the list holds something (the paper), and through every pixel
+    // the cut left empty (a hole between nodes: the closed-scene guarantee).
+    uint listed = min(listCount, uint(LIST_CAP));
+    bool everyPixel = listCount > 0u;
+    uint rays = 0u, taken = 0u;
+    for (int p = int(lid); p < kPixels && cosO > 0.0 && MICRO_STAGES >= 3; p += MICRO_GROUP) {
+        uint key = microKeys[p];
+        if (!everyPixel && key != kEmptyKey) continue;
+        vec3 wl = warpToDirection(warpCellSample(ivec2(p % MICRO_RES, p / MICRO_RES), jitter));
+        if (wl.z <= 0.0) continue;
+        vec3 dir = tangent * wl.x + bitangent * wl.y + n * wl.z;
+        ++rays;
+        Hit hit;
+        if (!closestHit(x, dir, 0.0, 1e30, hit)) continue;
+        float keyDepth = key == kEmptyKey ? 1e30 : (float(key >> KEY_INDEX_BITS) + 1.0) / depthScale;
+        if (hit.t >= keyDepth) continue;
+        vec3 hp = x + dir * hit.t;
+        vec3 hn = sceneTriangleNormal(hit.triangle, hit.b);
+        vec3 radiance = vec3(0.0);
+        if (dot(hn, dir) < 0.0) { // the front of a one-sided surface (its back is black)
+            uint best = 0u;
+            float bestD2 = 1e30;
+            for (uint e = 0u; e < listed; ++e) {
+                MicroNode ln = microNodes[listNodes[e]];
+                vec3 dd = hp - ln.sphere.xyz;
+                float dist2 = dot(dd, dd), reach = 2.0 * ln.sphere.w;
+                if (dist2 < bestD2 && dist2 <= reach * reach && dot(ln.cone.xyz, hn) > 0.5) {
+                    bestD2 = dist2;
+                    best = listNodes[e];
+                }
+            }
+            if (best != 0u) {
+                radiance = unpackRadiance(microNodes[best].radiance);
+            } else {
+                Material m = materials[sceneTriangleMaterial(hit.triangle)];
+                radiance = pointDirectRadiance(hp, hn, m.baseColorMetallic.rgb * (1.0 - m.baseColorMetallic.a));
+            }
+        }
+        microHit[p] = radiance;
+        microKeys[p] = kRayKey;
+        ++taken;
+    }
+    atomicAdd(groupStats[6], rays);
+    atomicAdd(groupStats[7], taken);
+    barrier();
+#endif
+
+    // Convolution: sum of L_in f cos Omega over the micro-pixels, the diffuse and glossy lobes apart.
+    vec3 sumDiffuse = vec3(0.0), sumGlossy = vec3(0.0);
+    uint empty = 0u;
+    for (int p = int(lid); p < kPixels && cosO > 0.0 && MICRO_STAGES >= 4; p += MICRO_GROUP) {
+        uint key = microKeys[p];
+        vec3 wl = warpToDirection(warpCellSample(ivec2(p % MICRO_RES, p / MICRO_RES), jitter));
+        if (key == kEmptyKey) {
+            if (wl.z > 0.0) ++empty; // (a direction on the horizon weighs nothing, and no ray is cast along it)
+            continue;
+        }
+#ifdef RAY_CAST
+        vec3 radiance = key == kRayKey ? microHit[p] : unpackRadiance(microNodes[key & kIndexMask].radiance);
+#else
+        vec3 radiance = unpackRadiance(microNodes[key & kIndexMask].radiance);
+#endif
+        vec3 wi = tangent * wl.x + bitangent * wl.y + n * wl.z;
+        float cs = warpCosineSolidAngle(wl);
+        vec3 fd, fg;
+        brdfEvalLobes(g.brdf, n, g.wo, wi, fd, fg);
+        sumDiffuse += radiance * fd * cs;
+        sumGlossy += radiance * fg * cs;
+    }
+    partDiffuse[lid] = sumDiffuse;
+    partGlossy[lid] = sumGlossy;
+    atomicAdd(groupStats[3], empty);
+    barrier();
+    if (lid == 0u) {
+        vec3 d = vec3(0.0), s = vec3(0.0);
+        for (int i = 0; i < MICRO_GROUP; ++i) { // in order: the same sum in every run
+            d += partDiffuse[i];
+            s += partGlossy[i];
+        }
+        storeGather(g, k, d, s);
+        atomicAdd(microStats[0], 1u);
+#ifdef RAY_CAST
+        if (listCount > 0u) atomicAdd(microStats[1], 1u);
+        if (listCount > uint(LIST_CAP)) atomicAdd(microStats[2], 1u);
+#endif
+        for (int i = 3; i < 8; ++i) atomicAdd(microStats[i], groupStats[i]);
+    }
+}

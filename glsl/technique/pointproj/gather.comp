@@ -1,0 +1,232 @@
+#version 450 core
+// "gather" (pixel targets) and "bounce-gather" (GATHER_AT_POINTS): importance-driven point projection
+// (Maletz, Wang & Bowers 2011, §3.2 and §4 "Microbuffers"), one work group per shading pixel:
+//   1. exploration: N_rnd random points of every cluster (the 512 clusters are runs of the cloud's
+//      median-split order, core/point_order.h), their summed importance p_k (Eq. 4: Eq. 1 times the
+//      shading point's BRDF towards the point); they are projected at once, each representing 1 / N_rnd of
+//      its cluster ("the splat size for a random point ... with p_k equal to the inverse of the number of
+//      clusters");
+//   2. allocation: the carry rule (§3.2's pseudo code) gives each cluster n_k of exactly N_s samples; all
+//      p_k zero (every random point behind the tangent plane): uniform;
+//   3. exploitation: N_s points drawn, n_k from cluster k, each splatted as a square of
+//      sqrt(Omega_s / Omega_texel) texels with Omega_s by Eq. 5 (the robust Eq. 3) over the area
+//      |C_k| dA / (N_s p_k) it stands for, clamped to half the buffer (a tiny p_k: huge splats);
+//   4. resolve: the 32 x 32 hemi-octahedral micro-buffer (Eq. 2) keeps the nearest point per texel by a
+//      32-bit (depth, point) key with atomicMin in shared memory (the paper's 64-bit colour + depth words
+//      do not exist here); each texel's radiance times f_r cos Omega_texel, summed.
+// A point facing away from the shading point is projected (it casts indirect shadows, §3.2) but
+// reflects nothing towards it (one-sided surfaces). PROJ_MODE 1 draws uniformly (every p_k equal: Fig. 9's
+// "random projection"), 2 projects every point with its own area (the brute-force reference of Fig. 9).
+// SPLAT_FIXED n > 0: every splat n x n texels (Fig. 7's non-adaptive splats).
+#include "common/bindings.glsl"
+#define POINT_SURFELS
+#define POINT_RADIANCE
+#include "technique/points/gather_target.glsl"
+#include "technique/pointproj/bindings.glsl"
+#include "technique/pointproj/projection.glsl"
+
+layout(local_size_x = PROJ_GROUP) in;
+layout(std430, binding = SSBO_PROJ_TEXEL_SOLID_ANGLES) readonly buffer TexelSolidAngles { float texelSolidAngles[]; };
+// 0 targets, 1 points projected, 2 texels left empty, 3 targets whose p_k were all zero, 4 splats clamped
+layout(std430, binding = SSBO_PROJ_STATS) buffer ProjStats { uint projStats[8]; };
+
+uniform uint pointCount;
+uniform uint clusterSize;   // pointCount / CLUSTERS
+uniform float depthScale;   // key depth = distance x depthScale
+uniform float gatherOffset; // the shading point lifted off its surface (m)
+uniform uint frameSeed;     // progressive mode: new random points every frame
+
+const int kTexels = PROJ_RES * PROJ_RES;
+const uint kEmptyKey = 0xFFFFFFFFu;
+const uint kIndexMask = (1u << KEY_INDEX_BITS) - 1u;
+const float kDepthMax = float((1u << (32 - KEY_INDEX_BITS)) - 2u);
+const int kMaxSplat = PROJ_RES / 2;
+
+shared uint projKeys[kTexels];
+shared float clusterImportance[CLUSTERS];
+shared uint clusterStart[CLUSTERS + 1]; // prefix sums of the counts n_k
+shared float importanceTotal;
+shared vec3 partDiffuse[PROJ_GROUP];
+shared vec3 partGlossy[PROJ_GROUP];
+shared uint groupStats[8];
+
+uint hashU(uint x)
+{
+    x ^= x >> 16;
+    x *= 0x7feb352du;
+    x ^= x >> 15;
+    x *= 0x846ca68bu;
+    x ^= x >> 16;
+    return x;
+}
+
+float random01(inout uint state)
+{
+    state = hashU(state + 0x9e3779b9u);
+    return float(state >> 8) * (1.0 / 16777216.0);
+}
+
+vec3 gx = vec3(0.0), gn = vec3(0.0, 0.0, 1.0), gt = vec3(1.0, 0.0, 0.0), gb = vec3(0.0, 1.0, 0.0); // the shading point (lifted), its frame
+
+// Projects point j standing for `area` m^2 into the micro-buffer (Eq. 2, Eq. 5).
+void splat(uint j, float area)
+{
+    PointSurfel s = pointSurfels[j];
+    vec3 v = s.position - gx;
+    float d2 = dot(v, v);
+    if (!(d2 > 0.0)) return;
+    float d = sqrt(d2);
+    vec3 wl = vec3(dot(v, gt), dot(v, gb), dot(v, gn)) / d;
+    if (wl.z <= 0.0) return; // behind the tangent plane: outside the hemisphere
+    ivec2 c = clamp(ivec2(hemiOctEncode(wl) * float(PROJ_RES)), ivec2(0), ivec2(PROJ_RES - 1));
+#if SPLAT_FIXED > 0
+    int side = SPLAT_FIXED;
+#else
+    float omega = robustSolidAngle(min(area, 1e30), dot(s.normal, v) / d, d2);
+    float texels = omega / texelSolidAngles[c.y * PROJ_RES + c.x];
+    int side = int(sqrt(max(texels, 1.0)) + 0.5); // the nearest square of Omega_s / Omega_texel texels
+    if (side > kMaxSplat) {
+        side = kMaxSplat;
+        atomicAdd(groupStats[4], 1u);
+    }
+#endif
+    uint key = (uint(min(d * depthScale, kDepthMax)) << KEY_INDEX_BITS) | j;
+    ivec2 lo = max(c - (side - 1) / 2, ivec2(0));
+    ivec2 hi = min(c - (side - 1) / 2 + side - 1, ivec2(PROJ_RES - 1));
+    for (int y = lo.y; y <= hi.y; ++y)
+        for (int x = lo.x; x <= hi.x; ++x) atomicMin(projKeys[y * PROJ_RES + x], key);
+    atomicAdd(groupStats[1], 1u);
+}
+
+void main()
+{
+    uint k = gatherTargetIndex();
+    if (k >= gatherTargetCount()) return; // the whole group
+    uint lid = gl_LocalInvocationIndex;
+    GatherSample g = loadGatherSample(k);
+    gn = g.normal;
+    gt = abs(gn.x) < 0.9 ? normalize(cross(gn, vec3(1, 0, 0))) : normalize(cross(gn, vec3(0, 1, 0)));
+    gb = cross(gn, gt);
+    gx = g.position + gn * gatherOffset;
+    float cosO = dot(gn, g.wo);
+    for (int p = int(lid); p < kTexels; p += PROJ_GROUP) projKeys[p] = kEmptyKey;
+    if (lid < 8u) groupStats[lid] = 0u;
+    barrier();
+    uint seed = hashU(uint(g.texel.x) * 73856093u ^ uint(g.texel.y) * 19349663u ^ frameSeed * 2654435761u);
+
+    if (cosO > 0.0) {
+#if PROJ_MODE == 2
+        for (uint j = lid; j < pointCount; j += uint(PROJ_GROUP)) splat(j, pointSurfels[j].areaM2);
+#else
+        // 1. Exploration: N_rnd random points per cluster, Eq. 4, projected at once.
+        for (uint c = lid; c < uint(CLUSTERS); c += uint(PROJ_GROUP)) {
+            uint state = hashU(seed ^ (c * 0x85ebca6bu));
+            float importance = 0.0;
+            for (int r = 0; r < RANDOM_PER_CLUSTER; ++r) {
+                uint j = c * clusterSize + min(uint(random01(state) * float(clusterSize)), clusterSize - 1u);
+                PointSurfel s = pointSurfels[j];
+                vec3 v = s.position - gx;
+                float d2 = dot(v, v);
+                float d = sqrt(max(d2, 1e-30));
+                float f = dot(brdfEval(g.brdf, gn, g.wo, v / d), vec3(0.2126, 0.7152, 0.0722));
+                importance += pointImportance(dot(gn, v) / d, dot(s.normal, v) / d, d2, s.areaM2) * f;
+                splat(j, float(clusterSize) * s.areaM2 / float(RANDOM_PER_CLUSTER));
+            }
+#if PROJ_MODE == 1
+            importance = 1.0;
+#endif
+            clusterImportance[c] = importance;
+        }
+        barrier();
+        // 2. The carry rule, in one invocation (§4: "thread 0 goes through the PDF and assigns the number of
+        // importance samples to each cluster"); every count and the start of every cluster's samples.
+        if (lid == 0u) {
+            float total = 0.0;
+            for (int c = 0; c < CLUSTERS; ++c) total += clusterImportance[c];
+            bool uniformPdf = !(total > 0.0) || isinf(total);
+            if (uniformPdf) groupStats[3] = 1u;
+            importanceTotal = uniformPdf ? 0.0 : total;
+            uint state = hashU(seed ^ 0x27d4eb2fu);
+            float carry = 0.0;
+            uint assigned = 0u;
+            for (int c = 0; c < CLUSTERS; ++c) {
+                clusterStart[c] = assigned;
+                float p = uniformPdf ? 1.0 / float(CLUSTERS) : clusterImportance[c] / total;
+                uint n;
+                if (c == CLUSTERS - 1) {
+                    n = uint(SAMPLES) - assigned; // the float rounding of the carry: exactly N_s in all
+                } else {
+                    float fk = float(SAMPLES) * p + carry;
+                    n = uint(max(fk, 0.0));
+                    fk -= float(n);
+                    if (random01(state) < fk) {
+                        ++n;
+                        carry = fk - 1.0;
+                    } else {
+                        carry = fk;
+                    }
+                    n = min(n, uint(SAMPLES) - assigned);
+                }
+                assigned += n;
+            }
+            clusterStart[CLUSTERS] = assigned;
+        }
+        barrier();
+        // 3. Exploitation: sample i belongs to the cluster whose run of counts holds it.
+        float total = importanceTotal;
+        for (uint i = lid; i < uint(SAMPLES); i += uint(PROJ_GROUP)) {
+            int lo = 0, hi = CLUSTERS;
+            while (hi - lo > 1) {
+                int mid = (lo + hi) / 2;
+                if (clusterStart[mid] <= i)
+                    lo = mid;
+                else
+                    hi = mid;
+            }
+            uint state = hashU(seed ^ (i * 0xc2b2ae35u) ^ 0x165667b1u);
+            uint j = uint(lo) * clusterSize + min(uint(random01(state) * float(clusterSize)), clusterSize - 1u);
+            float p = total > 0.0 ? clusterImportance[lo] / total : 1.0 / float(CLUSTERS);
+            // Eq. 3's area: the cluster's, shared by the N_s p_k samples expected from it.
+            float area = float(clusterSize) * pointSurfels[j].areaM2 / max(float(SAMPLES) * p, 1e-30);
+            splat(j, area);
+        }
+#endif
+    }
+    barrier();
+
+    // 4. Resolve: each texel's nearest point, its radiance times f_r cos Omega_texel.
+    vec3 sumDiffuse = vec3(0.0), sumGlossy = vec3(0.0);
+    uint empty = 0u;
+    for (int p = int(lid); p < kTexels && cosO > 0.0; p += PROJ_GROUP) {
+        vec3 wl = hemiOctDecode((vec2(p % PROJ_RES, p / PROJ_RES) + 0.5) / float(PROJ_RES));
+        uint key = projKeys[p];
+        if (key == kEmptyKey) {
+            ++empty;
+            continue;
+        }
+        uint j = key & kIndexMask;
+        PointSurfel s = pointSurfels[j];
+        if (dot(s.normal, gx - s.position) <= 0.0) continue; // its back: black
+        vec3 radiance = unpackRadiance(pointRadiance[j]);
+        vec3 wi = gt * wl.x + gb * wl.y + gn * wl.z;
+        vec3 fd, fg;
+        brdfEvalLobes(g.brdf, gn, g.wo, wi, fd, fg);
+        float w = wl.z * texelSolidAngles[p];
+        sumDiffuse += radiance * fd * w;
+        sumGlossy += radiance * fg * w;
+    }
+    partDiffuse[lid] = sumDiffuse;
+    partGlossy[lid] = sumGlossy;
+    atomicAdd(groupStats[2], empty);
+    barrier();
+    if (lid == 0u) {
+        vec3 d = vec3(0.0), s = vec3(0.0);
+        for (int i = 0; i < PROJ_GROUP; ++i) {
+            d += partDiffuse[i];
+            s += partGlossy[i];
+        }
+        storeGather(g, k, d, s);
+        atomicAdd(projStats[0], 1u);
+        for (int i = 1; i < 8; ++i) atomicAdd(projStats[i], groupStats[i]);
+    }
+}

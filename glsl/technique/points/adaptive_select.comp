@@ -1,0 +1,72 @@
+#version 450 core
+// "adaptive-select": one level of §3.3's subdivision. First level (spacing 0 in the uniform): every pixel of
+// the 4 x 4 grid with geometry is sampled (or of the 1 x 1 grid: every pixel, without adaptive sampling).
+// Later levels: a candidate is sampled when the coherence metric over its parents exceeds epsilon, else
+// marked for interpolation. Departure: L_o is scaled by 1 / the mean luminance of the first level's
+// samples (the paper's 8-bit L_o is display-scaled; radiance here is absolute, so lambda needs a scale).
+#include "common/bindings.glsl"
+#include "technique/points/adaptive.glsl"
+#include "technique/points/bindings.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(r8ui, binding = 0) uniform uimage2D pixelState;
+layout(rgba32f, binding = 1) uniform readonly image2D lightDiffuse;
+layout(rgba32f, binding = 2) uniform readonly image2D lightGlossy;
+layout(std430, binding = SSBO_GATHER_TARGETS) writeonly buffer GatherTargets { uvec2 gatherTargets[]; };
+layout(std430, binding = SSBO_GATHER_COUNT) buffer GatherCount { uint gatherCount; };
+uniform int firstGrid;   // > 0: the first level, every pixel of this grid
+uniform float epsilon;
+uniform float lambda;
+uniform float radianceScale; // 1 / the mean outgoing luminance of the first level's samples (0: none)
+
+float outgoingLuminance(ivec2 px)
+{
+    vec3 l = texelFetch(gDiffuse, px, 0).rgb * imageLoad(lightDiffuse, px).rgb + imageLoad(lightGlossy, px).rgb;
+    return dot(l, vec3(0.2126, 0.7152, 0.0722));
+}
+
+void main()
+{
+    ivec2 px = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(px, viewSize))) return;
+    bool take = false;
+    if (firstGrid > 0) {
+        if (!onGrid(px, firstGrid)) return;
+        if (!hasGeometry(px)) {
+            imageStore(pixelState, px, uvec4(kNoGeometry));
+            return;
+        }
+        take = true;
+    } else {
+        int halfSpacing = spacing / 2;
+        if (!onGrid(px, halfSpacing) || onGrid(px, spacing)) return;
+        if (!hasGeometry(px)) {
+            imageStore(pixelState, px, uvec4(kNoGeometry));
+            return;
+        }
+        ivec2 lo, hi;
+        parentBox(px, spacing, lo, hi);
+        ivec2 parents[4] = ivec2[4](lo, ivec2(hi.x, lo.y), ivec2(lo.x, hi.y), hi);
+        vec3 pc = texelFetch(gPosition, px, 0).xyz, nc = texelFetch(gNormal, px, 0).xyz;
+        float geometric = 0.0, l[4];
+        for (int i = 0; i < 4; ++i) {
+            if (!hasGeometry(parents[i])) {
+                geometric = 1e30; // a parent off the surface: an edge
+                l[i] = 0.0;
+                continue;
+            }
+            geometric = max(geometric, geometricTerm(parents[i], pc, nc));
+            l[i] = outgoingLuminance(parents[i]) * radianceScale;
+        }
+        float radiance = 0.0;
+        for (int j = 0; j < 4; ++j)
+            for (int k = j + 1; k < 4; ++k) radiance += abs(l[j] - l[k]);
+        take = geometric + lambda * radiance > epsilon;
+        if (!take) imageStore(pixelState, px, uvec4(kInterpolated));
+    }
+    if (take) {
+        imageStore(pixelState, px, uvec4(kSampled));
+        uint k = atomicAdd(gatherCount, 1u);
+        gatherTargets[k] = uvec2(uint(px.x) | (uint(px.y) << 16), 0u); // level 0, no neighbour mask
+    }
+}

@@ -1,0 +1,23 @@
+#version 450 core
+// "gather-select": the valid fragments of the frame's multiresolution buffer (common/multires.glsl: a
+// patch without discontinuity whose parent has one) listed for the gather, with the mask of same-surface
+// neighbours the upsampling may interpolate with. The list's order follows thread timing, but each
+// target's result depends on its own texel only, so the image does not.
+#include "common/multires.glsl"
+#include "technique/points/bindings.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(std430, binding = SSBO_GATHER_TARGETS) writeonly buffer GatherTargets { uvec2 gatherTargets[]; };
+layout(std430, binding = SSBO_GATHER_COUNT) buffer GatherCount { uint gatherCount; };
+uniform ivec2 flattenedSize;
+
+void main()
+{
+    ivec2 a = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(a, flattenedSize))) return;
+    int level;
+    ivec2 t;
+    if (!locateInFlattened(a, level, t) || !fragmentValid(level, t)) return;
+    uint k = atomicAdd(gatherCount, 1u);
+    gatherTargets[k] = uvec2(uint(a.x) | (uint(a.y) << 16), sameSurfaceNeighbours(level, t) | (uint(level) << 16));
+}

@@ -1,0 +1,41 @@
+#version 450 core
+// "point-update": every point's surfel from its (triangle, barycentrics) on the scene as it is now
+// (micro-rendering §2.1, "Deforming and Moving Geometry"; point projection §4 "Scene Points": "we simply
+// update them using their bary coords"): position, interpolated normal, and the diffuse colour of its
+// material times its base-colour texture at the interpolated uv, as the G-buffer computes it.
+#define SCENE_GEOMETRY
+#include "common/brdf.glsl"
+#include "common/scene.glsl"
+#define POINT_SAMPLES
+#define POINT_SURFELS
+#include "technique/points/point_cloud.glsl"
+
+layout(local_size_x = 64) in;
+layout(binding = UNIT_BASE_COLOR) uniform sampler2DArray baseColorTextures;
+uniform uint pointCount;
+
+void main()
+{
+    uint i = gl_GlobalInvocationID.x;
+    if (i >= pointCount) return;
+    PointSample s = pointSamples[i];
+    uint tri = s.triangle;
+    vec2 b = s.barycentrics;
+    Material m = materials[sceneTriangleMaterial(tri)];
+    vec3 baseColor = m.baseColorMetallic.rgb;
+#ifdef TEXTURES
+    if (m.flags.x >= 0) {
+        vec2 uv = (1.0 - b.x - b.y) * sceneVertexUv(sceneVertexIndex(tri, 0)) + b.x * sceneVertexUv(sceneVertexIndex(tri, 1)) +
+                  b.y * sceneVertexUv(sceneVertexIndex(tri, 2));
+        baseColor *= textureLod(baseColorTextures, vec3(uv, float(m.flags.x)), 0.0).rgb;
+    }
+#endif
+    BrdfParams p = brdfParams(baseColor, m.baseColorMetallic.a, m.emissionRoughness.a, m.specularColorSpecular.a,
+                              m.specularColorSpecular.rgb);
+    PointSurfel o;
+    o.position = sceneTrianglePoint(tri, b);
+    o.areaM2 = s.areaM2;
+    o.normal = sceneTriangleNormal(tri, b);
+    o.diffuse = packUnorm4x8(vec4(clamp(p.diffuse, 0.0, 1.0), 1.0));
+    pointSurfels[i] = o;
+}

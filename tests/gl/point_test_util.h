@@ -1,0 +1,169 @@
+// What the point-based gathers' tests share (microrender_test.cpp, pointproj_test.cpp): a closed furnace
+// box, rendering a technique and reading its indirect light and counters, and the path tracer's
+// one-bounce indirect light of the same view (cached on disk).
+#pragma once
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "core/image.h"
+#include "core/scene.h"
+#include "gl/renderer.h"
+#include "ref/reference.h"
+#include "tests/image_expect.h"
+
+namespace bounce::testing {
+
+using Sets = std::vector<std::pair<std::string, std::string>>;
+
+struct PointRender {
+    core::Image indirect;
+    core::Image mask;   // 1 where the G-buffer has geometry
+    core::Image glossy; // the G-buffer's specular weight w (1 on cornell-glossy's metal block)
+    std::vector<gl::Counter> counters;
+    double counter(const std::string& name) const;
+};
+
+// A closed box, 1 m on a side, inward-facing, every surface Lambertian albedo rho emitting L_e, one mesh;
+// the camera inside looking at a corner. One bounce of indirect light is exactly rho^2 L_e everywhere
+// (every point reflects rho L_e, and every direction sees a point).
+inline core::Scene pointFurnaceBox(float rho, float emission)
+{
+    core::Scene s;
+    s.name = "point-furnace";
+    core::Material m;
+    m.name = "furnace";
+    m.baseColor = glm::vec3(rho);
+    m.metallic = 0.0f;
+    m.specular = 0.0f;
+    m.emission = glm::vec3(emission);
+    s.materials.push_back(m);
+    core::Mesh mesh;
+    mesh.name = "box";
+    const auto quad = [&](glm::vec3 a, glm::vec3 b, glm::vec3 c, glm::vec3 d) {
+        const glm::vec3 n = glm::normalize(glm::cross(b - a, c - a));
+        const auto base = std::uint32_t(mesh.positions.size());
+        for (const glm::vec3& p : {a, b, c, d}) {
+            mesh.positions.push_back(p);
+            mesh.normals.push_back(n);
+        }
+        for (std::uint32_t i : {0u, 1u, 2u, 0u, 2u, 3u}) mesh.indices.push_back(base + i);
+    };
+    quad({0, 0, 0}, {0, 0, 1}, {1, 0, 1}, {1, 0, 0});
+    quad({0, 1, 0}, {1, 1, 0}, {1, 1, 1}, {0, 1, 1});
+    quad({0, 0, 0}, {0, 1, 0}, {0, 1, 1}, {0, 0, 1});
+    quad({1, 0, 0}, {1, 0, 1}, {1, 1, 1}, {1, 1, 0});
+    quad({0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0});
+    quad({0, 0, 1}, {0, 1, 1}, {1, 1, 1}, {1, 0, 1});
+    s.meshes.push_back(mesh);
+    s.camera.position = {0.5f, 0.5f, 0.9f};
+    s.camera.forward = glm::normalize(glm::vec3(-0.3f, -0.2f, -1.0f));
+    s.camera.up = glm::normalize(glm::cross(glm::cross(s.camera.forward, glm::vec3(0, 1, 0)), s.camera.forward));
+    s.camera.yfovRad = 1.2f;
+    return s;
+}
+
+inline double PointRender::counter(const std::string& name) const
+{
+    for (const gl::Counter& c : counters)
+        if (c.name == name) return c.value;
+    return -1.0;
+}
+
+// Renders `frames` frames of `technique` with its defaults changed by `sets` (shadow maps 512^2).
+inline PointRender renderPoints(const core::Scene& scene, const std::string& technique, const Sets& sets, int w, int h,
+                                int frames = 1)
+{
+    const gl::TechniqueInfo& info = gl::findTechnique(technique);
+    gl::ParamValues frameValues(gl::frameParams()), values(info.params);
+    frameValues.setValue("shadow.size", 512);
+    for (const auto& [k, v] : sets) values.set(info.params, k, v);
+    gl::Renderer r(scene, technique, frameValues, values, w, h);
+    for (int f = 0; f < frames; ++f) r.renderFrame();
+    PointRender out{r.frame().read(r.frame().indirect()), core::Image(w, h), core::Image(w, h), r.counters()};
+    const std::vector<float> p = r.frame().position().readFloats(0, 4);
+    const std::vector<float> d = r.frame().diffuse().readFloats(0, 4);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            out.mask.set(x, h - 1 - y, glm::vec3(p[(std::size_t(y) * w + x) * 4 + 3]));
+            out.glossy.set(x, h - 1 - y, glm::vec3(d[(std::size_t(y) * w + x) * 4 + 3]));
+        }
+    return out;
+}
+
+// The path tracer's onebounce-indirect light (what a point gather adds to `direct`), `spp` samples.
+inline core::Image pathTracedOneBounce(const core::Scene& scene, int w, int h, int spp)
+{
+    ref::RenderSettings s;
+    s.paths = ref::LightPaths::OneBounceIndirect;
+    s.width = w;
+    s.height = h;
+    s.spp = spp;
+    s.seed = 5;
+    s.progress = false;
+    const ref::RenderResult r = ref::cachedReference(scene, scene.camera, s);
+    std::printf("[ reference] %s onebounce-indirect %dx%d, %d spp%s\n", scene.name.c_str(), w, h, r.spp,
+                r.fromCache ? " (cached)" : "");
+    return r.image;
+}
+
+inline double meanOver(const core::Image& img, const core::Image& mask, int channel)
+{
+    double sum = 0.0;
+    int n = 0;
+    for (int y = 0; y < img.height; ++y)
+        for (int x = 0; x < img.width; ++x)
+            if (mask.at(x, y).x > 0.0f) {
+                sum += img.at(x, y)[channel];
+                ++n;
+            }
+    return n ? sum / n : 0.0;
+}
+
+inline bool allFiniteNonNegative(const core::Image& img)
+{
+    for (int y = 0; y < img.height; ++y)
+        for (int x = 0; x < img.width; ++x)
+            for (int c = 0; c < 3; ++c)
+                if (!std::isfinite(img.at(x, y)[c]) || img.at(x, y)[c] < 0.0f) return false;
+    return true;
+}
+
+// The mean of the image's channels over a mask, and the error figures against the path tracer.
+struct Versus {
+    double meanRatio; // mean(got) / mean(want) over the mask
+    double relRmse;
+};
+
+inline Versus versus(const core::Image& got, const core::Image& want, const std::vector<bool>& mask)
+{
+    double g = 0.0, w = 0.0;
+    for (int y = 0; y < got.height; ++y)
+        for (int x = 0; x < got.width; ++x)
+            if (mask[std::size_t(y) * got.width + x])
+                for (int c = 0; c < 3; ++c) g += got.at(x, y)[c], w += want.at(x, y)[c];
+    return {w > 0.0 ? g / w : 0.0, measureImages(got, want, ImageMetric::relativeRmse(), &mask)};
+}
+
+// Pixels whose 3 x 3 neighbourhood lies inside `m` (> 0.5) and inside the image: the path tracer box-filters
+// each pixel, the gather shades its centre, so pixels on a silhouette or on the image's border (the Cornell
+// box's open front meets the border here) are left out.
+inline std::vector<bool> interiorOf(const core::Image& m)
+{
+    std::vector<bool> out(std::size_t(m.width) * m.height, false);
+    for (int y = 1; y + 1 < m.height; ++y)
+        for (int x = 1; x + 1 < m.width; ++x) {
+            bool all = true;
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dx = -1; dx <= 1; ++dx) all = all && m.at(x + dx, y + dy).x > 0.5f;
+            out[std::size_t(y) * m.width + x] = all;
+        }
+    return out;
+}
+
+} // namespace bounce::testing

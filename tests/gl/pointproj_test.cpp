@@ -1,0 +1,183 @@
+// Importance-driven point projection (gl/technique/pointproj/): the furnace (rho L, importance-driven and
+// uniform), the path tracer's one bounce on cornell-spot and cornell-point, importance against uniform
+// projection at the same budget (Fig. 9) and adaptive against fixed splats (Fig. 7) both against projecting
+// every point, the adaptive pixel selection, progressive accumulation, and the named hard cases: every
+// random point behind the tangent plane (p_k all zero: uniform), a tiny p_k (huge splats clamped), 1 x 1
+// and 3 x 5 viewports. Tiny images: llvmpipe on two cores.
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "core/cornell.h"
+#include "core/image.h"
+#include "tests/gl/gl_test_fixture.h"
+#include "tests/gl/point_test_util.h"
+#include "tests/image_expect.h"
+
+namespace bounce {
+namespace {
+
+using testing::allFiniteNonNegative;
+using testing::interiorOf;
+using testing::meanOver;
+using testing::PointRender;
+using testing::renderPoints;
+using testing::versus;
+using testing::Versus;
+
+class PointprojTest : public GlTest {};
+
+const testing::Sets kSmall = {{"points", "16384"}, {"adaptive", "0"}, {"progressive", "0"}};
+
+testing::Sets with(testing::Sets base, const testing::Sets& more)
+{
+    for (const auto& kv : more) base.push_back(kv);
+    return base;
+}
+
+// Furnace: every point reflects rho L_e and the texels' f_r cos Omega sum to rho, so a full micro-buffer
+// gives rho (rho L_e). Splats are the nearest square of Omega_s / Omega_texel texels at least one, and
+// points land where they project, so some texels stay empty (black): projecting all 16384 points with
+// their own areas (Fig. 9's brute force) measured 5.1% empty texels and a mean 2.5% low; about 3K sampled
+// points (1024 random + 2048 by importance, each sized by Eq. 5 for the share of its cluster it stands
+// for) 11.6% / 11.1% empty and 5.4% / 6.8% low (importance / uniform).
+TEST_F(PointprojTest, FurnaceReturnsRhoL)
+{
+    constexpr float rho = 0.5f, le = 1.0f;
+    const core::Scene scene = testing::pointFurnaceBox(rho, le);
+    for (const char* projection : {"all", "importance", "uniform"}) {
+        SCOPED_TRACE(projection);
+        const PointRender r = renderPoints(scene, "pointproj", with(kSmall, {{"projection", projection}}), 10, 10);
+        const double mean = meanOver(r.indirect, r.mask, 0);
+        const double empty = r.counter("emptyTexelsPerPixel");
+        std::printf("[ furnace  ] %s: mean %.4f (closed form %.4f), empty texels per pixel %.1f\n", projection, mean,
+                    rho * rho * le, empty);
+        if (std::string(projection) == "all") {
+            EXPECT_NEAR(mean, rho * rho * le, 0.04 * rho * rho * le);
+            EXPECT_LT(empty, 0.08 * 32 * 32);
+        } else {
+            EXPECT_GT(mean, 0.88 * rho * rho * le);
+            EXPECT_LT(mean, 1.01 * rho * rho * le);
+            EXPECT_LT(empty, 0.2 * 32 * 32);
+        }
+    }
+}
+
+// Against the path tracer's one bounce, every pixel gathered (interior pixels, 24 x 24, 8192 spp).
+// Measured (mean ratio, relative RMSE): cornell-spot 1.031, 0.253; cornell-point 1.019, 0.221.
+TEST_F(PointprojTest, MatchesThePathTracersOneBounce)
+{
+    constexpr int size = 24;
+    for (const char* name : {"cornell-spot", "cornell-point"}) {
+        SCOPED_TRACE(name);
+        const core::Scene scene = core::makeCornell(name);
+        const core::Image want = testing::pathTracedOneBounce(scene, size, size, 8192);
+        const PointRender r = renderPoints(scene, "pointproj", {{"adaptive", "0"}, {"progressive", "0"}}, size, size);
+        const std::vector<bool> mask = interiorOf(r.mask);
+        const Versus v = versus(r.indirect, want, mask);
+        std::printf("[ vs ref   ] %s: mean ratio %.4f, relative RMSE %.4f\n", name, v.meanRatio, v.relRmse);
+        EXPECT_NEAR(v.meanRatio, 1.0, 0.08);
+        EXPECT_LT(v.relRmse, 0.35);
+        if (::testing::Test::HasFailure()) testing::writeComparisonImages(name, r.indirect, want);
+    }
+}
+
+// Fig. 9 at a small scale: at the same budget the importance-driven micro-buffers are nearer the brute force
+// (every point projected) than uniformly drawn ones, on cornell-spot's pixels (16 x 16, every pixel).
+TEST_F(PointprojTest, ImportanceIsNearerTheBruteForceThanUniform)
+{
+    const core::Scene scene = core::makeCornell("cornell-spot");
+    const PointRender all = renderPoints(scene, "pointproj", with(kSmall, {{"projection", "all"}}), 16, 16);
+    const std::vector<bool> mask = interiorOf(all.mask);
+    double err[2];
+    for (int k = 0; k < 2; ++k) {
+        const PointRender r =
+            renderPoints(scene, "pointproj", with(kSmall, {{"projection", k == 0 ? "importance" : "uniform"}}), 16, 16);
+        err[k] = versus(r.indirect, all.indirect, mask).relRmse;
+    }
+    std::printf("[ fig 9    ] relative RMSE against the brute force: importance %.4f, uniform %.4f\n", err[0], err[1]);
+    EXPECT_LT(err[0], err[1]);
+}
+
+// Hard cases: a lit floor alone (every random point lies in the shading point's tangent plane: all p_k
+// zero, the uniform fallback, and nothing to gather), a cornell-spot corner close up (tiny p_k: huge
+// splats clamped), 1 x 1 and 3 x 5 viewports with adaptive sampling, the light 1 mm under the ceiling.
+TEST_F(PointprojTest, HardCases)
+{
+    core::Scene floor;
+    floor.name = "floor";
+    core::Material m;
+    m.baseColor = glm::vec3(0.8f);
+    m.metallic = 0.0f;
+    m.specular = 0.0f;
+    floor.materials.push_back(m);
+    core::Mesh mesh;
+    mesh.positions = {{-1, 0, -1}, {-1, 0, 1}, {1, 0, 1}, {1, 0, -1}};
+    mesh.normals = std::vector<glm::vec3>(4, glm::vec3(0, 1, 0));
+    mesh.indices = {0, 1, 2, 0, 2, 3};
+    floor.meshes.push_back(mesh);
+    core::Light light;
+    light.type = core::LightType::Point;
+    light.position = {0.0f, 1.0f, 0.0f};
+    light.intensity = glm::vec3(1.0f);
+    floor.lights.push_back(light);
+    floor.camera.position = {0.0f, 1.5f, 2.0f};
+    floor.camera.forward = glm::normalize(glm::vec3(0.0f, -1.5f, -2.0f));
+    floor.camera.up =
+        glm::normalize(glm::cross(glm::cross(floor.camera.forward, glm::vec3(0, 1, 0)), floor.camera.forward));
+    ASSERT_EQ(floor.validate(), "");
+    const PointRender flat = renderPoints(floor, "pointproj", with(kSmall, {{"points", "4096"}}), 8, 8);
+    EXPECT_TRUE(allFiniteNonNegative(flat.indirect));
+    EXPECT_GT(flat.counter("uniformFallbacks"), 0.0) << "no pixel had all its p_k zero";
+    EXPECT_EQ(meanOver(flat.indirect, flat.mask, 0), 0.0) << "a plane cannot light itself";
+
+    core::Scene corner = core::makeCornell("cornell-spot");
+    corner.camera.position = {0.50f, 0.05f, 0.50f};
+    corner.camera.forward = glm::normalize(glm::vec3(0.5496f, 0.0f, 0.5592f) - corner.camera.position);
+    corner.camera.up = {0.0f, 1.0f, 0.0f};
+    const PointRender close = renderPoints(corner, "pointproj", kSmall, 8, 8);
+    EXPECT_TRUE(allFiniteNonNegative(close.indirect));
+    EXPECT_GT(close.counter("clampedSplats"), 0.0) << "no splat reached the clamp";
+
+    for (const auto& [w, h] : std::vector<std::pair<int, int>>{{1, 1}, {3, 5}}) {
+        const PointRender r = renderPoints(core::makeCornell("cornell-spot"), "pointproj",
+                                           {{"points", "4096"}, {"progressive", "0"}}, w, h);
+        EXPECT_TRUE(allFiniteNonNegative(r.indirect)) << w << "x" << h;
+    }
+    const PointRender ceiling = renderPoints(core::makeCornell("cornell-point-ceiling"), "pointproj", kSmall, 8, 8);
+    EXPECT_TRUE(allFiniteNonNegative(ceiling.indirect));
+}
+
+// Adaptive sampling (§3.3) gathers at a subset and interpolates the rest near the full-resolution result;
+// progressive frames (new random points each) average towards it, and the mean restarts when the camera moves.
+TEST_F(PointprojTest, AdaptiveSamplingAndProgressiveFrames)
+{
+    const core::Scene scene = core::makeCornell("cornell-spot");
+    constexpr int size = 32;
+    const testing::Sets base = {{"points", "16384"}, {"progressive", "0"}};
+    const PointRender full = renderPoints(scene, "pointproj", with(base, {{"adaptive", "0"}}), size, size);
+    const PointRender adaptive = renderPoints(scene, "pointproj", base, size, size);
+    const std::vector<bool> mask = interiorOf(full.mask);
+    const double err = versus(adaptive.indirect, full.indirect, mask).relRmse;
+    std::printf("[ adaptive ] %0.f of %d pixels gathered, relative RMSE against every pixel %.4f\n",
+                adaptive.counter("gatherPixels"), size * size, err);
+    EXPECT_LT(adaptive.counter("gatherPixels"), full.counter("gatherPixels"));
+    EXPECT_LT(err, 0.35);
+
+    const core::Image want = testing::pathTracedOneBounce(scene, 24, 24, 8192);
+    const testing::Sets prog = {{"points", "16384"}, {"adaptive", "0"}, {"progressive", "1"}};
+    const PointRender one = renderPoints(scene, "pointproj", prog, 24, 24, 1);
+    const PointRender six = renderPoints(scene, "pointproj", prog, 24, 24, 6);
+    const std::vector<bool> m24 = interiorOf(one.mask);
+    const double e1 = versus(one.indirect, want, m24).relRmse, e6 = versus(six.indirect, want, m24).relRmse;
+    std::printf("[ progress ] relative RMSE against the path tracer: 1 frame %.4f, 6 frames %.4f (%0.f accumulated)\n",
+                e1, e6, six.counter("accumulatedFrames"));
+    EXPECT_EQ(six.counter("accumulatedFrames"), 6.0);
+    EXPECT_LT(e6, e1);
+}
+
+} // namespace
+} // namespace bounce
