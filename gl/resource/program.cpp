@@ -2,7 +2,6 @@
 
 #include <cstdlib>
 #include <fstream>
-#include <set>
 #include <sstream>
 
 #include <glm/gtc/type_ptr.hpp>
@@ -34,14 +33,21 @@ std::string readFile(const std::string& path)
     return s.str();
 }
 
-// Expands #include "x" recursively. Source-string numbers in #line directives index `files`, so a
-// compile error can be mapped back to its file.
-void expand(const std::string& rel, std::vector<std::string>& files, std::set<std::string>& seen,
+// Expands #include "x" recursively, wherever it appears: every shared file has its own #ifndef guard, so a
+// repeat expands to nothing. Expanding a file only once instead is wrong when its first #include sits in a
+// branch the preprocessor drops (#ifdef RAY_CAST ... #include "common/raycast.glsl"), which would take the
+// file's text out of every later, unconditional include too. Source-string numbers in #line directives
+// index `files` (one entry per file), so a compile error can be mapped back to its file; an include
+// cycle is an error.
+void expand(const std::string& rel, std::vector<std::string>& files, std::vector<std::string>& stack,
             std::ostringstream& out, bool top)
 {
-    if (!seen.insert(rel).second) return; // each file once: includes act as include guards
-    const int index = int(files.size());
-    files.push_back(rel);
+    for (const std::string& open : stack)
+        if (open == rel) throw ShaderError(stack.back() + ": #include cycle through '" + rel + "'");
+    int index = 0;
+    while (index < int(files.size()) && files[std::size_t(index)] != rel) ++index;
+    if (index == int(files.size())) files.push_back(rel);
+    stack.push_back(rel);
     std::istringstream in(readFile(glslRoot() + "/" + rel));
     std::string line;
     int n = 0;
@@ -53,7 +59,7 @@ void expand(const std::string& rel, std::vector<std::string>& files, std::set<st
             const auto a = line.find('"'), b = line.rfind('"');
             if (a == std::string::npos || b <= a)
                 throw ShaderError(rel + ":" + std::to_string(n) + ": malformed #include");
-            expand(line.substr(a + 1, b - a - 1), files, seen, out, false);
+            expand(line.substr(a + 1, b - a - 1), files, stack, out, false);
             out << "#line " << n + 1 << " " << index << "\n";
             continue;
         }
@@ -61,13 +67,14 @@ void expand(const std::string& rel, std::vector<std::string>& files, std::set<st
         if (top && p != std::string::npos && line.compare(p, 8, "#version") == 0)
             out << "@DEFINES@\n#line " << n + 1 << " 0\n";
     }
+    stack.pop_back();
 }
 
 std::string preprocess(const std::string& rel, const std::vector<Define>& defines, std::vector<std::string>& files)
 {
-    std::set<std::string> seen;
+    std::vector<std::string> stack;
     std::ostringstream out;
-    expand(rel, files, seen, out, true);
+    expand(rel, files, stack, out, true);
     std::string src = out.str();
     std::string defs;
     for (const Define& d : defines) defs += "#define " + d.name + " " + d.value + "\n";

@@ -1,5 +1,6 @@
-// GLSL programs loaded from glsl/ with #include "path" (resolved against the glsl/ root, each file at
-// most once) and #defines injected after #version. Uniforms are set by name with glProgramUniform*.
+// GLSL programs loaded from glsl/ with #include "path" (resolved against the glsl/ root, expanded where
+// it stands; each file's own #ifndef guard keeps it to one copy) and #defines injected
+// after #version. Uniforms are set by name with glProgramUniform*.
 #pragma once
 
 #include <map>

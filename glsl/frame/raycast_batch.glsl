@@ -5,6 +5,9 @@
 // One query per pass: on llvmpipe (Mesa 22.3), a fragment shader that walked the BVH twice (closestHit,
 // then anyHit) lost the first walk's result on about a sixth of the rays, while each walk alone, and
 // both in a compute shader, agreed with Embree.
+#ifndef BOUNCE_RAYCAST_BATCH_GLSL
+#define BOUNCE_RAYCAST_BATCH_GLSL
+
 #include "common/raycast.glsl"
 
 
@@ -42,3 +45,5 @@ void castBatchRay(uint i)
         batchResults[i].any = anyHit(ray.originTMin.xyz, ray.dirTMax.xyz, ray.originTMin.w, ray.dirTMax.w) ? 1u : 0u;
     }
 }
+
+#endif
