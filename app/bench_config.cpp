@@ -123,10 +123,9 @@ void checkParameters(const gl::TechniqueInfo& info, const std::vector<std::strin
 // A run's "set" and the cartesian product of its "sweep" lists, one setting per combination.
 std::vector<BenchSetting> expandRun(const json& run, const std::string& key)
 {
-    allowOnly(
-        run, key,
-        {"technique", "set", "sweep", "against", "temporalFrames", "size", "scenes", "warmup", "frames", "curve",
-         "comment"});
+    allowOnly(run, key,
+              {"technique", "set", "sweep", "against", "temporalFrames", "size", "scenes", "warmup", "frames", "curve",
+               "comment"});
     if (!run.contains("technique")) refuse(key + ".technique", "missing: every run names its technique");
     const gl::TechniqueInfo& info = technique(run["technique"], key + ".technique");
     BenchSetting base;
@@ -224,8 +223,9 @@ BenchConfig readBenchConfig(const std::string& path, const std::string& cacheDir
     // The whole file is checked before anything runs or is written: its shape, every key, type and
     // range, the scenes, the techniques and their parameters against their declarations.
     if (!config.is_object()) refuse("the file", "must be an object {\"runs\": [...], ...}, not " + typeText(config));
-    allowOnly(config, "",
-              {"comment", "size", "warmup", "frames", "reference", "scenes", "runs", "compareTo", "rays", "pathTracerSpp"});
+    allowOnly(
+        config, "",
+        {"comment", "size", "warmup", "frames", "reference", "scenes", "runs", "compareTo", "rays", "pathTracerSpp"});
     if (!config.contains("runs")) refuse("runs", "missing: a bench config lists its runs (an empty sweep is an error)");
     BenchConfig c;
     if (config.contains("size")) size(config["size"], "size", c.width, c.height);

@@ -47,5 +47,4 @@ std::string recordText(const nlohmann::json& record);
 // efficiency when this renderer's ceilings are cached (`bounce probe`).
 void printPassTable(gl::Renderer& renderer, const std::string& glRenderer);
 
-
 } // namespace bounce::app

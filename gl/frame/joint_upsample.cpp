@@ -24,8 +24,8 @@ void JointUpsample::run(Frame& coarse, Frame& full, PassTimers& timers)
     coarse.normal().bind(UNIT_UPSAMPLE_COARSE_NORMAL);
     full.normal().bind(UNIT_UPSAMPLE_FULL_NORMAL);
     program_.set("coarseSize", glm::ivec2(coarse.width(), coarse.height()));
-    program_.set("scale", glm::vec2(float(coarse.width()) / float(full.width()),
-                                    float(coarse.height()) / float(full.height())));
+    program_.set("scale",
+                 glm::vec2(float(coarse.width()) / float(full.width()), float(coarse.height()) / float(full.height())));
     program_.set("depthTolerance", depthTolerance);
     program_.set("normalTolerance", normalTolerance);
     program_.use();

@@ -6,8 +6,8 @@
 #include "gl/technique/isr/isr_technique.h"
 #include "gl/technique/isr/multires_technique.h"
 #include "gl/technique/isr/rsm_technique.h"
-#include "gl/technique/photon/photon_technique.h"
 #include "gl/technique/microrender/microrender_technique.h"
+#include "gl/technique/photon/photon_technique.h"
 #include "gl/technique/pointproj/pointproj_technique.h"
 #include "gl/technique/technique.h"
 

@@ -133,8 +133,7 @@ TEST_P(Conformance, Technique)
         for (const auto& [w, h] : sizes) {
             SCOPED_TRACE(info.name + " on " + sceneName + " at " + std::to_string(w) + "x" + std::to_string(h));
             std::unique_ptr<gl::Renderer> r;
-            ASSERT_NO_THROW(
-                r = std::make_unique<gl::Renderer>(scene, info.name, frameValues, quickValues(info), w, h));
+            ASSERT_NO_THROW(r = std::make_unique<gl::Renderer>(scene, info.name, frameValues, quickValues(info), w, h));
             r->renderFrame(false);
             r->renderFrame(true);
             bounce::gl::checkGlError("the conformance frame");

@@ -139,6 +139,8 @@ TechniqueInfo microrenderTechniqueInfo()
         }
         info.params.push_back(p);
     }
+    // Every pass with a small cloud and 8^2 micro-buffers: the tests' cheap settings.
+    info.quickSets = {"points=4096", "microBuffer=8"};
     info.create = [](Frame& frame, const ParamValues& v) -> std::unique_ptr<Technique> {
         MicrorenderSettings s;
         s.points = v.getInt("points");

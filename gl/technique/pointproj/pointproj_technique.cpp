@@ -137,6 +137,8 @@ TechniqueInfo pointprojTechniqueInfo()
         {"bounceNodes", ParamType::Int, 4096, 64, 1048576,
          "gather locations of each extra bounce: one per run of points / this many", true},
     };
+    // Every pass with a small cloud and fewer samples per pixel: the tests' cheap settings.
+    info.quickSets = {"points=4096", "clusters=64", "samples=256"};
     info.create = [](Frame& frame, const ParamValues& v) -> std::unique_ptr<Technique> {
         const std::vector<ParamDecl>& decls = pointprojTechniqueInfo().params;
         PointprojSettings s;
