@@ -26,6 +26,7 @@
 #include "core/cornell.h"
 #include "gl/renderer.h"
 #include "gl/technique/technique.h"
+#include "tests/gl/closed_box.h"
 #include "tests/gl/gl_test_fixture.h"
 
 namespace bounce {
@@ -34,42 +35,10 @@ namespace {
 constexpr float kFurnaceAlbedo = 0.5f;
 constexpr float kFurnaceEmission = 1.0f; // W/(m^2 sr)
 
-// A closed box, 1 m on a side, inward-facing, every surface Lambertian albedo rho and emitting L_e, in one
-// mesh (so that its emitters share one shadow cube); the camera inside, looking at a corner.
+// The furnace: a closed box, every surface albedo rho emitting L_e (tests/gl/closed_box.h).
 core::Scene furnaceBox(float rho, float emission)
 {
-    core::Scene s;
-    s.name = "furnace";
-    core::Material m;
-    m.name = "furnace";
-    m.baseColor = glm::vec3(rho);
-    m.metallic = 0.0f;
-    m.specular = 0.0f;
-    m.emission = glm::vec3(emission);
-    s.materials.push_back(m);
-    core::Mesh mesh;
-    mesh.name = "box";
-    const auto quad = [&](glm::vec3 a, glm::vec3 b, glm::vec3 c, glm::vec3 d) {
-        const glm::vec3 n = glm::normalize(glm::cross(b - a, c - a));
-        const auto base = std::uint32_t(mesh.positions.size());
-        for (const glm::vec3& p : {a, b, c, d}) {
-            mesh.positions.push_back(p);
-            mesh.normals.push_back(n);
-        }
-        for (std::uint32_t i : {0u, 1u, 2u, 0u, 2u, 3u}) mesh.indices.push_back(base + i);
-    };
-    // Counter-clockwise seen from inside: normals point into the box.
-    quad({0, 0, 0}, {0, 0, 1}, {1, 0, 1}, {1, 0, 0}); // floor, +y
-    quad({0, 1, 0}, {1, 1, 0}, {1, 1, 1}, {0, 1, 1}); // ceiling, -y
-    quad({0, 0, 0}, {0, 1, 0}, {0, 1, 1}, {0, 0, 1}); // x = 0, +x
-    quad({1, 0, 0}, {1, 0, 1}, {1, 1, 1}, {1, 1, 0}); // x = 1, -x
-    quad({0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}); // z = 0, +z
-    quad({0, 0, 1}, {0, 1, 1}, {1, 1, 1}, {1, 0, 1}); // z = 1, -z
-    s.meshes.push_back(mesh);
-    s.camera.position = {0.5f, 0.5f, 0.9f};
-    s.camera.forward = glm::normalize(glm::vec3(-0.3f, -0.2f, -1.0f));
-    s.camera.up = glm::normalize(glm::cross(glm::cross(s.camera.forward, glm::vec3(0, 1, 0)), s.camera.forward));
-    s.camera.yfovRad = 1.2f;
+    core::Scene s = testing::closedBox("furnace", rho, emission);
     EXPECT_EQ(s.validate(), "");
     return s;
 }

@@ -228,12 +228,7 @@ TEST_F(PhotonClustersTest, OppositeNormalsKeepAUnitNormal)
 TEST_F(PhotonClustersTest, AlphaIsPerSceneSize)
 {
     const core::Scene scene = core::makeCornell("cornell-area");
-    core::Scene big = scene;
-    for (core::Mesh& m : big.meshes)
-        for (glm::vec3& p : m.positions) p *= 1000.0f;
-    big.camera.position *= 1000.0f;
-    big.camera.znear *= 1000.0f;
-    big.camera.zfar *= 1000.0f;
+    const core::Scene big = photontest::scaledScene(scene, 1000.0f);
     gl::ShadingClusterSettings s;
     s.clusters = 150;
     s.temporal = false;

@@ -242,12 +242,7 @@ TEST_F(PhotonTechniqueTest, LightUnderTheCeilingStaysFiniteAndConverges)
 TEST_F(PhotonTechniqueTest, SceneScaledByAThousandGivesTheSameImage)
 {
     const core::Scene scene = core::makeCornell("cornell-area");
-    core::Scene big = scene;
-    for (core::Mesh& m : big.meshes)
-        for (glm::vec3& p : m.positions) p *= 1000.0f;
-    big.camera.position *= 1000.0f;
-    big.camera.znear *= 1000.0f;
-    big.camera.zfar *= 1000.0f;
+    const core::Scene big = photontest::scaledScene(scene, 1000.0f);
     const Rendered a = render(scene, 48, 48, testValues({{"temporal", 0}}));
     const Rendered b = render(big, 48, 48, testValues({{"temporal", 0}}));
     const double error =

@@ -15,6 +15,7 @@
 #include "core/scene.h"
 #include "gl/renderer.h"
 #include "ref/reference.h"
+#include "tests/gl/closed_box.h"
 #include "tests/image_expect.h"
 
 namespace bounce::testing {
@@ -29,43 +30,11 @@ struct PointRender {
     double counter(const std::string& name) const;
 };
 
-// A closed box, 1 m on a side, inward-facing, every surface Lambertian albedo rho emitting L_e, one mesh;
-// the camera inside looking at a corner. One bounce of indirect light is exactly rho^2 L_e everywhere
-// (every point reflects rho L_e, and every direction sees a point).
+// The furnace: a closed box, every surface albedo rho emitting L_e. One bounce of indirect light is
+// exactly rho^2 L_e everywhere (every point reflects rho L_e, and every direction sees a point).
 inline core::Scene pointFurnaceBox(float rho, float emission)
 {
-    core::Scene s;
-    s.name = "point-furnace";
-    core::Material m;
-    m.name = "furnace";
-    m.baseColor = glm::vec3(rho);
-    m.metallic = 0.0f;
-    m.specular = 0.0f;
-    m.emission = glm::vec3(emission);
-    s.materials.push_back(m);
-    core::Mesh mesh;
-    mesh.name = "box";
-    const auto quad = [&](glm::vec3 a, glm::vec3 b, glm::vec3 c, glm::vec3 d) {
-        const glm::vec3 n = glm::normalize(glm::cross(b - a, c - a));
-        const auto base = std::uint32_t(mesh.positions.size());
-        for (const glm::vec3& p : {a, b, c, d}) {
-            mesh.positions.push_back(p);
-            mesh.normals.push_back(n);
-        }
-        for (std::uint32_t i : {0u, 1u, 2u, 0u, 2u, 3u}) mesh.indices.push_back(base + i);
-    };
-    quad({0, 0, 0}, {0, 0, 1}, {1, 0, 1}, {1, 0, 0});
-    quad({0, 1, 0}, {1, 1, 0}, {1, 1, 1}, {0, 1, 1});
-    quad({0, 0, 0}, {0, 1, 0}, {0, 1, 1}, {0, 0, 1});
-    quad({1, 0, 0}, {1, 0, 1}, {1, 1, 1}, {1, 1, 0});
-    quad({0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0});
-    quad({0, 0, 1}, {0, 1, 1}, {1, 1, 1}, {1, 0, 1});
-    s.meshes.push_back(mesh);
-    s.camera.position = {0.5f, 0.5f, 0.9f};
-    s.camera.forward = glm::normalize(glm::vec3(-0.3f, -0.2f, -1.0f));
-    s.camera.up = glm::normalize(glm::cross(glm::cross(s.camera.forward, glm::vec3(0, 1, 0)), s.camera.forward));
-    s.camera.yfovRad = 1.2f;
-    return s;
+    return closedBox("point-furnace", rho, emission);
 }
 
 inline double PointRender::counter(const std::string& name) const

@@ -30,8 +30,10 @@ protected:
     }
     void TearDown() override
     {
-        if (hadOld_) setenv("BOUNCE_ROOT", old_.c_str(), 1);
-        else unsetenv("BOUNCE_ROOT");
+        if (hadOld_)
+            setenv("BOUNCE_ROOT", old_.c_str(), 1);
+        else
+            unsetenv("BOUNCE_ROOT");
         GlTest::TearDown();
     }
     void write(const std::string& name, const std::string& text) { std::ofstream(root_ / "glsl" / name) << text; }
