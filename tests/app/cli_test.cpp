@@ -228,7 +228,9 @@ TEST(Cli, ProbeCachesCeilingsAndRenderRecordsBounds)
                              env);
     ASSERT_EQ(plain.status, 0) << plain.output;
     std::ifstream pin(d / "p.json");
-    for (const auto& p : nlohmann::json::parse(pin)["passes"]) EXPECT_FALSE(p.contains("boundMs")) << p["pass"];
+    // Named: a range-for over a member of the temporary parse() returns reads freed memory.
+    const nlohmann::json plainRecord = nlohmann::json::parse(pin);
+    for (const auto& p : plainRecord["passes"]) EXPECT_FALSE(p.contains("boundMs")) << p["pass"];
 }
 
 // `bounce reference`: the image and its record, rendered and then served from the cache.
