@@ -32,7 +32,7 @@ std::vector<std::uint32_t> medianSplitOrder(const std::vector<glm::vec3>& positi
                                             SplitAxis rule = SplitAxis::Longest);
 
 // The surface points in that order (positions from evaluateSurfacePoint on `scene`): the order of the
-// shared point cloud (gl/technique/points/point_cloud.h).
+// shared point cloud (gl/frame/points/point_cloud.h).
 std::vector<SurfacePoint> orderSurfacePoints(const Scene& scene, const std::vector<SurfacePoint>& points, int levels,
                                              SplitAxis rule = SplitAxis::Longest);
 

@@ -12,7 +12,7 @@
 //     and never with fragments of other levels;
 //  3. times the pixel's own diffuse colour rho_i (the gather left it out): Eq. 5's rho_i at full resolution.
 // UNMODULATED: a second buffer (image 1, rgb) is interpolated with the same weights and added as it is,
-// not times rho_i: glossy reflected radiance (point-based final gathering, gl/technique/points/).
+// not times rho_i: glossy reflected radiance (point-based final gathering, gl/frame/points/).
 #include "common/multires.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;

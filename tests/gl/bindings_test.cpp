@@ -117,12 +117,12 @@ TEST(Bindings, NoTwoNamesShareASlot)
             }
     };
     // Families never run together: each is checked against the frame's slots, not against each other;
-    // the point families (microrender, pointproj) bind the shared cloud's slots (points/) too.
+    // the point families (microrender, pointproj) bind the shared cloud's slots (frame/points/) too.
     std::vector<std::string> families; // every glsl/technique/<family>/bindings.glsl
     for (const auto& e : fs::directory_iterator(root() / "glsl/technique"))
         if (fs::exists(e.path() / "bindings.glsl")) families.push_back(e.path().filename().string());
     ASSERT_GE(families.size(), 2u);
-    const auto points = table(root() / "glsl/technique/points/bindings.glsl");
+    const auto points = table(root() / "glsl/frame/points/bindings.glsl");
     ASSERT_FALSE(points.empty());
     for (const std::string& family : families) {
         SCOPED_TRACE(family);

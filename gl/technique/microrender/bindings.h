@@ -1,6 +1,6 @@
 // Micro-rendering's binding points for C++: glsl/technique/microrender/bindings.glsl as it is (the point
-// cloud's are in gl/technique/points/bindings.h).
+// cloud's are in gl/frame/points/bindings.h).
 #pragma once
 
+#include "glsl/frame/points/bindings.glsl"
 #include "glsl/technique/microrender/bindings.glsl"
-#include "glsl/technique/points/bindings.glsl"

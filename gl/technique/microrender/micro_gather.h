@@ -10,13 +10,13 @@
 
 #include "core/brdf_warp.h"
 #include "gl/frame/frame.h"
+#include "gl/frame/points/pixel_gather.h"
+#include "gl/frame/points/point_cloud.h"
 #include "gl/frame/ray_caster.h"
 #include "gl/resource/buffer.h"
 #include "gl/resource/program.h"
 #include "gl/resource/timer.h"
 #include "gl/technique/microrender/point_hierarchy.h"
-#include "gl/technique/points/pixel_gather.h"
-#include "gl/technique/points/point_cloud.h"
 
 namespace bounce::gl {
 

@@ -5,11 +5,11 @@
 #include <string>
 
 #include "gl/frame/multires.h"
+#include "gl/frame/points/pixel_gather.h"
+#include "gl/frame/points/point_cloud.h"
 #include "gl/frame/ray_caster.h"
 #include "gl/technique/microrender/micro_gather.h"
 #include "gl/technique/microrender/point_hierarchy.h"
-#include "gl/technique/points/pixel_gather.h"
-#include "gl/technique/points/point_cloud.h"
 
 namespace bounce::gl {
 

@@ -7,10 +7,10 @@
 
 #include <glm/glm.hpp>
 
+#include "gl/frame/points/point_cloud.h"
 #include "gl/resource/buffer.h"
 #include "gl/resource/program.h"
 #include "gl/resource/timer.h"
-#include "gl/technique/points/point_cloud.h"
 
 namespace bounce::gl {
 

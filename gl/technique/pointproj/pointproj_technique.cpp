@@ -4,9 +4,9 @@
 #include <memory>
 #include <string>
 
+#include "gl/frame/points/adaptive_pixels.h"
+#include "gl/frame/points/point_cloud.h"
 #include "gl/technique/pointproj/projection_gather.h"
-#include "gl/technique/points/adaptive_pixels.h"
-#include "gl/technique/points/point_cloud.h"
 
 namespace bounce::gl {
 

@@ -6,9 +6,9 @@
 
 #include "core/point_order.h"
 #include "core/point_projection.h"
+#include "gl/frame/points/pixel_gather.h"
 #include "gl/gl.h"
 #include "gl/technique/pointproj/bindings.h"
-#include "gl/technique/points/pixel_gather.h"
 
 namespace bounce::gl {
 

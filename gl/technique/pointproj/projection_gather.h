@@ -9,11 +9,11 @@
 #include <cstdint>
 
 #include "gl/frame/frame.h"
+#include "gl/frame/points/adaptive_pixels.h"
+#include "gl/frame/points/point_cloud.h"
 #include "gl/resource/buffer.h"
 #include "gl/resource/program.h"
 #include "gl/resource/timer.h"
-#include "gl/technique/points/adaptive_pixels.h"
-#include "gl/technique/points/point_cloud.h"
 
 namespace bounce::gl {
 

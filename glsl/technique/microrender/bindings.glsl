@@ -1,5 +1,5 @@
 // Binding points of micro-rendering's own buffers (gl/technique/microrender/bindings.h includes this
-// file), beside the point cloud's (glsl/technique/points/bindings.glsl). Only #define lines and comments.
+// file), beside the point cloud's (glsl/frame/points/bindings.glsl). Only #define lines and comments.
 #ifndef BOUNCE_MICRORENDER_BINDINGS_GLSL
 #define BOUNCE_MICRORENDER_BINDINGS_GLSL
 

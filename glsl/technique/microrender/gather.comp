@@ -23,12 +23,12 @@
 // GATHER_AT_POINTS, PUNCTUAL_LIGHTS / AREA_LIGHTS (the lights at ray hits), MICRO_STAGES (4; fewer runs
 // only the first stages, for the time split by stage of §5: 1 the warp, 2 + the cut, 3 + the rays).
 #define SCENE_GEOMETRY
-#include "technique/points/gather_target.glsl"
+#include "frame/points/gather_target.glsl"
 #include "technique/microrender/hierarchy.glsl"
 #include "technique/microrender/warp.glsl"
 #ifdef RAY_CAST
 #include "common/raycast.glsl"
-#include "technique/points/point_light.glsl"
+#include "frame/points/point_light.glsl"
 #endif
 
 layout(local_size_x = MICRO_GROUP) in;

@@ -3,7 +3,7 @@
 // recompute the leaf nodes' positions and normals").
 #define POINT_SURFELS
 #define POINT_RADIANCE
-#include "technique/points/point_cloud.glsl"
+#include "frame/points/point_cloud.glsl"
 #include "technique/microrender/hierarchy.glsl"
 
 layout(local_size_x = 64) in;

@@ -2,7 +2,7 @@
 // "hierarchy", one dispatch per level, bottom up (§2.1: "we recompute the minimum bounding sphere and cone
 // of normals, containing the two child-nodes' bounding spheres and normals ... by successively merging two
 // nodes at a time, yielding a total of O(n) operations"): nodes [first, 2 first) from their children.
-#include "technique/points/point_cloud.glsl"
+#include "frame/points/point_cloud.glsl"
 #include "technique/microrender/hierarchy.glsl"
 
 layout(local_size_x = 64) in;

@@ -1,5 +1,5 @@
 // Binding points of importance-driven point projection's own buffers (gl/technique/pointproj/bindings.h
-// includes this file), beside the point cloud's (glsl/technique/points/bindings.glsl). Only #define lines
+// includes this file), beside the point cloud's (glsl/frame/points/bindings.glsl). Only #define lines
 // and comments.
 #ifndef BOUNCE_POINTPROJ_BINDINGS_GLSL
 #define BOUNCE_POINTPROJ_BINDINGS_GLSL

@@ -21,7 +21,7 @@
 #include "common/bindings.glsl"
 #define POINT_SURFELS
 #define POINT_RADIANCE
-#include "technique/points/gather_target.glsl"
+#include "frame/points/gather_target.glsl"
 #include "technique/pointproj/bindings.glsl"
 #include "technique/pointproj/projection.glsl"
 

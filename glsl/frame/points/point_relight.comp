@@ -8,7 +8,7 @@
 // diffuse colour, on top of its direct light.
 #define POINT_SURFELS
 #define POINT_RADIANCE
-#include "technique/points/point_cloud.glsl"
+#include "frame/points/point_cloud.glsl"
 
 layout(local_size_x = 64) in;
 layout(std430, binding = SSBO_POINT_DIRECT) readonly buffer PointDirect { uvec2 pointDirect[]; };

@@ -8,7 +8,7 @@
 #include "common/scene.glsl"
 #define POINT_SAMPLES
 #define POINT_SURFELS
-#include "technique/points/point_cloud.glsl"
+#include "frame/points/point_cloud.glsl"
 
 layout(local_size_x = 64) in;
 layout(binding = UNIT_BASE_COLOR) uniform sampler2DArray baseColorTextures;

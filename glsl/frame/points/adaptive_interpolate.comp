@@ -3,7 +3,7 @@
 // bilateral weights (Sloan et al. 2007, §3.3): bilinear weights times exp(-4 g^2), g the geometric term of
 // the coherence metric between parent and pixel (0 on one smooth surface).
 #include "common/bindings.glsl"
-#include "technique/points/adaptive.glsl"
+#include "frame/points/adaptive.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(r8ui, binding = 0) uniform readonly uimage2D pixelState;

@@ -4,7 +4,7 @@
 // neighbours the upsampling may interpolate with. The list's order follows thread timing, but each
 // target's result depends on its own texel only, so the image does not.
 #include "common/multires.glsl"
-#include "technique/points/bindings.glsl"
+#include "frame/points/bindings.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(std430, binding = SSBO_GATHER_TARGETS) writeonly buffer GatherTargets { uvec2 gatherTargets[]; };

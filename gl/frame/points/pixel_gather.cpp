@@ -1,17 +1,17 @@
-#include "gl/technique/points/pixel_gather.h"
+#include "gl/frame/points/pixel_gather.h"
 
 #include <algorithm>
 
 #include "gl/frame/bindings.h"
+#include "gl/frame/points/bindings.h"
 #include "gl/gl.h"
 #include "gl/resource/dispatch.h"
-#include "gl/technique/points/bindings.h"
 
 namespace bounce::gl {
 
 PixelGather::PixelGather(Frame& frame, const MultiresSettings& settings)
     : pyramid_(frame.width(), frame.height(), settings),
-      select_(Program::compute("points.gatherSelect", "technique/points/gather_select.comp")),
+      select_(Program::compute("points.gatherSelect", "frame/points/gather_select.comp")),
       count_buffer_("points.gatherCount", sizeof(std::uint32_t))
 {
     allocate();

@@ -5,8 +5,8 @@
 // part is kept apart too, for point_relight.comp to add gathered light to.
 #define POINT_SURFELS
 #define POINT_RADIANCE
-#include "technique/points/point_cloud.glsl"
-#include "technique/points/point_light.glsl"
+#include "frame/points/point_cloud.glsl"
+#include "frame/points/point_light.glsl"
 
 layout(local_size_x = 64) in;
 #ifdef KEEP_DIRECT

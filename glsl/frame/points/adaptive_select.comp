@@ -5,8 +5,8 @@
 // marked for interpolation. Departure: L_o is scaled by 1 / the mean luminance of the first level's
 // samples (the paper's 8-bit L_o is display-scaled; radiance here is absolute, so lambda needs a scale).
 #include "common/bindings.glsl"
-#include "technique/points/adaptive.glsl"
-#include "technique/points/bindings.glsl"
+#include "frame/points/adaptive.glsl"
+#include "frame/points/bindings.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(r8ui, binding = 0) uniform uimage2D pixelState;

@@ -1,4 +1,4 @@
-// Image-space adaptive sampling (Maletz, Wang & Bowers 2011, §3.3; glsl/technique/points/adaptive*.{glsl,
+// Image-space adaptive sampling (Maletz, Wang & Bowers 2011, §3.3; glsl/frame/points/adaptive*.{glsl,
 // comp}): shared by the point-based gathers. Level 0 gathers at the 4 x 4 grid; levels 1 and 2 gather at
 // the 2 x 2 and 1 x 1 grids' pixels whose coherence metric exceeds epsilon (0.3, doubled per level) and
 // interpolate the others by joint bilateral weights; compose multiplies the diffuse part by each pixel's
@@ -7,7 +7,7 @@
 //
 //   for (int level = 0; level < pixels.levels(); ++level) {
 //       const int n = pixels.select(frame, level, timers);
-//       pixels.bindForGather(frame, program);   // the targets for glsl/technique/points/gather_target.glsl
+//       pixels.bindForGather(frame, program);   // the targets for glsl/frame/points/gather_target.glsl
 //       dispatchPerTarget(program, n, group);
 //       pixels.interpolate(frame, level, timers);
 //   }

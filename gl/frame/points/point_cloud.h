@@ -2,7 +2,7 @@
 // importance-driven point projection, Maletz, Wang & Bowers 2011): N points of the frame's surface sampler
 // (core/surface_points.h, blue noise, each (triangle, barycentrics) with its area), in the median-split
 // order of core/point_order.h (the leaves of micro-rendering's hierarchy and point projection's 512
-// clusters at once), on the GPU (glsl/technique/points/point_cloud.glsl). Passes:
+// clusters at once), on the GPU (glsl/frame/points/point_cloud.glsl). Passes:
 //   "point-update"  every point's position, normal and diffuse colour from (triangle, barycentrics) on the
 //                   scene as it is now (point_update.comp)
 //   "point-light"   direct light at every point from the frame's shadow maps, half floats (point_light.comp)
@@ -70,7 +70,7 @@ private:
 
 // The #defines of the kinds of light a scene has (PUNCTUAL_LIGHTS, AREA_LIGHTS), as the direct pass has them.
 std::vector<Define> lightKindDefines(const GpuScene& scene);
-// Sets the uniforms of glsl/technique/points/point_light.glsl and common/shadow.glsl.
+// Sets the uniforms of glsl/frame/points/point_light.glsl and common/shadow.glsl.
 void setPointLightUniforms(Program& program, const Frame& frame);
 
 } // namespace bounce::gl

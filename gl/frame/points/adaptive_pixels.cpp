@@ -1,11 +1,11 @@
-#include "gl/technique/points/adaptive_pixels.h"
+#include "gl/frame/points/adaptive_pixels.h"
 
 #include <algorithm>
 
 #include "gl/frame/bindings.h"
+#include "gl/frame/points/bindings.h"
 #include "gl/gl.h"
 #include "gl/resource/dispatch.h"
-#include "gl/technique/points/bindings.h"
 
 namespace bounce::gl {
 
@@ -17,9 +17,9 @@ constexpr int kCoarseGrid = 4; // §3.3: "starting with pixels on an initial 4 x
 
 AdaptivePixels::AdaptivePixels(Frame& frame, const AdaptiveSettings& settings)
     : settings_(settings),
-      select_(Program::compute("points.adaptiveSelect", "technique/points/adaptive_select.comp")),
-      interpolate_(Program::compute("points.adaptiveInterpolate", "technique/points/adaptive_interpolate.comp")),
-      compose_(Program::compute("points.adaptiveCompose", "technique/points/adaptive_compose.comp")),
+      select_(Program::compute("points.adaptiveSelect", "frame/points/adaptive_select.comp")),
+      interpolate_(Program::compute("points.adaptiveInterpolate", "frame/points/adaptive_interpolate.comp")),
+      compose_(Program::compute("points.adaptiveCompose", "frame/points/adaptive_compose.comp")),
       count_("points.adaptiveCount", sizeof(std::uint32_t))
 {
     allocate(frame.width(), frame.height());

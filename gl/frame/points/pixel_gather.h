@@ -5,9 +5,9 @@
 // colour, and the glossy part), and the frame's joint bilateral upsampling fills every pixel
 // (micro-rendering §2.4, after Sloan et al. 2007). Passes:
 //   "minmax-mipmap"  the pyramid (the frame's)
-//   "gather-select"  the valid fragments listed (glsl/technique/points/gather_select.comp)
+//   "gather-select"  the valid fragments listed (glsl/frame/points/gather_select.comp)
 //   "upsample"       the frame's upsampling of both buffers into frame.indirect()
-// The gather shader includes glsl/technique/points/gather_target.glsl and calls bindForGather first.
+// The gather shader includes glsl/frame/points/gather_target.glsl and calls bindForGather first.
 #pragma once
 
 #include "gl/frame/frame.h"

@@ -1,4 +1,4 @@
-#include "gl/technique/points/point_cloud.h"
+#include "gl/frame/points/point_cloud.h"
 
 #include <cmath>
 #include <map>
@@ -7,9 +7,9 @@
 
 #include "core/point_order.h"
 #include "gl/frame/bindings.h"
+#include "gl/frame/points/bindings.h"
 #include "gl/gl.h"
 #include "gl/resource/dispatch.h"
-#include "gl/technique/points/bindings.h"
 
 namespace bounce::gl {
 
@@ -89,9 +89,9 @@ PointCloud::PointCloud(Frame& frame, std::size_t count, std::uint64_t seed, bool
     if (keepDirect_) direct_ = Buffer("points.direct", std::size_t(count_) * 8);
     std::vector<Define> updateDefines;
     if (frame.gpuScene().hasTextures()) updateDefines.push_back({"TEXTURES", "1"});
-    update_ = Program::compute("points.update", "technique/points/point_update.comp", updateDefines);
+    update_ = Program::compute("points.update", "frame/points/point_update.comp", updateDefines);
     makeLightProgram(frame.gpuScene());
-    if (keepDirect_) relight_ = Program::compute("points.relight", "technique/points/point_relight.comp");
+    if (keepDirect_) relight_ = Program::compute("points.relight", "frame/points/point_relight.comp");
 }
 
 void PointCloud::makeLightProgram(const GpuScene& scene)
@@ -100,7 +100,7 @@ void PointCloud::makeLightProgram(const GpuScene& scene)
     punctual_ = scene.punctualLightCount() > 0;
     area_ = int(scene.lights().size()) > scene.punctualLightCount();
     if (keepDirect_) d.push_back({"KEEP_DIRECT", "1"});
-    light_ = Program::compute("points.light", "technique/points/point_light.comp", d);
+    light_ = Program::compute("points.light", "frame/points/point_light.comp", d);
 }
 
 void PointCloud::bind() const

@@ -18,7 +18,7 @@
 #ifdef GATHER_AT_POINTS
 #define POINT_SURFELS
 #endif
-#include "technique/points/point_cloud.glsl"
+#include "frame/points/point_cloud.glsl"
 
 struct GatherSample {
     vec3 position;     // on the surface, metres

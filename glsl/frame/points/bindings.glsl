@@ -1,5 +1,5 @@
-// Binding points of the shared lit point cloud (gl/technique/points/) and of the two families built on it
-// (micro-rendering, point projection), for GLSL and C++ alike (gl/technique/points/bindings.h includes
+// Binding points of the shared lit point cloud (gl/frame/points/) and of the two families built on it
+// (micro-rendering, point projection), for GLSL and C++ alike (gl/frame/points/bindings.h includes
 // this file), in the slots glsl/common/bindings.glsl leaves to techniques. Both families use these slots;
 // each names its own in its bindings.glsl (15 and up). Only #define lines and comments.
 #ifndef BOUNCE_POINTS_BINDINGS_GLSL

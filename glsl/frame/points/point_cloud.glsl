@@ -1,4 +1,4 @@
-// The shared lit point cloud (gl/technique/points/point_cloud.h): N surface points of the frame's sampler
+// The shared lit point cloud (gl/frame/points/point_cloud.h): N surface points of the frame's sampler
 // (core/surface_points.h) in the order of core/point_order.h, as three std430 arrays.
 //   PointSample  (triangle, barycentrics, area): fixed at creation; the geometry may move under it
 //   PointSurfel  position, area, normal, diffuse colour: recomputed every frame (point_update.comp)
@@ -8,7 +8,7 @@
 #ifndef BOUNCE_POINT_CLOUD_GLSL
 #define BOUNCE_POINT_CLOUD_GLSL
 
-#include "technique/points/bindings.glsl"
+#include "frame/points/bindings.glsl"
 
 struct PointSample {
     uint triangle;

@@ -2,7 +2,7 @@
 // "compose": indirect light = the pixel's own diffuse colour x the diffuse part + the glossy part; in
 // progressive mode the running mean over the frames since the last restart (weight 1 / frames).
 #include "common/bindings.glsl"
-#include "technique/points/adaptive.glsl"
+#include "frame/points/adaptive.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(rgba32f, binding = 0) uniform readonly image2D lightDiffuse;
