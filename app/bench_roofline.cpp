@@ -36,30 +36,37 @@ std::string rooflineMarkdown(const std::vector<BenchRow>& rows)
         char buf[512];
         std::snprintf(
             buf, sizeof buf,
-            " (fragment %.1f GFLOP/s, %.1f GB/s, %.2f G fetches/s; compute %.1f GFLOP/s, %.1f GB/s,"
-            " %.2f G fetches/s; %.2f M triangles/s)",
+            " (fragment %.1f GFLOP/s, %.1f GB/s, %.2f G fetches/s, %.2f G uniform-block words/s; compute %.1f"
+            " GFLOP/s, %.1f GB/s, %.2f G fetches/s, %.2f G uniform-block words/s; %.2f M triangles/s)",
             (*ceilings)["fragmentGflops"].get<double>(), (*ceilings)["fragmentGBps"].get<double>(),
-            (*ceilings)["fragmentGfetches"].get<double>(), (*ceilings)["computeGflops"].get<double>(),
+            (*ceilings)["fragmentGfetches"].get<double>(), (*ceilings)["fragmentGuniformWords"].get<double>(),
+            (*ceilings)["computeGflops"].get<double>(),
             std::max((*ceilings)["computeImageGBps"].get<double>(), (*ceilings)["computeBufferGBps"].get<double>()),
-            (*ceilings)["computeGfetches"].get<double>(), (*ceilings)["mtrianglesPerSecond"].get<double>());
+            (*ceilings)["computeGfetches"].get<double>(), (*ceilings)["computeGuniformWords"].get<double>(),
+            (*ceilings)["mtrianglesPerSecond"].get<double>());
         md << buf;
     }
-    md << ". `bound ms` is the largest of the arithmetic, fetch, memory and triangle-setup times; efficiency"
-          " is bound over measured (1: as fast as the machine allows for that work). A pass far below 1 is a"
-          " finding. Passes without a declared cost show `-`.\n\n"
-          "| scene | render | pass | ms | bound ms | efficiency | limiter | GFLOP | MB | M fetches |\n"
-          "|---|---|---|---:|---:|---:|---|---:|---:|---:|\n";
+    md << ". `bound ms` is the largest of the arithmetic, fetch, memory, uniform-read and triangle-setup"
+          " times; efficiency is bound over measured (1: as fast as the machine allows for that work). A pass"
+          " far below 1 is a finding. Passes without a declared cost show `-`. `uniform` is the words a"
+          " gather's loop reads from uniform blocks at addresses every invocation shares: a GPU broadcasts"
+          " them, llvmpipe loads them lane by lane.\n\n"
+          "| scene | render | pass | ms | bound ms | efficiency | limiter | GFLOP | MB | M fetches |"
+          " M uniform words |\n"
+          "|---|---|---|---:|---:|---:|---|---:|---:|---:|---:|\n";
     for (const BenchRow& r : rows)
         for (const auto& p : r.record["passes"]) {
             char buf[512];
             if (p.contains("boundMs"))
-                std::snprintf(buf, sizeof buf, "| %s | %s | %s | %.3f | %.3f | %.2f | %s | %.3f | %.2f | %.2f |\n",
+                std::snprintf(buf, sizeof buf,
+                              "| %s | %s | %s | %.3f | %.3f | %.2f | %s | %.3f | %.2f | %.2f | %.2f |\n",
                               r.scene.c_str(), label(r.record).c_str(), p["pass"].get<std::string>().c_str(),
                               p["medianMs"].get<double>(), p["boundMs"].get<double>(), p["efficiency"].get<double>(),
                               p["limiter"].get<std::string>().c_str(), p["flops"].get<double>() * 1e-9,
-                              p["bytes"].get<double>() * 1e-6, p["fetches"].get<double>() * 1e-6);
+                              p["bytes"].get<double>() * 1e-6, p["fetches"].get<double>() * 1e-6,
+                              p.value("uniformWords", 0.0) * 1e-6);
             else
-                std::snprintf(buf, sizeof buf, "| %s | %s | %s | %.3f | - | - | - | - | - | - |\n", r.scene.c_str(),
+                std::snprintf(buf, sizeof buf, "| %s | %s | %s | %.3f | - | - | - | - | - | - | - |\n", r.scene.c_str(),
                               label(r.record).c_str(), p["pass"].get<std::string>().c_str(),
                               p["medianMs"].get<double>());
             md << buf;
@@ -72,7 +79,8 @@ std::string rooflineCsv(const std::vector<BenchRow>& rows)
 {
     std::ostringstream csv;
     csv << "scene,technique,settings,pass,ms,bound_ms,efficiency,limiter,flops,bytes,fetches,triangles,"
-           "fragment_invocations,compute_invocations,fragment_gflops,compute_gflops,fragment_gbps,compute_gbps\n";
+           "fragment_invocations,compute_invocations,fragment_gflops,compute_gflops,fragment_gbps,compute_gbps,"
+           "uniform_words\n";
     for (const BenchRow& r : rows) {
         if (!r.record.contains("ceilings")) continue;
         const nlohmann::json& c = r.record["ceilings"];
@@ -80,7 +88,7 @@ std::string rooflineCsv(const std::vector<BenchRow>& rows)
             if (!p.contains("boundMs")) continue;
             char buf[1024];
             std::snprintf(buf, sizeof buf,
-                          "%s,%s,\"%s\",%s,%.6g,%.6g,%.6g,%s,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g\n",
+                          "%s,%s,\"%s\",%s,%.6g,%.6g,%.6g,%s,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g\n",
                           r.scene.c_str(), r.record["technique"].get<std::string>().c_str(),
                           r.record["settings"].get<std::string>().c_str(), p["pass"].get<std::string>().c_str(),
                           p["medianMs"].get<double>(), p["boundMs"].get<double>(), p["efficiency"].get<double>(),
@@ -89,7 +97,8 @@ std::string rooflineCsv(const std::vector<BenchRow>& rows)
                           p["fragmentInvocations"].get<double>(), p["computeInvocations"].get<double>(),
                           c["fragmentGflops"].get<double>(), c["computeGflops"].get<double>(),
                           c["fragmentGBps"].get<double>(),
-                          std::max(c["computeImageGBps"].get<double>(), c["computeBufferGBps"].get<double>()));
+                          std::max(c["computeImageGBps"].get<double>(), c["computeBufferGBps"].get<double>()),
+                          p.value("uniformWords", 0.0));
             csv << buf;
         }
     }

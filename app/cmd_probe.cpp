@@ -16,7 +16,8 @@ namespace {
 const char* kUsage = "usage: bounce probe [--force] [--size N] [--repeats N] [--json FILE] [--backend egl|osmesa]\n"
                      "\n"
                      "Measures what a fragment pass and a compute pass can do per second on this machine (FMA\n"
-                     "throughput, texel fetches, texture/framebuffer/image/buffer bandwidth) and how many small\n"
+                     "throughput, texel fetches, uniform-block reads in a gather's loop, texture/framebuffer/\n"
+                     "image/buffer bandwidth) and how many small\n"
                      "triangles the rasteriser sets up, with small GL kernels (glsl/probe/). The figures are\n"
                      "cached per GL renderer; render and bench then give each pass's bound (boundMs: its work at\n"
                      "these ceilings) and efficiency (bound over measured time) in their records.\n"
@@ -68,6 +69,7 @@ int cmdProbe(const Args& args)
     std::printf("\n%-28s %12s %12s\n", "ceiling", "fragment", "compute");
     std::printf("%-28s %12.1f %12.1f\n", "FMA GFLOP/s", c->fragmentGflops, c->computeGflops);
     std::printf("%-28s %12.2f %12.2f\n", "texel fetches G/s", c->fragmentGfetches, c->computeGfetches);
+    std::printf("%-28s %12.2f %12.2f\n", "uniform-block words G/s", c->fragmentGuniformWords, c->computeGuniformWords);
     std::printf("%-28s %12.1f %12.1f\n", "texture/image GB/s", c->fragmentGBps, c->computeImageGBps);
     std::printf("%-28s %12s %12.1f\n", "buffer GB/s", "-", c->computeBufferGBps);
     std::printf("%-28s %12.1f %12s\n", "framebuffer (blend) GB/s", c->framebufferGBps, "-");

@@ -23,12 +23,15 @@ std::optional<PassBound> passBound(const gl::PassStat& pass, const gl::Ceilings&
     b.computeMs = ms(f * w.flops, c.fragmentGflops * 1e9) + ms(k * w.flops, c.computeGflops * 1e9);
     b.fetchMs = ms(f * w.fetches, c.fragmentGfetches * 1e9) + ms(k * w.fetches, c.computeGfetches * 1e9);
     b.memoryMs = ms(f * w.bytes, c.fragmentGBps * 1e9) + ms(k * w.bytes, c.computeGBps() * 1e9);
+    b.uniformMs =
+        ms(f * w.uniformWords, c.fragmentGuniformWords * 1e9) + ms(k * w.uniformWords, c.computeGuniformWords * 1e9);
     b.setupMs = ms(w.triangles, c.mtrianglesPerSecond * 1e6);
-    b.boundMs = std::max({b.computeMs, b.fetchMs, b.memoryMs, b.setupMs});
-    b.limiter = b.boundMs == b.computeMs  ? "compute"
-                : b.boundMs == b.fetchMs  ? "fetch"
-                : b.boundMs == b.memoryMs ? "memory"
-                                          : "setup";
+    b.boundMs = std::max({b.computeMs, b.fetchMs, b.memoryMs, b.uniformMs, b.setupMs});
+    b.limiter = b.boundMs == b.computeMs   ? "compute"
+                : b.boundMs == b.fetchMs   ? "fetch"
+                : b.boundMs == b.memoryMs  ? "memory"
+                : b.boundMs == b.uniformMs ? "uniform"
+                                           : "setup";
     b.efficiency = b.boundMs / pass.medianMs;
     return b;
 }
@@ -43,12 +46,14 @@ nlohmann::json passWorkJson(const gl::PassStat& p, const gl::Ceilings* ceilings)
         j["fetches"] = p.work.fetches;
         j["bytes"] = p.work.bytes;
         j["triangles"] = p.work.triangles;
+        j["uniformWords"] = p.work.uniformWords;
     }
     if (ceilings)
         if (const auto b = passBound(p, *ceilings)) {
             j["computeMs"] = b->computeMs;
             j["fetchMs"] = b->fetchMs;
             j["memoryMs"] = b->memoryMs;
+            j["uniformMs"] = b->uniformMs;
             j["setupMs"] = b->setupMs;
             j["boundMs"] = b->boundMs;
             j["efficiency"] = b->efficiency;

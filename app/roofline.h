@@ -1,6 +1,7 @@
 // Every pass against its own bound: the work a pass did (PassWork: invocations counted by the driver,
 // flops, fetches and bytes from the pass's declared PassCost) at this machine's measured ceilings
-// (gl::Ceilings, `bounce probe`). boundMs is the larger of the arithmetic, fetch and memory times, so a
+// (gl::Ceilings, `bounce probe`). boundMs is the largest of the arithmetic, fetch, memory, uniform-read and
+// triangle-setup times, so a
 // pass at efficiency 1 runs as fast as the machine allows for the work it does; a pass far below is a
 // finding to explain or to fix.
 #pragma once
@@ -19,10 +20,11 @@ struct PassBound {
     double computeMs = 0.0;  // flops at the FMA ceiling of the pass's stage
     double fetchMs = 0.0;    // texel fetches at the fetch ceiling
     double memoryMs = 0.0;   // bytes at the bandwidth ceiling
+    double uniformMs = 0.0;  // uniform-block words at the rate a gather's loop reads them
     double setupMs = 0.0;    // triangles at the rasteriser's setup rate
-    double boundMs = 0.0;    // the largest of the four
+    double boundMs = 0.0;    // the largest of the five
     double efficiency = 0.0; // boundMs / measured ms
-    std::string limiter;     // "compute", "fetch", "memory" or "setup"
+    std::string limiter;     // "compute", "fetch", "memory", "uniform" or "setup"
 };
 
 // The bound of a pass that declared its cost and ran counted invocations; empty otherwise. A pass with

@@ -1,6 +1,7 @@
 #include "gl/probe/machine_probe.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <stdexcept>
 #include <vector>
@@ -19,27 +20,45 @@ namespace bounce::gl {
 
 namespace {
 
-constexpr int kFmaIterations = 128;
-constexpr double kFlopsPerIteration = 16.0; // fmaChains: two vec4 FMAs, 2 flops per component
-constexpr int kFetchesPerInvocation = 32;
-constexpr int kTriangleGridSide = 256; // 2 x 256^2 triangles of 8 pixels on a 1024^2 target
-constexpr int kFramebufferDraws = 4;   // blended, so that no draw can replace the one before
+constexpr double kFlopsPerInvocation = 16 * 64.0; // kernels.glsl: FMA_STEPS x 64 flops per step
+constexpr int kFetchesPerInvocation = 32;         // kernels.glsl: FETCHES
+constexpr int kUniformRecords = 256;              // kernels.glsl: UNIFORM_RECORDS, all read per invocation
+constexpr int kUniformWordsPerRecord = 12;        //   UNIFORM_WORDS_PER_RECORD
+constexpr int kTriangleGridSide = 256;            // 2 x 256^2 triangles of 8 pixels on a 1024^2 target
+constexpr int kFramebufferDraws = 4;              // blended, so that no draw can replace the one before
+// A timed scope runs a kernel as many times as fill this long (at most kMaxRuns): a GPU finishes one
+// full-screen kernel in tens of microseconds, where a timer's resolution and a draw's fixed cost are not
+// negligible.
+constexpr double kMinScopeMs = 20.0;
+constexpr int kMaxRuns = 1024;
 
-// Median milliseconds of `repeats` timed runs of `work` after one untimed run.
+double wallMs(const std::function<void()>& work)
+{
+    glFinish();
+    const auto start = std::chrono::steady_clock::now();
+    work();
+    glFinish();
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+// Milliseconds of one run of `work`: the median over `repeats` timed scopes (PassTimers, as passes are
+// timed) of `runs` runs each, after one untimed run that also sizes `runs` (kMinScopeMs).
 double timeKernel(const std::string& name, int repeats, const std::function<void()>& work)
 {
+    const double once = wallMs(work); // compiles, allocates, and says how long one run takes
+    const int runs = std::clamp(int(std::ceil(kMinScopeMs / std::max(once, 1e-3))), 1, kMaxRuns);
     PassTimers timers;
     for (int r = 0; r <= repeats; ++r) {
         {
             auto scope = timers.scope("probe." + name);
-            work();
+            for (int i = 0; i < runs; ++i) work();
         }
         timers.endFrame(r > 0);
     }
     const std::vector<PassStat> stats = timers.stats();
     if (stats.empty() || !(stats.front().medianMs > 0.0))
         throw std::runtime_error("probe kernel " + name + " took no time");
-    return stats.front().medianMs;
+    return stats.front().medianMs / runs;
 }
 
 class Probe {
@@ -85,20 +104,20 @@ public:
         Ceilings c;
         c.size = n_;
         c.renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
-        const int total = 9;
+        const int total = 11;
         int done = 0;
         const auto step = [&](const char* kernel) {
             if (o_.progress) o_.progress(kernel, ++done, total);
         };
-        const double flops = pixels() * kFmaIterations * kFlopsPerIteration;
+        const double flops = pixels() * kFlopsPerInvocation;
         {
-            Program p = Program::graphics("probe.fma.frag", "frame/fullscreen.vert", "probe/fma.frag", fmaDefines());
+            Program p = Program::graphics("probe.fma.frag", "frame/fullscreen.vert", "probe/fma.frag");
             setFma(p);
             c.fragmentGflops = flops / (timeKernel("fma.frag", o_.repeats, [&] { fullscreen(p); }) * 1e6);
             step("fragment FMA");
         }
         {
-            Program p = Program::compute("probe.fma.comp", "probe/fma.comp", fmaDefines());
+            Program p = Program::compute("probe.fma.comp", "probe/fma.comp");
             setFma(p);
             c.computeGflops = flops / (timeKernel("fma.comp", o_.repeats, [&] { compute(p); }) * 1e6);
             step("compute FMA");
@@ -133,7 +152,6 @@ public:
         }
         {
             Program p = Program::graphics("probe.fetch.frag", "frame/fullscreen.vert", "probe/fetch.frag");
-            p.set("fetches", kFetchesPerInvocation);
             small_.bind(UNIT_PROBE_FIRST);
             const double fetches = pixels() * kFetchesPerInvocation;
             c.fragmentGfetches = fetches / (timeKernel("fetch.frag", o_.repeats, [&] { fullscreen(p); }) * 1e6);
@@ -141,11 +159,27 @@ public:
         }
         {
             Program p = Program::compute("probe.fetch.comp", "probe/fetch.comp");
-            p.set("fetches", kFetchesPerInvocation);
             small_.bind(UNIT_PROBE_FIRST);
             const double fetches = pixels() * kFetchesPerInvocation;
             c.computeGfetches = fetches / (timeKernel("fetch.comp", o_.repeats, [&] { compute(p); }) * 1e6);
             step("compute fetch rate");
+        }
+        {
+            // Every record of the block is read by every invocation: words = invocations x records x 12.
+            std::vector<float> records(std::size_t(kUniformRecords) * kUniformWordsPerRecord);
+            for (std::size_t i = 0; i < records.size(); ++i) records[i] = 1e-3f * float(i % 13);
+            Buffer block("probe.records", records.size() * sizeof(float));
+            glNamedBufferSubData(block.id(), 0, GLsizeiptr(records.size() * sizeof(float)), records.data());
+            block.bindBase(GL_UNIFORM_BUFFER, UBO_PROBE_RECORDS);
+            const double words = pixels() * kUniformRecords * kUniformWordsPerRecord;
+            Program f = Program::graphics("probe.uniform.frag", "frame/fullscreen.vert", "probe/uniform.frag");
+            f.set("count", kUniformRecords);
+            c.fragmentGuniformWords = words / (timeKernel("uniform.frag", o_.repeats, [&] { fullscreen(f); }) * 1e6);
+            step("fragment uniform reads");
+            Program k = Program::compute("probe.uniform.comp", "probe/uniform.comp");
+            k.set("count", kUniformRecords);
+            c.computeGuniformWords = words / (timeKernel("uniform.comp", o_.repeats, [&] { compute(k); }) * 1e6);
+            step("compute uniform reads");
         }
         {
             Program p = Program::graphics("probe.flat", "frame/fullscreen.vert", "probe/flat.frag");
@@ -185,9 +219,6 @@ private:
     Texture small_;
     VertexArray vao_{"probe.vao"};
 
-    // The loop count is a compile-time constant, as in a shader specialised for its work: the ceiling is
-    // what the arithmetic units do, not what a runtime loop's bookkeeping leaves of them.
-    static std::vector<Define> fmaDefines() { return {{"ITERATIONS", std::to_string(kFmaIterations)}}; }
     static void setFma(Program& p)
     {
         p.set("a", glm::vec4(0.999f));
@@ -216,6 +247,8 @@ nlohmann::json Ceilings::toJson() const
             {"computeBufferGBps", computeBufferGBps},
             {"fragmentGfetches", fragmentGfetches},
             {"computeGfetches", computeGfetches},
+            {"fragmentGuniformWords", fragmentGuniformWords},
+            {"computeGuniformWords", computeGuniformWords},
             {"framebufferGBps", framebufferGBps},
             {"mtrianglesPerSecond", mtrianglesPerSecond}};
 }
@@ -234,6 +267,8 @@ Ceilings Ceilings::fromJson(const nlohmann::json& j)
     c.computeBufferGBps = positive(j, "computeBufferGBps");
     c.fragmentGfetches = positive(j, "fragmentGfetches");
     c.computeGfetches = positive(j, "computeGfetches");
+    c.fragmentGuniformWords = positive(j, "fragmentGuniformWords");
+    c.computeGuniformWords = positive(j, "computeGuniformWords");
     c.framebufferGBps = positive(j, "framebufferGBps");
     c.mtrianglesPerSecond = positive(j, "mtrianglesPerSecond");
     return c;

@@ -4,7 +4,9 @@
 // so a pass is judged against this machine rather than against a number from another one.
 //
 // Measured the way passes are timed (PassTimers: GL_TIME_ELAPSED, on llvmpipe each scope waits for its
-// work), median of `repeats` runs after a warm-up. The kernels are in glsl/probe/.
+// work), median of `repeats` runs after a warm-up, each run repeating the kernel until it lasts 20 ms (a GPU
+// runs one in microseconds). The kernels are in glsl/probe/; they are straight-line code where a loop would
+// measure the loop (kernels.glsl).
 #pragma once
 
 #include <functional>
@@ -15,14 +17,18 @@
 namespace bounce::gl {
 
 struct Ceilings {
-    std::string renderer;             // GL_RENDERER of the context that measured them
-    double fragmentGflops = 0.0;      // FMA throughput of a full-screen fragment pass
-    double computeGflops = 0.0;       // the same kernel as a compute dispatch
-    double fragmentGBps = 0.0;        // texelFetch of four RGBA32F inputs + one RGBA32F target
-    double computeImageGBps = 0.0;    // texelFetch + imageStore of RGBA32F
-    double computeBufferGBps = 0.0;   // SSBO vec4 copy
-    double fragmentGfetches = 0.0;    // texel fetches per second (cache-resident texture), fragment
-    double computeGfetches = 0.0;     //   and compute
+    std::string renderer;           // GL_RENDERER of the context that measured them
+    double fragmentGflops = 0.0;    // FMA throughput of a full-screen fragment pass
+    double computeGflops = 0.0;     // the same kernel as a compute dispatch
+    double fragmentGBps = 0.0;      // texelFetch of four RGBA32F inputs + one RGBA32F target
+    double computeImageGBps = 0.0;  // texelFetch + imageStore of RGBA32F
+    double computeBufferGBps = 0.0; // SSBO vec4 copy
+    double fragmentGfetches = 0.0;  // texel fetches per second (cache-resident texture), fragment
+    double computeGfetches = 0.0;   //   and compute
+    // Uniform-block words a gather's loop reads per second, every invocation the same record at once (a
+    // GPU broadcasts them; llvmpipe loads them lane by lane: then they, not the arithmetic, bound a gather).
+    double fragmentGuniformWords = 0.0;
+    double computeGuniformWords = 0.0;
     double framebufferGBps = 0.0;     // a flat-colour RGBA32F target, written only
     double mtrianglesPerSecond = 0.0; // pixel-sized triangles, flat shaded
     int size = 0;                     // the side of the probe's square targets

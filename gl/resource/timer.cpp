@@ -44,6 +44,7 @@ void PassTimers::Scope::addWork(const PassCost& fixed)
     c.bytesFixed += fixed.bytesFixed;
     c.flopsFixed += fixed.flopsFixed;
     c.fetchesFixed += fixed.fetchesFixed;
+    c.uniformWordsFixed += fixed.uniformWordsFixed;
     c.triangles += fixed.triangles;
 }
 
@@ -126,6 +127,7 @@ void PassTimers::endFrame(bool keep)
         s.work.flops += invocations * p.cost.flops + p.cost.flopsFixed;
         s.work.fetches += invocations * p.cost.fetches + p.cost.fetchesFixed;
         s.work.bytes += invocations * (p.cost.bytesRead + p.cost.bytesWritten) + p.cost.bytesFixed;
+        s.work.uniformWords += invocations * p.cost.uniformWords + p.cost.uniformWordsFixed;
         s.work.triangles += p.cost.triangles;
         s.work.costDeclared = s.work.costDeclared && p.cost.declared();
         seen[i] = true;

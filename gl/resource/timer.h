@@ -25,14 +25,18 @@ struct PassCost {
     double fetches = 0.0;      // texel fetches / texture samples / image loads per invocation
     double bytesRead = 0.0;    // memory read per invocation (textures, images, buffers, framebuffer)
     double bytesWritten = 0.0; // memory written per invocation (render targets, images, buffers)
-    double bytesFixed = 0.0;   // per scope, not per invocation
-    double flopsFixed = 0.0;   // per scope: work counted by the pass itself (a tree walk's visited nodes)
+    // Words read from uniform blocks (or buffers) at an address every invocation shares, as a gather's loop
+    // reads its VPLs: free on a GPU (broadcast), a lane-by-lane load on llvmpipe (Ceilings: *GuniformWords).
+    double uniformWords = 0.0;
+    double bytesFixed = 0.0; // per scope, not per invocation
+    double flopsFixed = 0.0; // per scope: work counted by the pass itself (a tree walk's visited nodes)
     double fetchesFixed = 0.0;
+    double uniformWordsFixed = 0.0;
     double triangles = 0.0; // per scope: triangles the rasteriser sets up (drawn geometry)
     bool declared() const
     {
-        return flops > 0.0 || fetches > 0.0 || bytesRead > 0.0 || bytesWritten > 0.0 || bytesFixed > 0.0 ||
-               flopsFixed > 0.0 || fetchesFixed > 0.0 || triangles > 0.0;
+        return flops > 0.0 || fetches > 0.0 || bytesRead > 0.0 || bytesWritten > 0.0 || uniformWords > 0.0 ||
+               bytesFixed > 0.0 || flopsFixed > 0.0 || fetchesFixed > 0.0 || uniformWordsFixed > 0.0 || triangles > 0.0;
     }
 };
 
@@ -43,6 +47,7 @@ struct PassWork {
     double flops = 0.0;
     double fetches = 0.0;
     double bytes = 0.0;        // read + written
+    double uniformWords = 0.0; // read from uniform blocks at shared addresses (PassCost::uniformWords)
     double triangles = 0.0;    // set up by the rasteriser
     bool costDeclared = false; // every scope of the pass declared a PassCost
 };

@@ -5,6 +5,7 @@
 
 #define SSBO_PROBE_SOURCE 7      // bandwidth_buffer.comp
 #define SSBO_PROBE_TARGET 8
+#define UBO_PROBE_RECORDS 0      // uniform.frag, uniform.comp (kernels.glsl: uniformLoop)
 #define UNIT_PROBE_FIRST 0       // bandwidth.frag: four inputs, 0..3; the other kernels use the first only
 
 #endif

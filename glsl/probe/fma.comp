@@ -9,5 +9,5 @@ void main()
 {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(p, imageSize(target)))) return;
-    imageStore(target, p, fmaChains(vec4(p.xyxy) * 1e-3 + 0.5e-3, ITERATIONS, a, b));
+    imageStore(target, p, fmaChains(vec4(p.xyxy) * 1e-3 + 0.5e-3, a, b));
 }

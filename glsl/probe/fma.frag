@@ -6,5 +6,5 @@ uniform vec4 b;
 layout(location = 0) out vec4 outValue;
 void main()
 {
-    outValue = fmaChains(gl_FragCoord.xyxy * 1e-3, ITERATIONS, a, b);
+    outValue = fmaChains(gl_FragCoord.xyxy * 1e-3, a, b);
 }

@@ -199,7 +199,8 @@ TEST(Cli, ProbeCachesCeilingsAndRenderRecordsBounds)
     std::ifstream cin(d / "c.json");
     const nlohmann::json c = nlohmann::json::parse(cin);
     for (const char* key : {"fragmentGflops", "computeGflops", "fragmentGBps", "computeImageGBps", "computeBufferGBps",
-                            "fragmentGfetches", "computeGfetches", "mtrianglesPerSecond"})
+                            "fragmentGfetches", "computeGfetches", "fragmentGuniformWords", "computeGuniformWords",
+                            "mtrianglesPerSecond"})
         EXPECT_GT(c[key].get<double>(), 0.0) << key;
     bool cached = false;
     for (const auto& e : fs::directory_iterator(d / "cache"))

@@ -22,6 +22,8 @@ gl::Ceilings ceilings()
     c.computeBufferGBps = 5; // the compute ceiling is the better of image and buffer
     c.fragmentGfetches = 2;
     c.computeGfetches = 1;
+    c.fragmentGuniformWords = 5; // 5e9 words/s
+    c.computeGuniformWords = 4;
     c.framebufferGBps = 30;
     c.mtrianglesPerSecond = 10; // 1e7 /s
     return c;
@@ -76,6 +78,24 @@ TEST(Roofline, TrianglesBoundAGeometryPass)
     EXPECT_EQ(b->limiter, "setup");
 }
 
+TEST(Roofline, UniformReadsBoundAGather)
+{
+    // A gather whose loop reads 1e9 uniform-block words: 200 ms at 5e9 words/s, more than its 1e9 flops
+    // (10 ms) and its bytes (20 ms); in a compute pass the compute stage's rate (4e9: 250 ms).
+    gl::PassStat p = pass(250.0, 1e6, 0, 1e9, 0, 4e8);
+    p.work.uniformWords = 1e9;
+    auto b = passBound(p, ceilings());
+    ASSERT_TRUE(b);
+    EXPECT_NEAR(b->uniformMs, 200.0, 1e-9);
+    EXPECT_EQ(b->limiter, "uniform");
+    EXPECT_NEAR(b->efficiency, 0.8, 1e-12);
+    p.work.fragmentInvocations = 0;
+    p.work.computeInvocations = 1e6;
+    b = passBound(p, ceilings());
+    ASSERT_TRUE(b);
+    EXPECT_NEAR(b->uniformMs, 250.0, 1e-9);
+}
+
 TEST(Roofline, MixedStagesAreChargedTheirShares)
 {
     // Half the invocations in each stage: 1e9 flops -> 5e8 at 1e11 (5 ms) + 5e8 at 5e10 (10 ms).
@@ -112,7 +132,8 @@ TEST(Roofline, CeilingsRoundTripAndRefuseNonsense)
     const gl::Ceilings c = ceilings();
     const gl::Ceilings back = gl::Ceilings::fromJson(c.toJson());
     EXPECT_EQ(back.toJson(), c.toJson());
-    for (const char* key : {"fragmentGflops", "computeGBps", "mtrianglesPerSecond", "renderer"}) {
+    for (const char* key :
+         {"fragmentGflops", "computeGBps", "mtrianglesPerSecond", "fragmentGuniformWords", "renderer"}) {
         nlohmann::json j = c.toJson();
         if (j.contains(key))
             j.erase(key);

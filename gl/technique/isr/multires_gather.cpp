@@ -93,6 +93,7 @@ void MultiresGather::gather(Frame& frame, Program& program, PassTimers& timers, 
     work.flopsFixed = valid * draws * perFragment.flops;
     work.fetchesFixed = valid * draws * perFragment.fetches;
     work.bytesFixed = valid * draws * (perFragment.bytesRead + perFragment.bytesWritten);
+    work.uniformWordsFixed = valid * draws * perFragment.uniformWords;
     t.addWork(work);
     PassState state = PassState::fullscreen(fbo_, illumination_.width(), illumination_.height());
     state.stencil.test = true;
@@ -134,6 +135,7 @@ void MultiresGather::run(Frame& frame, const Buffer& vpls, int vplCount, PassTim
     const int draws = std::max(vplBlockCount(vplCount), 1);
     PassCost cost;
     cost.flops = 20 + double(vplCount) * kFlopsPerVpl / draws;
+    cost.uniformWords = double(vplCount) * kUniformWordsPerVpl / draws;
     cost.fetches = 3;
     cost.bytesRead = 16 + 8 + 8 + 16; // patch texels, blending's read
     cost.bytesWritten = 16;

@@ -65,6 +65,7 @@ void VplGather::gather(Frame& frame, const Buffer& vpls, int count, PassTimers& 
     const int blocks = vplBlockCount(count);
     PassCost cost;
     cost.flops = double(count) * kFlopsPerVpl / std::max(blocks, 1); // invocations are counted per dispatch
+    cost.uniformWords = double(count) * kUniformWordsPerVpl / std::max(blocks, 1);
     cost.fetches = 3;
     cost.bytesRead = 3 * 16 + (blocks > 1 ? 16 : 0);
     cost.bytesWritten = 16;

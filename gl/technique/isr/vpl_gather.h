@@ -36,6 +36,8 @@ int bindVplBlock(const Buffer& cache, int block, int count);
 // vpl.glsl's vplContribution, counted: the offset, two dot products, r^2, Eq. 5's denominator, one
 // division and the rgb products and sum (PassCost of every gather).
 inline constexpr double kFlopsPerVpl = 38.0;
+// The uniform-block words vplContribution reads per VPL: position and area (4), normal (3), flux (3).
+inline constexpr double kUniformWordsPerVpl = 10.0;
 
 class VplGather {
 public:
