@@ -40,7 +40,7 @@ int differingPixels(const core::Scene& scene, gl::KBufferSettings a, gl::KBuffer
                 continue;
             }
             ++n;
-            if (pa[p].entries != pb[p].entries) ++bad;
+            if (!gl::KBuffer::sameEntries(pa[p], pb[p])) ++bad;
             if (a.capture == gl::KBufferCapture::Atomic && b.capture == gl::KBufferCapture::Peel)
                 EXPECT_EQ(pa[p].count, pb[p].entries.size()) << "pixel " << p << ": counter and peeled layers";
         }

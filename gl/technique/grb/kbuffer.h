@@ -60,6 +60,11 @@ public:
         bool overflow = false;
     };
     std::vector<Pixel> readBack();
+    // Whether two captures hold the same entries at a pixel: the same atlas texels in the same depth order,
+    // depths equal to within a few ulps. A multisample capture interpolates depth along its own path and
+    // may differ from a single-sample one in the last bit (seen on llvmpipe and NVIDIA's driver); the
+    // transfer only orders the entries by depth, so such a difference changes nothing.
+    static bool sameEntries(const Pixel& a, const Pixel& b);
 
     KBufferCapture capture() const { return settings_.capture; }
     int size() const { return settings_.size; }
