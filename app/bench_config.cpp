@@ -1,6 +1,7 @@
 #include "app/bench_config.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <fstream>
 #include <iomanip>
@@ -82,9 +83,11 @@ std::string valueText(const json& v, const std::string& key)
     if (v.is_boolean()) return v.get<bool>() ? "1" : "0";
     if (v.is_number_integer()) return std::to_string(v.get<long long>());
     if (v.is_number()) {
-        std::ostringstream s;
-        s << std::setprecision(17) << v.get<double>();
-        return s.str();
+        // The shortest text that reads back as the same double: 3e-4 stays 0.0003 in the labels, not
+        // 0.00029999999999999997, and still round-trips exactly.
+        char buf[64];
+        const auto r = std::to_chars(buf, buf + sizeof buf, v.get<double>());
+        return std::string(buf, r.ptr);
     }
     if (v.is_string()) return v.get<std::string>();
     refuse(key, "a parameter value must be a number, a boolean or a string, not " + typeText(v));
