@@ -102,7 +102,7 @@ std::vector<bool> emitterMaskOf(const core::Scene& scene, int w, int h)
     gl::Renderer d(scene, "direct", gl::ParamValues(gl::frameParams()),
                    gl::ParamValues(gl::findTechnique("direct").params), w, h);
     d.renderFrame(false);
-    return emitterMask(d.frame().read(d.frame().emission()), w, h);
+    return emitterMask(d.frame().readEmission(), w, h);
 }
 
 // Relative RMSE of the renderer's image against the `full` reference (at the reference's size, emitters
@@ -115,7 +115,7 @@ double errorAgainstFull(const BenchConfig& config, const std::string& sceneName,
     const std::string key = "full@" + std::to_string(rw) + "x" + std::to_string(rh);
     if (!cache.references.count(key))
         cache.references[key] = referenceImage(scene, sceneName, "full", rw, rh, config.reference);
-    const std::vector<bool> emitters = emitterMask(r.frame().read(r.frame().emission()), rw, rh);
+    const std::vector<bool> emitters = emitterMask(r.frame().readEmission(), rw, rh);
     return core::relativeRmse(blanked(core::boxDownsample(r.image(), rw, rh), emitters),
                               blanked(cache.references[key], emitters));
 }
@@ -133,7 +133,7 @@ void compareWithReferences(const BenchConfig& config, const std::string& sceneNa
     core::Image compared;
     std::vector<bool> emitters;
     try {
-        emitters = emitterMask(r.frame().read(r.frame().emission()), rw, rh);
+        emitters = emitterMask(r.frame().readEmission(), rw, rh);
         compared = blanked(core::boxDownsample(r.image(), rw, rh), emitters);
     } catch (const std::invalid_argument& e) {
         throw UsageError(std::string("bench config: the reference size must divide every run's size: ") + e.what());

@@ -9,25 +9,41 @@ namespace bounce::gl {
 
 namespace {
 
+// The G-buffer targets a scene needs: no specular target without a glossy lobe, no emission target
+// without an emitter (common/gbuffer.glsl).
+std::vector<Define> gbufferDefinesFor(const core::Scene& scene, const GpuScene& gpu)
+{
+    std::vector<Define> d;
+    if (!scene.hasGlossy()) d.push_back({"SCENE_DIFFUSE_ONLY", "1"});
+    if (gpu.emissiveTriangleCount() == 0) d.push_back({"SCENE_NO_EMITTERS", "1"});
+    return d;
+}
+
 // The direct-light program for the kinds of light the scene has: a loop over a kind the scene lacks
 // still costs a masked pass through its body on a SIMD rasteriser (llvmpipe), the polygon form factor
 // of the emitting triangles most of all (glsl/common/lighting.glsl).
-Program directProgram(const GpuScene& scene)
+Program directProgram(const core::Scene& scene, const GpuScene& gpu)
 {
-    std::vector<Define> kinds;
-    if (scene.punctualLightCount() > 0) kinds.push_back({"PUNCTUAL_LIGHTS", "1"});
-    if (int(scene.lights().size()) > scene.punctualLightCount()) kinds.push_back({"AREA_LIGHTS", "1"});
+    std::vector<Define> kinds = gbufferDefinesFor(scene, gpu);
+    if (gpu.punctualLightCount() > 0) kinds.push_back({"PUNCTUAL_LIGHTS", "1"});
+    if (int(gpu.lights().size()) > gpu.punctualLightCount()) kinds.push_back({"AREA_LIGHTS", "1"});
     return Program::graphics("direct", "frame/fullscreen.vert", "frame/direct.frag", kinds);
 }
 
-SceneProgram gbufferProgram(const GpuScene& scene, const FrameSettings& settings)
+SceneProgram gbufferProgram(const core::Scene& scene, const GpuScene& gpu, const FrameSettings& settings)
 {
-    std::vector<Define> defines;
+    std::vector<Define> defines = gbufferDefinesFor(scene, gpu);
     if (settings.gbufferConstantFragment) defines.push_back({"GBUFFER_CONSTANT_FRAGMENT", "1"});
     SceneProgram p("gbuffer", "frame/gbuffer.vert", "frame/gbuffer.frag", defines);
-    p.prepare(scene);
+    p.prepare(gpu);
     return p;
 }
+
+// The block of glsl/common/gbuffer.glsl's GBufferCamera (std140: five vec4s).
+struct GBufferCamera {
+    glm::vec4 origin, corner, axisX, axisY;
+    glm::ivec4 present;
+};
 
 } // namespace
 
@@ -41,8 +57,8 @@ Frame::Frame(const core::Scene& scene, const FrameSettings& settings)
       directFbo_("direct.fbo"),
       compositeFbo_("composite.fbo"),
       emptyVao_("fullscreen"),
-      gbufferProgram_(gbufferProgram(gpu_, settings)),
-      directProgram_(directProgram(gpu_)),
+      gbufferProgram_(gbufferProgram(scene, gpu_, settings)),
+      directProgram_(directProgram(scene, gpu_)),
       compositeProgram_(Program::graphics("composite", "frame/fullscreen.vert", "frame/composite.frag"))
 {
     shadows_.setPcf(settings.pcfLinear);
@@ -51,26 +67,34 @@ Frame::Frame(const core::Scene& scene, const FrameSettings& settings)
 
 void Frame::allocateTargets()
 {
-    checkFrameFits(settings_); // before any target: a size the driver cannot hold stops the run at once
+    const bool glossy = scene_.hasGlossy(), emitters = gpu_.emissiveTriangleCount() > 0;
+    // Before any target: a size the driver cannot hold stops the run at once.
+    checkFrameFits(settings_, frameTargetBytesPerPixel(glossy, emitters));
     const int w = settings_.width, h = settings_.height;
-    position_ = Texture::create2D("gbuffer.position", GL_RGBA32F, w, h);
-    normal_ = Texture::create2D("gbuffer.normal", GL_RGBA32F, w, h);
+    geometry_ = Texture::create2D("gbuffer.geometry", GL_RG32UI, w, h);
     diffuse_ = Texture::create2D("gbuffer.diffuse", GL_RGBA16F, w, h);
-    specular_ = Texture::create2D("gbuffer.specular", GL_RGBA16F, w, h);
-    emission_ = Texture::create2D("gbuffer.emission", GL_RGBA16F, w, h);
+    specular_ = glossy ? Texture::create2D("gbuffer.specular", GL_RGBA16F, w, h) : Texture();
+    emission_ = emitters ? Texture::create2D("gbuffer.emission", GL_RGBA16F, w, h) : Texture();
     depth_ = Texture::create2D("gbuffer.depth", GL_DEPTH_COMPONENT32F, w, h);
     direct_ = Texture::create2D("direct", GL_RGBA32F, w, h);
     indirect_ = Texture::create2D("indirect", GL_RGBA32F, w, h);
     composite_ = Texture::create2D("composite", GL_RGBA32F, w, h);
-    gbufferFbo_.attach(GL_COLOR_ATTACHMENT0, position_);
-    gbufferFbo_.attach(GL_COLOR_ATTACHMENT1, normal_);
-    gbufferFbo_.attach(GL_COLOR_ATTACHMENT2, diffuse_);
-    gbufferFbo_.attach(GL_COLOR_ATTACHMENT3, specular_);
-    gbufferFbo_.attach(GL_COLOR_ATTACHMENT4, emission_);
+    gbufferFbo_ = Framebuffer("gbuffer.fbo"); // a fresh object: no attachment of an earlier size survives
+    gbufferFbo_.attach(GL_COLOR_ATTACHMENT0, geometry_);
+    gbufferFbo_.attach(GL_COLOR_ATTACHMENT1, diffuse_);
+    if (specular_) gbufferFbo_.attach(GL_COLOR_ATTACHMENT2, specular_);
+    if (emission_) gbufferFbo_.attach(GL_COLOR_ATTACHMENT3, emission_);
     gbufferFbo_.attach(GL_DEPTH_ATTACHMENT, depth_);
-    gbufferFbo_.setDrawBuffers(
-        {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2, GL_COLOR_ATTACHMENT3, GL_COLOR_ATTACHMENT4});
+    gbufferFbo_.setDrawBuffers({GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1,
+                                GLenum(specular_ ? GL_COLOR_ATTACHMENT2 : GL_NONE),
+                                GLenum(emission_ ? GL_COLOR_ATTACHMENT3 : GL_NONE)});
     gbufferFbo_.checkComplete();
+    if (!black_) {
+        black_ = Texture::create2D("frame.absentTarget", GL_RGBA16F, 1, 1);
+        const float zero[4] = {0, 0, 0, 0};
+        black_.clear(0, zero);
+    }
+    if (!gbufferCamera_) gbufferCamera_ = Buffer("frame.gbufferCamera", sizeof(GBufferCamera));
     directFbo_.attach(GL_COLOR_ATTACHMENT0, direct_);
     directFbo_.checkComplete();
     compositeFbo_.attach(GL_COLOR_ATTACHMENT0, composite_);
@@ -95,7 +119,7 @@ void Frame::setLights(const std::vector<core::Light>& lights)
     gpu_.setLights(lights);
     shadows_.update(gpu_);
     ++version_.lights;
-    if ((punctualBefore > 0) != (gpu_.punctualLightCount() > 0)) directProgram_ = directProgram(gpu_);
+    if ((punctualBefore > 0) != (gpu_.punctualLightCount() > 0)) directProgram_ = directProgram(scene_, gpu_);
 }
 
 void Frame::resize(int width, int height)
@@ -139,20 +163,28 @@ void Frame::renderShadowMaps(PassTimers& timers)
 
 void Frame::renderGBuffer(PassTimers& timers)
 {
+    // gbuffer.frag per fragment: eye depth and octahedral normal (8 bytes), diffuse (8), and where the
+    // scene has them specular (8) and emission (8); the depth test reads and writes 4.
+    const double targetBytes = 8 + 8 + (specular_ ? 8 : 0) + (emission_ ? 8 : 0);
     PassCost cost;
-    cost.flops = 40;                           // gbuffer.frag: normalize, brdfParams, the back-face case
+    cost.flops = 50;                           // normalize, brdfParams, the back-face case, the octahedral map
     cost.fetches = gpu_.hasTextures() ? 4 : 0; // one bilinear base-colour sample
     cost.bytesRead = 4;                        // depth test
-    cost.bytesWritten = 2 * 16 + 3 * 8 + 4;    // two RGBA32F and three RGBA16F targets, depth
+    cost.bytesWritten = targetBytes + 4;
     const double pixels = double(settings_.width) * settings_.height;
-    cost.bytesFixed = pixels * (2 * 16 + 3 * 8 + 4) + 3.0 * gpu_.triangleCount() * kVertexBytes; // clears, vertices
+    cost.bytesFixed = pixels * (targetBytes + 4) + 3.0 * gpu_.triangleCount() * kVertexBytes; // clears, vertices
     cost.triangles = double(gpu_.triangleCount());
     auto t = timers.scope("gbuffer", cost);
+    updateGBufferCamera();
     PassState state = PassState::fullscreen(gbufferFbo_, settings_.width, settings_.height);
     state.depthTest = true; // no culling: back faces of one-sided surfaces are drawn black (gbuffer.frag)
     state.apply();          // before the clears, which obey the write masks
+    const GLuint zeroBits[4] = {0, 0, 0, 0};
     const float zero[4] = {0, 0, 0, 0};
-    for (int i = 0; i < 5; ++i) glClearNamedFramebufferfv(gbufferFbo_.id(), GL_COLOR, i, zero);
+    glClearNamedFramebufferuiv(gbufferFbo_.id(), GL_COLOR, 0, zeroBits); // eye depth 0: background
+    glClearNamedFramebufferfv(gbufferFbo_.id(), GL_COLOR, 1, zero);
+    if (specular_) glClearNamedFramebufferfv(gbufferFbo_.id(), GL_COLOR, 2, zero);
+    if (emission_) glClearNamedFramebufferfv(gbufferFbo_.id(), GL_COLOR, 3, zero);
     glClearNamedFramebufferfi(gbufferFbo_.id(), GL_DEPTH_STENCIL, 0, 1.0f, 0);
     gbufferProgram_.set("viewProj", projection() * view());
     gbufferProgram_.set("view", view());
@@ -161,13 +193,35 @@ void Frame::renderGBuffer(PassTimers& timers)
     gbufferProgram_.draw(gpu_);
 }
 
+void Frame::updateGBufferCamera()
+{
+    // The eye axes from the very matrices the G-buffer was rasterised with: row r of the view matrix is
+    // eye axis r in world space, and the projection's diagonal holds 1 / tan of the half field of view.
+    const glm::mat4 v = view(), p = projection();
+    const glm::vec3 right(v[0][0], v[1][0], v[2][0]), up(v[0][1], v[1][1], v[2][1]);
+    const glm::vec3 forward = -glm::vec3(v[0][2], v[1][2], v[2][2]);
+    const glm::vec3 x = right / p[0][0], y = up / p[1][1]; // half the image, one metre ahead
+    GBufferCamera c;
+    c.origin = glm::vec4(camera_.position, 1.0f);
+    c.corner = glm::vec4(forward - x - y, 0.0f);
+    c.axisX = glm::vec4(2.0f * x / float(settings_.width), 0.0f);
+    c.axisY = glm::vec4(2.0f * y / float(settings_.height), 0.0f);
+    c.present = glm::ivec4(specular_ ? 1 : 0, emission_ ? 1 : 0, 0, 0);
+    gbufferCamera_.update(0, sizeof c, &c);
+}
+
+std::vector<Define> Frame::gbufferDefines() const
+{
+    return gbufferDefinesFor(scene_, gpu_);
+}
+
 void Frame::bindGBuffer() const
 {
-    position_.bind(UNIT_G_POSITION);
-    normal_.bind(UNIT_G_NORMAL);
+    geometry_.bind(UNIT_G_GEOMETRY);
     diffuse_.bind(UNIT_G_DIFFUSE);
-    specular_.bind(UNIT_G_SPECULAR);
-    emission_.bind(UNIT_G_EMISSION);
+    (specular_ ? specular_ : black_).bind(UNIT_G_SPECULAR);
+    (emission_ ? emission_ : black_).bind(UNIT_G_EMISSION);
+    gbufferCamera_.bindBase(GL_UNIFORM_BUFFER, UBO_GBUFFER_CAMERA);
 }
 
 void Frame::bindSceneData() const
@@ -185,7 +239,7 @@ void Frame::drawFullscreen() const
 
 void Frame::renderDirect(PassTimers& timers)
 {
-    // direct.frag per pixel: five G-buffer texels, one target; per punctual light about 60 flops and
+    // direct.frag per pixel: two to four G-buffer texels (the targets the scene has), one target; per punctual light about 60 flops and
     // (2r+1)^2 shadow taps (four texels each when filtered), per emitting triangle about 250 flops (the
     // clipped polygon's form factor) and its shadow taps.
     const double taps =
@@ -193,8 +247,8 @@ void Frame::renderDirect(PassTimers& timers)
     const double punctual = gpu_.punctualLightCount(), area = shadows_.lightCount() - punctual;
     PassCost cost;
     cost.flops = 30 + punctual * (60 + 10 * taps) + area * (250 + 10 * taps);
-    cost.fetches = 5 + (punctual + area) * taps;
-    cost.bytesRead = 2 * 16 + 3 * 8 + (punctual + area) * taps * 4;
+    cost.fetches = 2 + (specular_ ? 1 : 0) + (emission_ ? 1 : 0) + (punctual + area) * taps;
+    cost.bytesRead = 8 + 8 + (specular_ ? 8 : 0) + (emission_ ? 8 : 0) + (punctual + area) * taps * 4;
     cost.bytesWritten = 16;
     auto t = timers.scope("direct", cost);
     PassState::fullscreen(directFbo_, settings_.width, settings_.height).apply();
@@ -229,16 +283,61 @@ void Frame::composite(PassTimers& timers)
     drawFullscreen();
 }
 
-core::Image Frame::read(const Texture& texture) const
+std::vector<float> Frame::decode(int output) const
 {
-    const std::vector<float> rgba = texture.readFloats(0, 4);
-    core::Image img(texture.width(), texture.height());
+    Texture target = Texture::create2D("gbuffer.decoded", GL_RGBA32F, settings_.width, settings_.height);
+    Framebuffer fbo("gbuffer.decode.fbo");
+    fbo.attach(GL_COLOR_ATTACHMENT0, target);
+    fbo.checkComplete();
+    Program decoder = Program::graphics("gbuffer.decode", "frame/fullscreen.vert", "frame/gbuffer_decode.frag");
+    PassState::fullscreen(fbo, settings_.width, settings_.height).apply();
+    bindGBuffer();
+    decoder.set("decodeNormals", output);
+    decoder.use();
+    drawFullscreen();
+    return target.readFloats(0, 4);
+}
+
+std::vector<float> Frame::readPositions() const
+{
+    return decode(0);
+}
+
+std::vector<float> Frame::readNormals() const
+{
+    return decode(1);
+}
+
+core::Image Frame::readEmission() const
+{
+    if (emission_) return read(emission_);
+    return core::Image(settings_.width, settings_.height);
+}
+
+namespace {
+
+// Four floats per pixel in GL rows (row 0 at the bottom) as an RGB image with row 0 at the top.
+core::Image rgbaToImage(const std::vector<float>& rgba, int width, int height)
+{
+    core::Image img(width, height);
     for (int y = 0; y < img.height; ++y)
         for (int x = 0; x < img.width; ++x) {
             const float* p = &rgba[(std::size_t(img.height - 1 - y) * img.width + x) * 4]; // GL rows go up
             img.set(x, y, {p[0], p[1], p[2]});
         }
     return img;
+}
+
+} // namespace
+
+core::Image Frame::read(const Texture& texture) const
+{
+    return rgbaToImage(texture.readFloats(0, 4), texture.width(), texture.height());
+}
+
+core::Image Frame::toImage(const std::vector<float>& rgba) const
+{
+    return rgbaToImage(rgba, settings_.width, settings_.height);
 }
 
 } // namespace bounce::gl

@@ -13,6 +13,7 @@
 #include "gl/frame/gpu_scene.h"
 #include "gl/frame/scene_program.h"
 #include "gl/frame/shadow_maps.h"
+#include "gl/resource/buffer.h"
 #include "gl/resource/framebuffer.h"
 #include "gl/resource/program.h"
 #include "gl/resource/texture.h"
@@ -58,8 +59,15 @@ public:
     void composite(PassTimers& timers);
     void clearIndirect();
 
-    // Binds the G-buffer at texture units 0..4 (glsl/common/gbuffer.glsl).
+    // Binds the G-buffer (glsl/common/gbuffer.glsl): its textures at UNIT_G_*, a 1x1 black texture for a
+    // target the scene does not need, and the camera block at UBO_GBUFFER_CAMERA.
     void bindGBuffer() const;
+    // SCENE_DIFFUSE_ONLY / SCENE_NO_EMITTERS where the scene has no glossy material / no emitter: a
+    // program compiled with them reads no texel for what is not there (common/gbuffer.glsl). Programs
+    // without them read the black 1x1 texture instead, and are right too.
+    std::vector<Define> gbufferDefines() const;
+    bool hasSpecularTarget() const { return bool(specular_); }
+    bool hasEmissionTarget() const { return bool(emission_); }
     // Binds materials (SSBO 0), lights (1), shadow views (2), area polygons (3), the scene's geometry
     // (vertices 4, indices 5, emissive triangles 6: glsl/common/scene.glsl with SCENE_GEOMETRY), shadow
     // depth (unit 5) and the base-colour textures (unit 6).
@@ -78,11 +86,9 @@ public:
     int frameIndex() const { return frameIndex_; }
     const FrameVersion& version() const { return version_; }
 
-    const Texture& position() const { return position_; }
-    const Texture& normal() const { return normal_; }
+    // RG32UI: eye depth bits (0: background) and the octahedral normal (glsl/common/gbuffer.glsl).
+    const Texture& geometry() const { return geometry_; }
     const Texture& diffuse() const { return diffuse_; }
-    const Texture& specular() const { return specular_; }
-    const Texture& emission() const { return emission_; }
     const Texture& depth() const { return depth_; }
     const Texture& direct() const { return direct_; }
     Texture& indirect() { return indirect_; }
@@ -90,6 +96,15 @@ public:
 
     // Reads an RGBA32F texture back as an RGB image, row 0 at the top.
     core::Image read(const Texture& texture) const;
+    // The G-buffer as the shaders' accessors see it, decoded on the GPU into RGBA32F, GL rows (row 0 at
+    // the bottom), four floats per pixel: world position and 1 where there is geometry (0 elsewhere),
+    // and the unit normal and eye depth. For tests and tools.
+    std::vector<float> readPositions() const;
+    std::vector<float> readNormals() const;
+    // Emitted radiance as seen by the camera (black without an emission target), row 0 at the top.
+    core::Image readEmission() const;
+    // Four floats per pixel in GL rows (readFloats, readPositions) as an RGB image, row 0 at the top.
+    core::Image toImage(const std::vector<float>& rgba) const;
 
 private:
     const core::Scene& scene_;
@@ -97,7 +112,9 @@ private:
     core::Camera camera_;
     GpuScene gpu_;
     ShadowMaps shadows_;
-    Texture position_, normal_, diffuse_, specular_, emission_, depth_, direct_, indirect_, composite_;
+    Texture geometry_, diffuse_, specular_, emission_, depth_, direct_, indirect_, composite_;
+    Texture black_; // 1x1, bound for the targets the scene does not need
+    Buffer gbufferCamera_;
     Framebuffer gbufferFbo_, directFbo_, compositeFbo_;
     VertexArray emptyVao_;
     SceneProgram gbufferProgram_;
@@ -105,6 +122,8 @@ private:
     int frameIndex_ = -1;
     FrameVersion version_;
     void allocateTargets();
+    void updateGBufferCamera();
+    std::vector<float> decode(int output) const;
 };
 
 } // namespace bounce::gl

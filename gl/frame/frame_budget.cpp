@@ -73,14 +73,14 @@ DeviceLimits deviceLimits()
     return l;
 }
 
-std::size_t frameTargetBytesPerPixel()
+std::size_t frameTargetBytesPerPixel(bool specular, bool emission)
 {
-    // Frame::allocateTargets: position, normal (RGBA32F), diffuse, specular, emission (RGBA16F), depth
-    // (32F), direct, indirect, composite (RGBA32F).
-    return 16 + 16 + 8 + 8 + 8 + 4 + 16 + 16 + 16;
+    // Frame::allocateTargets: geometry (RG32UI), diffuse (RGBA16F), specular and emission (RGBA16F) where
+    // the scene needs them, depth (32F), direct, indirect, composite (RGBA32F).
+    return 8 + 8 + (specular ? 8 : 0) + (emission ? 8 : 0) + 4 + 16 + 16 + 16;
 }
 
-std::string frameFitProblem(const FrameSettings& s, const DeviceLimits& l)
+std::string frameFitProblem(const FrameSettings& s, const DeviceLimits& l, std::size_t bytesPerPixel)
 {
     const std::string size = std::to_string(s.width) + "x" + std::to_string(s.height);
     const auto over = [&](int limit, const char* name) {
@@ -92,19 +92,19 @@ std::string frameFitProblem(const FrameSettings& s, const DeviceLimits& l)
         return over(std::max(l.maxViewportWidth, l.maxViewportHeight), "GL_MAX_VIEWPORT_DIMS");
     if (l.maxFramebufferWidth > 0 && (s.width > l.maxFramebufferWidth || s.height > l.maxFramebufferHeight))
         return over(std::max(l.maxFramebufferWidth, l.maxFramebufferHeight), "GL_MAX_FRAMEBUFFER_WIDTH/HEIGHT");
-    const std::size_t needed = std::size_t(s.width) * std::size_t(s.height) * frameTargetBytesPerPixel();
+    const std::size_t needed = std::size_t(s.width) * std::size_t(s.height) * bytesPerPixel;
     // The targets alone may take at most half of what there is: the scene, the shadow maps, the
     // technique's own buffers and the image read back for writing need the rest.
     if (l.availableBytes > 0 && needed > l.availableBytes / 2)
         return "--size " + size + ": the frame's render targets alone need " + gib(needed) + " (" +
-               std::to_string(frameTargetBytesPerPixel()) + " bytes per pixel), more than half of the " +
-               gib(l.availableBytes) + " of " + l.memorySource;
+               std::to_string(bytesPerPixel) + " bytes per pixel), more than half of the " + gib(l.availableBytes) +
+               " of " + l.memorySource;
     return "";
 }
 
-void checkFrameFits(const FrameSettings& settings)
+void checkFrameFits(const FrameSettings& settings, std::size_t bytesPerPixel)
 {
-    if (const std::string problem = frameFitProblem(settings, deviceLimits()); !problem.empty())
+    if (const std::string problem = frameFitProblem(settings, deviceLimits(), bytesPerPixel); !problem.empty())
         throw ResourceError("frame", problem);
 }
 

@@ -25,14 +25,16 @@ struct DeviceLimits {
 // The current context's limits.
 DeviceLimits deviceLimits();
 
-// Bytes per pixel of the frame's own render targets (G-buffer, depth, direct, indirect, composite).
-std::size_t frameTargetBytesPerPixel();
+// Bytes per pixel of the frame's own render targets (G-buffer, depth, direct, indirect, composite); the
+// specular and emission targets only where the scene needs them (common/gbuffer.glsl).
+std::size_t frameTargetBytesPerPixel(bool specular = true, bool emission = true);
 
 // Empty when a frame of these settings fits the limits, else what is wrong, in words that name the
 // limit and --size. Pure: tests pass their own limits.
-std::string frameFitProblem(const FrameSettings& settings, const DeviceLimits& limits);
+std::string frameFitProblem(const FrameSettings& settings, const DeviceLimits& limits,
+                            std::size_t bytesPerPixel = frameTargetBytesPerPixel());
 
 // Throws ResourceError("frame", ...) when frameFitProblem() says anything for the current context.
-void checkFrameFits(const FrameSettings& settings);
+void checkFrameFits(const FrameSettings& settings, std::size_t bytesPerPixel = frameTargetBytesPerPixel());
 
 } // namespace bounce::gl

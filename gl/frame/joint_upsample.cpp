@@ -15,14 +15,14 @@ void JointUpsample::run(Frame& coarse, Frame& full, PassTimers& timers)
     PassCost cost; // joint_upsample.frag per pixel: its normal and depth, four coarse pixels' of both
     cost.flops = 80;
     cost.fetches = 1 + 4 * 2;
-    cost.bytesRead = 16 + 4 * 32;
+    cost.bytesRead = 8 + 4 * (8 + 16);
     cost.bytesWritten = 16;
     auto t = timers.scope("joint-upsample", cost);
     fbo_.attach(GL_COLOR_ATTACHMENT0, full.indirect());
     PassState::fullscreen(fbo_, full.width(), full.height()).apply();
     coarse.indirect().bind(UNIT_UPSAMPLE_COARSE_INDIRECT);
-    coarse.normal().bind(UNIT_UPSAMPLE_COARSE_NORMAL);
-    full.normal().bind(UNIT_UPSAMPLE_FULL_NORMAL);
+    coarse.geometry().bind(UNIT_UPSAMPLE_COARSE_GEOMETRY);
+    full.geometry().bind(UNIT_UPSAMPLE_FULL_GEOMETRY);
     program_.set("coarseSize", glm::ivec2(coarse.width(), coarse.height()));
     program_.set("scale",
                  glm::vec2(float(coarse.width()) / float(full.width()), float(coarse.height()) / float(full.height())));

@@ -24,8 +24,7 @@
 #define SSBO_RAY_BATCH_RESULTS 21
 
 // Texture units (glBindTextureUnit(unit, texture)). Units 21 and up belong to the technique.
-#define UNIT_G_POSITION 0        // gbuffer.glsl
-#define UNIT_G_NORMAL 1
+#define UNIT_G_GEOMETRY 0        // gbuffer.glsl: eye depth and normal
 #define UNIT_G_DIFFUSE 2
 #define UNIT_G_SPECULAR 3
 #define UNIT_G_EMISSION 4
@@ -40,8 +39,12 @@
 #define UNIT_COMPOSITE_INDIRECT 1
 #define UNIT_TONEMAP_RADIANCE 0
 #define UNIT_UPSAMPLE_COARSE_INDIRECT 0 // frame/joint_upsample.frag (the demo's frame budget)
-#define UNIT_UPSAMPLE_COARSE_NORMAL 1
-#define UNIT_UPSAMPLE_FULL_NORMAL 2
+#define UNIT_UPSAMPLE_COARSE_GEOMETRY 1 // the two frames' gGeometry (common/gbuffer.glsl)
+#define UNIT_UPSAMPLE_FULL_GEOMETRY 2
+
+// Uniform buffers (glBindBufferBase(GL_UNIFORM_BUFFER, slot)). Slot 0 and slots 2 and up belong to the
+// technique that binds them.
+#define UBO_GBUFFER_CAMERA 1     // gbuffer.glsl: the camera that rendered the G-buffer
 
 // Image units (glBindImageTexture) are bound right before the dispatch that uses them and belong to
 // that pass: each compute shader numbers its images from 0.

@@ -2,6 +2,9 @@
 // Lambertian diffuse baseColor (1 - metallic) plus one GGX lobe (height-correlated Smith, Schlick).
 //   F0 = mix(min(0.04 specularColor, 1), baseColor, metallic), w = mix(specular, 1, metallic)
 //   f  = (1 - w F) c_diff / pi + w F D Vis
+// SCENE_DIFFUSE_ONLY (gl/frame/frame.h: Frame::gbufferDefines): no material of the scene has a glossy lobe
+// (w = 0 everywhere), so the glossy terms are compiled out: a SIMD rasteriser (llvmpipe) evaluates both
+// sides of the w <= 0 test, GGX included, for every pixel.
 #ifndef BOUNCE_BRDF_GLSL
 #define BOUNCE_BRDF_GLSL
 
@@ -40,18 +43,30 @@ float smithVis(float NdotL, float NdotV, float a2)
 
 // Schlick's 5th power of 1 - cos. pow of a negative base is undefined in GLSL (NaN on llvmpipe): a unit
 // dot product may round to 1 + 1 ulp (a direction exactly along n), so 1 - cos is clamped at 0, where
-// core/brdf.cpp's x^5 gives -1e-35.
-float schlickWeight(float cosTheta) { return pow(max(1.0 - cosTheta, 0.0), 5.0); }
+// core/brdf.cpp's x^5 gives -1e-35. Three multiplications as there, not pow (exp2 of log2 in software).
+float schlickWeight(float cosTheta)
+{
+    float m = max(1.0 - cosTheta, 0.0);
+    float m2 = m * m;
+    return m2 * m2 * m;
+}
 
 // What the glossy interface lets through to the diffuse part in one direction: 1 - w F(cos).
 vec3 brdfTransmission(BrdfParams p, float cosTheta)
 {
+#ifdef SCENE_DIFFUSE_ONLY
+    return vec3(1.0);
+#else
     return 1.0 - p.weight * (p.f0 + (1.0 - p.f0) * schlickWeight(cosTheta));
+#endif
 }
 
 // The glossy lobe alone, w F D Vis, without the cosine; zero below either horizon.
 vec3 brdfGlossy(BrdfParams p, vec3 n, vec3 wo, vec3 wi)
 {
+#ifdef SCENE_DIFFUSE_ONLY
+    return vec3(0.0);
+#else
     float NdotL = dot(n, wi), NdotV = dot(n, wo);
     if (NdotL <= 0.0 || NdotV <= 0.0 || p.weight <= 0.0) return vec3(0.0);
     vec3 h = normalize(wo + wi);
@@ -59,6 +74,7 @@ vec3 brdfGlossy(BrdfParams p, vec3 n, vec3 wo, vec3 wi)
     vec3 F = p.f0 + (1.0 - p.f0) * schlickWeight(VdotH);
     float a2 = p.alpha * p.alpha;
     return p.weight * F * ggxD(max(dot(n, h), 0.0), a2) * smithVis(NdotL, NdotV, a2);
+#endif
 }
 
 // The two lobes of f(wo, wi) apart, zero below either horizon: f = diffuseFactor c_diff + glossy, with

@@ -12,7 +12,7 @@
 // read from the G-buffer itself.
 //
 // Discontinuity (Fig. 2c). A patch of level l >= 1 with geometry needs subdividing when
-//   (max d - min d) >= depthThreshold * min d     (d: linear eye depth, gNormal.w; relative threshold)
+//   (max d - min d) >= depthThreshold * min d     (d: linear eye depth, gbufferEyeDepth; relative threshold)
 //   or max_c (max N_c - min N_c) >= normalThreshold  (componentwise spread of its unit normals)
 // A single pixel never does. With ">=" a threshold of 0 subdivides everything: full resolution.
 // Valid fragment (the pseudo code of §3.2.1): a patch with geometry, without discontinuity, whose parent
@@ -74,16 +74,15 @@ MultiresPatch loadPatch(int level, ivec2 t)
     MultiresPatch p = emptyPatch();
     if (!levelContains(level, t)) return p;
     if (level == 0) {
-        vec4 pos = texelFetch(gPosition, t, 0);
-        if (pos.w == 0.0) return p;
-        vec4 nd = texelFetch(gNormal, t, 0);
-        p.position = pos.xyz;
+        GSurface s = gbufferSurface(t);
+        if (!s.geometry) return p;
+        p.position = s.position;
         p.count = 1.0;
-        p.normal = nd.xyz;
-        p.diffuse = texelFetch(gDiffuse, t, 0).rgb;
-        p.depthRange = vec2(nd.w);
-        p.normalMin = nd.xyz;
-        p.normalMax = nd.xyz;
+        p.normal = s.normal;
+        p.diffuse = gbufferDiffuse(t).rgb;
+        p.depthRange = vec2(s.eyeDepth);
+        p.normalMin = s.normal;
+        p.normalMax = s.normal;
         return p;
     }
     ivec2 a = pyramidTexel(level, t);
@@ -115,7 +114,7 @@ const float kPatchDiscontinuous = 2.0; // needs subdividing
 float patchState(int level, ivec2 t)
 {
     if (level > coarsestLevel || !levelContains(level, t)) return kPatchEmpty;
-    if (level == 0) return texelFetch(gPosition, t, 0).w != 0.0 ? kPatchContinuous : kPatchEmpty; // a pixel never subdivides
+    if (level == 0) return gbufferHasGeometry(t) ? kPatchContinuous : kPatchEmpty; // a pixel never subdivides
     return texelFetch(mrNormal, pyramidTexel(level, t), 0).w;
 }
 

@@ -14,19 +14,13 @@ layout(location = 0) out vec4 outRadiance;
 void main()
 {
     ivec2 px = ivec2(gl_FragCoord.xy);
-    vec4 pos = texelFetch(gPosition, px, 0);
-    if (pos.w == 0.0) { outRadiance = vec4(0.0, 0.0, 0.0, 1.0); return; }
-    vec3 p = pos.xyz;
-    vec3 n = texelFetch(gNormal, px, 0).xyz;
-    vec4 diff = texelFetch(gDiffuse, px, 0);
-    vec4 spec = texelFetch(gSpecular, px, 0);
-    BrdfParams b;
-    b.diffuse = diff.rgb;
-    b.weight = diff.a;
-    b.f0 = spec.rgb;
-    b.alpha = max(spec.a * spec.a, 1e-3);
+    GSurface s = gbufferSurface(px);
+    if (!s.geometry) { outRadiance = vec4(0.0, 0.0, 0.0, 1.0); return; }
+    vec3 p = s.position;
+    vec3 n = s.normal;
+    BrdfParams b = gbufferBrdf(px);
     vec3 wo = normalize(cameraPosition - p);
-    vec3 radiance = texelFetch(gEmission, px, 0).rgb;
+    vec3 radiance = gbufferEmission(px);
 #ifdef PUNCTUAL_LIGHTS // only the kinds of light the scene has (gl/frame/frame.cpp: directProgram)
     for (int i = 0; i < punctualLightCount; ++i) radiance += directFromPunctual(lights[i], p, n, wo, b);
 #endif

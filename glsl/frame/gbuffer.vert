@@ -7,7 +7,6 @@ layout(location = 3) in uint inMaterial;
 uniform mat4 viewProj;
 uniform mat4 view;
 
-out vec3 vPosition;
 out vec3 vNormal;
 out vec2 vUv;
 out float vEyeDepth;
@@ -15,7 +14,6 @@ flat out uint vMaterial;
 
 void main()
 {
-    vPosition = inPosition;
     vNormal = inNormal;
     vUv = inUv;
     vMaterial = inMaterial;

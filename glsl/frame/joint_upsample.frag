@@ -3,9 +3,14 @@
 // four nearest coarse pixels, bilinear weights, kept only on this pixel's surface (eye depth and normal
 // from both G-buffers); none kept: the coarse pixel of nearest depth.
 #include "common/bindings.glsl"
+#include "common/packing.glsl"
 layout(binding = UNIT_UPSAMPLE_COARSE_INDIRECT) uniform sampler2D coarseIndirect;
-layout(binding = UNIT_UPSAMPLE_COARSE_NORMAL) uniform sampler2D coarseNormal; // xyz normal, w eye depth (0: none)
-layout(binding = UNIT_UPSAMPLE_FULL_NORMAL) uniform sampler2D fullNormal;
+// The two frames' gGeometry (common/gbuffer.glsl): eye depth bits (0: none) and the octahedral normal.
+layout(binding = UNIT_UPSAMPLE_COARSE_GEOMETRY) uniform usampler2D coarseGeometry;
+layout(binding = UNIT_UPSAMPLE_FULL_GEOMETRY) uniform usampler2D fullGeometry;
+
+// xyz normal, w eye depth (0: no geometry).
+vec4 normalDepth(uvec2 g) { return g.x == 0u ? vec4(0.0) : vec4(unpackUnitVector(g.y), uintBitsToFloat(g.x)); }
 
 uniform ivec2 coarseSize;
 uniform vec2 scale; // coarse pixels per full pixel
@@ -17,7 +22,7 @@ layout(location = 0) out vec4 outIndirect;
 void main()
 {
     ivec2 px = ivec2(gl_FragCoord.xy);
-    vec4 own = texelFetch(fullNormal, px, 0);
+    vec4 own = normalDepth(texelFetch(fullGeometry, px, 0).xy);
     if (own.w <= 0.0) { outIndirect = vec4(0.0, 0.0, 0.0, 1.0); return; } // background
     vec2 u = (vec2(px) + 0.5) * scale - 0.5;
     ivec2 base = ivec2(floor(u));
@@ -29,7 +34,7 @@ void main()
     for (int i = 0; i < 4; ++i) {
         ivec2 o = ivec2(i & 1, i >> 1);
         ivec2 c = clamp(base + o, ivec2(0), coarseSize - 1);
-        vec4 nd = texelFetch(coarseNormal, c, 0);
+        vec4 nd = normalDepth(texelFetch(coarseGeometry, c, 0).xy);
         if (nd.w <= 0.0) continue;
         vec3 value = texelFetch(coarseIndirect, c, 0).rgb;
         float gap = abs(nd.w - own.w);

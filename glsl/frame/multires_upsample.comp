@@ -33,7 +33,7 @@ void main()
     ivec2 px = ivec2(gl_GlobalInvocationID.xy);
     if (!levelContains(0, px)) return;
     vec3 result = vec3(0.0);
-    if (texelFetch(gPosition, px, 0).w != 0.0) {
+    if (gbufferHasGeometry(px)) {
         int k = -1;
         for (int l = 0; l <= coarsestLevel && k < 0; ++l)
             if (illuminationAt(l, px >> l).a >= 1.0) k = l;
@@ -67,7 +67,7 @@ void main()
             e /= wsum; // the own patch's weight is at least 1/4
             g /= wsum;
         }
-        result = texelFetch(gDiffuse, px, 0).rgb * e + g;
+        result = gbufferDiffuse(px).rgb * e + g;
     }
     imageStore(indirectOut, px, vec4(result, 1.0));
 }

@@ -84,7 +84,7 @@ TEST_F(AlphaMaskTest, GBufferSeesThroughTheHoles)
     frame.beginFrame();
     frame.renderGBuffer(timers);
     timers.endFrame(false);
-    const core::Image position = frame.read(frame.position()), normal = frame.read(frame.normal());
+    const core::Image position = frame.toImage(frame.readPositions()), normal = frame.toImage(frame.readNormals());
     int hole = 0, opaque = 0, shelf = 0, wrong = 0;
     for (int y = 0; y < kSize; ++y)
         for (int x = 0; x < kSize; ++x) {

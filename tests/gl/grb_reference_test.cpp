@@ -55,7 +55,7 @@ Rendered render(const core::Scene& scene, const std::string& technique)
     gl::Renderer r(scene, technique, f, t, kSize, kSize);
     const int frames = technique == "grb" ? kDirections / 16 : 1;
     for (int i = 0; i < frames; ++i) r.renderFrame(false);
-    return {r.image(), r.frame().read(r.frame().indirect()), r.frame().read(r.frame().emission())};
+    return {r.image(), r.frame().read(r.frame().indirect()), r.frame().readEmission()};
 }
 
 // Pixels that see no emitter, nor have a neighbour that does.

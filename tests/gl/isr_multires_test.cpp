@@ -51,7 +51,7 @@ Rendered render(const core::Scene& scene, const std::string& technique, const Se
     gl::Renderer r(scene, technique, frameValues, values, w, h);
     r.renderFrame();
     Rendered out{r.frame().read(r.frame().indirect()), core::Image(w, h), r.counters()};
-    const std::vector<float> p = r.frame().position().readFloats(0, 4);
+    const std::vector<float> p = r.frame().readPositions();
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) out.position.set(x, h - 1 - y, glm::vec3(p[(std::size_t(y) * w + x) * 4 + 3]));
     return out;
@@ -178,7 +178,7 @@ void checkCoverage(int w, int h, const gl::MultiresSettings& settings, std::vect
 
     const gl::Texture& illum = gather.illumination();
     const std::vector<float> a = illum.readFloats(0, 4);
-    const std::vector<float> pos = frame.position().readFloats(0, 4);
+    const std::vector<float> pos = frame.readPositions();
     const int L = gather.coarsestLevel();
     std::vector<int> marked(std::size_t(L) + 1, 0);
     const auto alpha = [&](int l, int x, int y) {
@@ -284,7 +284,7 @@ TEST_F(IsrMultiresTest, ZeroThresholdsEqualCpuGather)
         ASSERT_EQ(count, 64);
 
         const std::vector<GpuVpl> vpls = cache.download<GpuVpl>();
-        const std::vector<float> P = frame.position().readFloats(0, 4), N = frame.normal().readFloats(0, 4),
+        const std::vector<float> P = frame.readPositions(), N = frame.readNormals(),
                                  D = frame.diffuse().readFloats(0, 4);
         core::Image want(w, h);
         for (int y = 0; y < h; ++y)
@@ -408,8 +408,7 @@ TEST_F(IsrMultiresTest, HisrTraversalMatchesCpuTraversal)
     const double I = std::max({I3.x, I3.y, I3.z});
     const float T = float(2.0 * (I - tau) / (3.0 * tau * double(kRsm) * double(kRsm)));
     ASSERT_GT(T, 0.0f);
-    const std::vector<float> P = frame.position().readFloats(0, 4), N = frame.normal().readFloats(0, 4),
-                             D = frame.diffuse().readFloats(0, 4);
+    const std::vector<float> P = frame.readPositions(), N = frame.readNormals(), D = frame.diffuse().readFloats(0, 4);
 
     constexpr double kPi = 3.14159265358979323846;
     core::Image want(kSize, kSize);

@@ -225,8 +225,8 @@ TEST_F(IsrRsmTest, SingleVplOverDiskMatchesDiskToPointIntegral)
     gather.gather(frame, cache, 1, timers);
     timers.endFrame(false);
 
-    const std::vector<float> L = frame.indirect().readFloats(0, 4), P = frame.position().readFloats(0, 4),
-                             N = frame.normal().readFloats(0, 4), D = frame.diffuse().readFloats(0, 4);
+    const std::vector<float> L = frame.indirect().readFloats(0, 4), P = frame.readPositions(), N = frame.readNormals(),
+                             D = frame.diffuse().readFloats(0, 4);
     const core::Camera& cam = scene.camera;
     const double pixel = 2.0 * std::tan(0.5 * cam.yfovRad) / kSize; // pixel side on the image plane at distance 1
     glm::dvec3 integral(0.0);
@@ -502,8 +502,7 @@ TEST_F(IsrRsmTest, RsmWithAllTexelsEqualsRsmFull)
                           std::max(omega * glm::dot(x - origin, x - origin), 1e-12)});
     }
     ASSERT_GT(texels.size(), std::size_t(kRsm * kRsm / 4)) << "the spot lights a good part of its RSM";
-    const std::vector<float> P = frame.position().readFloats(0, 4), N = frame.normal().readFloats(0, 4),
-                             D = frame.diffuse().readFloats(0, 4);
+    const std::vector<float> P = frame.readPositions(), N = frame.readNormals(), D = frame.diffuse().readFloats(0, 4);
     core::Image want(kSize, kSize);
     for (int y = 0; y < kSize; ++y)
         for (int x = 0; x < kSize; ++x) {
@@ -649,7 +648,7 @@ TEST_F(IsrRsmTest, VplsOnReceiverAndInCornersStayFinite)
     frame.beginFrame();
     frame.renderGBuffer(timers);
     frame.clearIndirect();
-    const std::vector<float> P = frame.position().readFloats(0, 4), N = frame.normal().readFloats(0, 4);
+    const std::vector<float> P = frame.readPositions(), N = frame.readNormals();
     const std::size_t centre = (std::size_t(kSize / 2) * kSize + kSize / 2) * 4;
     ASSERT_EQ(P[centre + 3], 1.0f);
     const float area = 1e-8f;

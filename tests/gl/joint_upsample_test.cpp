@@ -50,7 +50,7 @@ TEST_F(JointUpsampleTest, ConstantFieldComesBackExactly)
     gl::JointUpsample up;
     up.run(rough, fine, timers);
     const core::Image out = fine.read(fine.indirect());
-    const std::vector<float> pos = fine.position().readFloats(0, 4);
+    const std::vector<float> pos = fine.readPositions();
     int lit = 0;
     for (int y = 0; y < out.height; ++y)
         for (int x = 0; x < out.width; ++x) {

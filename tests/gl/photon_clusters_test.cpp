@@ -46,7 +46,7 @@ Clustered clusterScene(const core::Scene& scene, int w, int h, const gl::Shading
     c.seeds = clusters.seedsPlaced();
     c.nonEmpty = clusters.nonEmpty();
     c.alpha = clusters.alphaPerMetre();
-    const std::vector<float> p = frame.position().readFloats(0, 4), n = frame.normal().readFloats(0, 4);
+    const std::vector<float> p = frame.readPositions(), n = frame.readNormals();
     for (std::size_t i = 0; i < p.size() / 4; ++i) {
         c.position.push_back({p[4 * i], p[4 * i + 1], p[4 * i + 2], p[4 * i + 3]});
         c.normal.push_back({n[4 * i], n[4 * i + 1], n[4 * i + 2], n[4 * i + 3]});

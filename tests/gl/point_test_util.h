@@ -55,7 +55,7 @@ inline PointRender renderPoints(const core::Scene& scene, const std::string& tec
     gl::Renderer r(scene, technique, frameValues, values, w, h);
     for (int f = 0; f < frames; ++f) r.renderFrame();
     PointRender out{r.frame().read(r.frame().indirect()), core::Image(w, h), core::Image(w, h), r.counters()};
-    const std::vector<float> p = r.frame().position().readFloats(0, 4);
+    const std::vector<float> p = r.frame().readPositions();
     const std::vector<float> d = r.frame().diffuse().readFloats(0, 4);
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) {

@@ -20,7 +20,7 @@ uniform ivec2 viewSize;
 uniform int spacing;        // the coarser grid's spacing S: candidates lie on the S / 2 grid, off the S grid
 uniform float sceneDiagonal; // d, metres
 
-bool hasGeometry(ivec2 px) { return texelFetch(gPosition, px, 0).w != 0.0; }
+bool hasGeometry(ivec2 px) { return gbufferHasGeometry(px); }
 
 bool onGrid(ivec2 px, int s) { return px.x % s == 0 && px.y % s == 0; }
 
@@ -38,8 +38,9 @@ void parentBox(ivec2 px, int s, out ivec2 lo, out ivec2 hi)
 // The geometric term of the metric between a parent and the candidate.
 float geometricTerm(ivec2 parent, vec3 pc, vec3 nc)
 {
-    vec3 pi = texelFetch(gPosition, parent, 0).xyz;
-    vec3 ni = texelFetch(gNormal, parent, 0).xyz;
+    GSurface s = gbufferSurface(parent);
+    vec3 pi = s.position;
+    vec3 ni = s.normal;
     return length(pi - pc) / (0.5 * sceneDiagonal) + sqrt(max(0.0, 2.0 - 2.0 * dot(ni, nc)));
 }
 

@@ -17,7 +17,7 @@ void main()
     if (any(greaterThanEqual(px, viewSize))) return;
     vec3 l = vec3(0.0);
     if (hasGeometry(px))
-        l = texelFetch(gDiffuse, px, 0).rgb * imageLoad(lightDiffuse, px).rgb + imageLoad(lightGlossy, px).rgb;
+        l = gbufferDiffuse(px).rgb * imageLoad(lightDiffuse, px).rgb + imageLoad(lightGlossy, px).rgb;
     vec3 mean = mix(imageLoad(accumulated, px).rgb, l, newWeight);
     imageStore(accumulated, px, vec4(mean, 1.0));
     imageStore(indirectOut, px, vec4(mean, 1.0));

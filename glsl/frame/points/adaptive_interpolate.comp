@@ -22,7 +22,8 @@ void main()
                   hi.y > lo.y ? float(px.y - lo.y) / float(hi.y - lo.y) : 0.0);
     ivec2 parents[4] = ivec2[4](lo, ivec2(hi.x, lo.y), ivec2(lo.x, hi.y), hi);
     float bilinear[4] = float[4]((1.0 - f.x) * (1.0 - f.y), f.x * (1.0 - f.y), (1.0 - f.x) * f.y, f.x * f.y);
-    vec3 pc = texelFetch(gPosition, px, 0).xyz, nc = texelFetch(gNormal, px, 0).xyz;
+    GSurface own = gbufferSurface(px);
+    vec3 pc = own.position, nc = own.normal;
     vec3 d = vec3(0.0), g = vec3(0.0);
     float wsum = 0.0;
     for (int i = 0; i < 4; ++i) {

@@ -21,7 +21,7 @@ uniform float radianceScale; // 1 / the mean outgoing luminance of the first lev
 
 float outgoingLuminance(ivec2 px)
 {
-    vec3 l = texelFetch(gDiffuse, px, 0).rgb * imageLoad(lightDiffuse, px).rgb + imageLoad(lightGlossy, px).rgb;
+    vec3 l = gbufferDiffuse(px).rgb * imageLoad(lightDiffuse, px).rgb + imageLoad(lightGlossy, px).rgb;
     return dot(l, vec3(0.2126, 0.7152, 0.0722));
 }
 
@@ -47,7 +47,8 @@ void main()
         ivec2 lo, hi;
         parentBox(px, spacing, lo, hi);
         ivec2 parents[4] = ivec2[4](lo, ivec2(hi.x, lo.y), ivec2(lo.x, hi.y), hi);
-        vec3 pc = texelFetch(gPosition, px, 0).xyz, nc = texelFetch(gNormal, px, 0).xyz;
+        GSurface own = gbufferSurface(px);
+        vec3 pc = own.position, nc = own.normal;
         float geometric = 0.0, l[4];
         for (int i = 0; i < 4; ++i) {
             if (!hasGeometry(parents[i])) {

@@ -66,18 +66,6 @@ uniform vec3 cameraPosition;
 
 uint gatherTargetCount() { return gatherCount; }
 
-BrdfParams gbufferBrdf(ivec2 px)
-{
-    vec4 d = texelFetch(gDiffuse, px, 0);
-    vec4 s = texelFetch(gSpecular, px, 0);
-    BrdfParams b;
-    b.diffuse = d.rgb;
-    b.weight = d.a;
-    b.f0 = s.rgb;
-    b.alpha = max(s.a * s.a, 1e-3);
-    return b;
-}
-
 // Target k: x | y << 16 of its flattened texel, and its neighbour mask | level << 16.
 GatherSample loadGatherSample(uint k)
 {
@@ -88,15 +76,16 @@ GatherSample loadGatherSample(uint k)
     g.alpha = 1.0 + float(e.y & 0xFFFFu);
     ivec2 t = g.texel - levelOrigin[level];
     if (level == 0) {
-        g.position = texelFetch(gPosition, t, 0).xyz;
-        g.normal = normalize(texelFetch(gNormal, t, 0).xyz);
+        GSurface s = gbufferSurface(t);
+        g.position = s.position;
+        g.normal = s.normal;
         g.brdf = gbufferBrdf(t);
     } else {
         MultiresPatch p = loadPatch(level, t);
         g.position = p.position;
         g.normal = length(p.normal) > 0.0 ? normalize(p.normal) : vec3(0.0, 0.0, 1.0);
         ivec2 middle = min(t * (1 << level) + (1 << (level - 1)), levelSize[0] - 1);
-        if (texelFetch(gPosition, middle, 0).w != 0.0) {
+        if (gbufferHasGeometry(middle)) {
             g.brdf = gbufferBrdf(middle);
         } else {
             g.brdf.diffuse = p.diffuse;

@@ -3,6 +3,7 @@
 #ifndef BOUNCE_GRB_ATLAS_GLSL
 #define BOUNCE_GRB_ATLAS_GLSL
 
+#include "common/packing.glsl"
 #include "technique/grb/bindings.glsl"
 
 // Three corners per scene triangle, in atlas texels (gl/technique/grb/grb_atlas.cpp uploads them).
@@ -25,20 +26,7 @@ uint atlasChart(ivec2 t) { return uint(texelFetch(atlasBaseColor, t, 0).a); }
 #endif
 
 // The face normal, packed into one float (octahedral, 2 x 16 bits) beside the shading normal.
-vec2 octEncode(vec3 n)
-{
-    n /= abs(n.x) + abs(n.y) + abs(n.z);
-    vec2 e = n.xy;
-    if (n.z < 0.0) e = (1.0 - abs(n.yx)) * vec2(n.x >= 0.0 ? 1.0 : -1.0, n.y >= 0.0 ? 1.0 : -1.0);
-    return e;
-}
-vec3 octDecode(vec2 e)
-{
-    vec3 n = vec3(e, 1.0 - abs(e.x) - abs(e.y));
-    if (n.z < 0.0) n.xy = (1.0 - abs(n.yx)) * vec2(n.x >= 0.0 ? 1.0 : -1.0, n.y >= 0.0 ? 1.0 : -1.0);
-    return normalize(n);
-}
-float packFaceNormal(vec3 n) { return uintBitsToFloat(packSnorm2x16(octEncode(n))); }
-vec3 unpackFaceNormal(float w) { return octDecode(unpackSnorm2x16(floatBitsToUint(w))); }
+float packFaceNormal(vec3 n) { return uintBitsToFloat(packUnitVector(n)); }
+vec3 unpackFaceNormal(float w) { return unpackUnitVector(floatBitsToUint(w)); }
 
 #endif

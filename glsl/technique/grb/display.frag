@@ -20,20 +20,14 @@ layout(location = 0) out vec4 outIndirect;
 void main()
 {
     ivec2 px = ivec2(gl_FragCoord.xy);
-    vec4 pos = texelFetch(gPosition, px, 0);
-    if (pos.w == 0.0) {
+    GSurface surface = gbufferSurface(px);
+    if (!surface.geometry) {
         outIndirect = vec4(0.0);
         return;
     }
-    vec3 n = texelFetch(gNormal, px, 0).xyz;
-    vec4 diff = texelFetch(gDiffuse, px, 0);
-    vec4 spec = texelFetch(gSpecular, px, 0);
-    BrdfParams b;
-    b.diffuse = diff.rgb;
-    b.weight = diff.a;
-    b.f0 = spec.rgb;
-    b.alpha = max(spec.a * spec.a, 1e-3);
-    vec3 wo = normalize(cameraPosition - pos.xyz);
+    vec3 n = surface.normal;
+    BrdfParams b = gbufferBrdf(px);
+    vec3 wo = normalize(cameraPosition - surface.position);
 
     // Bilinear among the four nearest texels, each its sum over its own count; texels without a sample
     // (empty, or never found in a k-buffer) take no part.

@@ -14,18 +14,12 @@ layout(location = 0) out vec4 outGlossy;
 void main()
 {
     ivec2 px = ivec2(gl_FragCoord.xy);
-    vec4 pos = texelFetch(gPosition, px, 0);
-    vec4 diff = texelFetch(gDiffuse, px, 0);
-    if (pos.w == 0.0 || diff.a <= 0.0) discard;
-    vec3 n = texelFetch(gNormal, px, 0).xyz;
-    vec4 spec = texelFetch(gSpecular, px, 0);
-    BrdfParams b;
-    b.diffuse = diff.rgb;
-    b.weight = diff.a;
-    b.f0 = spec.rgb;
-    b.alpha = max(spec.a * spec.a, 1e-3);
-    vec3 wo = normalize(cameraPosition - pos.xyz);
-    BundleSample s = bundleSender(pos.xyz, n, n, 0u); // a pixel has no chart: the nearest depth decides
+    GSurface g = gbufferSurface(px);
+    BrdfParams b = gbufferBrdf(px);
+    if (!g.geometry || b.weight <= 0.0) discard;
+    vec3 n = g.normal;
+    vec3 wo = normalize(cameraPosition - g.position);
+    BundleSample s = bundleSender(g.position, n, n, 0u); // a pixel has no chart: the nearest depth decides
     vec3 glossy = vec3(0.0);
     if (s.counts && s.sender != 0u && s.cosine > 0.0) {
         vec3 Le, Lr;

@@ -18,12 +18,12 @@ void main()
 {
     ivec2 px = ivec2(gl_GlobalInvocationID.xy);
     if (px.x >= outputSize.x || px.y >= outputSize.y) return;
-    vec4 pos = texelFetch(gPosition, px, 0);
-    vec3 p = pos.xyz;
-    vec3 n = texelFetch(gNormal, px, 0).xyz;
-    vec3 rho = texelFetch(gDiffuse, px, 0).rgb;
+    GSurface s = gbufferSurface(px);
+    vec3 p = s.position;
+    vec3 n = s.normal;
+    vec3 rho = gbufferDiffuse(px).rgb;
     vec3 sum = vec3(0.0);
-    if (pos.w != 0.0 && max(rho.r, max(rho.g, rho.b)) > 0.0)
+    if (s.geometry && max(rho.r, max(rho.g, rho.b)) > 0.0)
         for (int k = 0; k < vplCount; ++k) sum += vplContribution(vplBlock[k], p, n, rho);
     if (accumulate != 0) sum += imageLoad(indirectOut, px).rgb;
     imageStore(indirectOut, px, vec4(sum, 1.0));

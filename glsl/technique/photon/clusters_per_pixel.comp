@@ -15,12 +15,12 @@ void main()
     ivec2 q = ivec2(gl_GlobalInvocationID.xy);
     if (q.x >= viewport.x || q.y >= viewport.y) return;
     uint p = uint(q.y * viewport.x + q.x);
-    vec4 pos = texelFetch(gPosition, q, 0);
-    vec3 n = texelFetch(gNormal, q, 0).xyz;
-    bool valid = pos.w != 0.0;
-    clusters[p].centre = vec4(pos.xyz, valid ? 1.0 : 0.0);
+    GSurface s = gbufferSurface(q);
+    vec3 n = s.normal;
+    bool valid = s.geometry;
+    clusters[p].centre = vec4(s.position, valid ? 1.0 : 0.0);
     clusters[p].normal = vec4(n, 0.0);
-    clusters[p].samplePoint = vec4(pos.xyz, valid ? float(p) : -1.0);
+    clusters[p].samplePoint = vec4(s.position, valid ? float(p) : -1.0);
     clusters[p].sampleNormal = vec4(n, 0.0);
     clusters[p].irradiance = vec4(0.0);
     clusters[p].members = uvec4(0u);

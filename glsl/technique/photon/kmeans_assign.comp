@@ -36,10 +36,10 @@ void main()
     ivec2 q = ivec2(gl_GlobalInvocationID.xy);
     if (q.x >= viewport.x || q.y >= viewport.y) return;
     uint pixel = uint(q.y * viewport.x + q.x);
-    vec4 pos = texelFetch(gPosition, q, 0);
+    GSurface s = gbufferSurface(q);
     uint bestCluster = kNoCluster;
-    if (pos.w != 0.0) {
-        vec3 x = pos.xyz, n = texelFetch(gNormal, q, 0).xyz;
+    if (s.geometry) {
+        vec3 x = s.position, n = s.normal;
         float best = 3.0e38;
         if (bruteForce != 0) {
             for (uint c = 0u; c < clusterCount; ++c) consider(c, x, n, best, bestCluster);

@@ -30,7 +30,8 @@ void main()
     for (uint j = range.x; j < range.y; ++j) {
         uint p = sortedPixels[j];
         ivec2 q = ivec2(int(p % uint(viewport.x)), int(p / uint(viewport.x)));
-        float e = clusterError(texelFetch(gPosition, q, 0).xyz, texelFetch(gNormal, q, 0).xyz, c.centre.xyz, c.normal.xyz);
+        GSurface s = gbufferSurface(q);
+        float e = clusterError(s.position, s.normal, c.centre.xyz, c.normal.xyz);
         if (e < best) {
             best = e;
             bestPixel = p;
@@ -40,7 +41,8 @@ void main()
     ivec2 q = ivec2(int(bestPixel % uint(viewport.x)), int(bestPixel / uint(viewport.x)));
     clusters[k].centre.w = float(range.y - range.x);
     clusters[k].normal.w = worst;
-    clusters[k].samplePoint = vec4(texelFetch(gPosition, q, 0).xyz, float(bestPixel));
-    clusters[k].sampleNormal = vec4(texelFetch(gNormal, q, 0).xyz, 0.0);
+    GSurface chosen = gbufferSurface(q);
+    clusters[k].samplePoint = vec4(chosen.position, float(bestPixel));
+    clusters[k].sampleNormal = vec4(chosen.normal, 0.0);
     atomicAdd(counters[kCounterClusters], 1u);
 }

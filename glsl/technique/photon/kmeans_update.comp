@@ -34,8 +34,9 @@ void main()
     for (uint j = range.x; j < range.y; ++j) {
         uint p = sortedPixels[j];
         ivec2 q = ivec2(int(p % uint(viewport.x)), int(p / uint(viewport.x)));
-        position += texelFetch(gPosition, q, 0).xyz;
-        normal += texelFetch(gNormal, q, 0).xyz;
+        GSurface s = gbufferSurface(q);
+        position += s.position;
+        normal += s.normal;
     }
     float count = float(range.y - range.x);
     clusters[k].centre = vec4(position / count, count);

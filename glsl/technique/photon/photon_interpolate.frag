@@ -25,11 +25,15 @@ uniform vec3 cameraPosition;
 
 layout(location = 0) out vec4 outRadiance;
 
+// sqrt(2 - 2 n . n_j) of Ward's weight, written as the chord |n - n_j|: the same for unit normals, but 0 for
+// equal ones, where the square root of 2 - 2 (1 - 1 ulp) is 5e-4 and a point on its own sample missed it.
+float normalGap(vec3 n, vec3 nj) { return length(n - nj); }
+
 vec3 interpolate(vec3 x, vec3 n, uint own)
 {
     Cluster c = clusters[own];
     vec3 base = c.irradiance.rgb;
-    float ownError = length(x - c.samplePoint.xyz) / c.irradiance.w + sqrt(max(0.0, 2.0 - 2.0 * dot(n, c.sampleNormal.xyz)));
+    float ownError = length(x - c.samplePoint.xyz) / c.irradiance.w + normalGap(n, c.sampleNormal.xyz);
     if (ownSampleOnly != 0 || ownError <= 1e-6) return base;
     float weights = 1.0 / ownError;
     vec3 sum = vec3(0.0);
@@ -41,7 +45,7 @@ vec3 interpolate(vec3 x, vec3 n, uint own)
         } else if (findMSB(i) == pointTreeDepth) {
             uint j = floatBitsToUint(node.hi.w);
             Cluster s = clusters[j];
-            float e = length(x - s.samplePoint.xyz) / s.irradiance.w + sqrt(max(0.0, 2.0 - 2.0 * dot(n, s.sampleNormal.xyz)));
+            float e = length(x - s.samplePoint.xyz) / s.irradiance.w + normalGap(n, s.sampleNormal.xyz);
             if (j != own && e < maxError) {
                 float w = 1.0 / max(e, 1e-6);
                 weights += w;
@@ -61,18 +65,18 @@ void main()
 {
     ivec2 q = ivec2(gl_FragCoord.xy);
     outRadiance = vec4(0.0, 0.0, 0.0, 1.0);
-    vec4 pos = texelFetch(gPosition, q, 0);
-    if (pos.w == 0.0) return;
+    GSurface g = gbufferSurface(q);
+    if (!g.geometry) return;
     uint own = clusterOfPixel[q.y * viewport.x + q.x];
     if (own >= clusterCount || clusters[own].samplePoint.w < 0.0) return;
-    vec3 x = pos.xyz, n = texelFetch(gNormal, q, 0).xyz;
+    vec3 x = g.position, n = g.normal;
     vec3 e = max(interpolate(x, n, own), vec3(0.0));
     if (writeIrradiance != 0) {
         outRadiance = vec4(e, 1.0);
         return;
     }
-    vec4 diffuse = texelFetch(gDiffuse, q, 0);
-    vec4 specular = texelFetch(gSpecular, q, 0);
+    vec4 diffuse = gbufferDiffuse(q);
+    vec4 specular = gbufferSpecular(q);
     vec3 f0 = specular.rgb;
     float cosView = max(dot(n, normalize(cameraPosition - x)), 0.0);
     vec3 out_ = 1.0 - diffuse.a * (f0 + (1.0 - f0) * pow(clamp(1.0 - cosView, 0.0, 1.0), 5.0));

@@ -29,10 +29,10 @@ void main()
         ivec2 lo = q * span, hi = min(lo + span, viewport);
         for (int y = lo.y; y < hi.y; ++y)
             for (int x = lo.x; x < hi.x; ++x) {
-                vec4 p = texelFetch(gPosition, ivec2(x, y), 0);
-                if (p.w == 0.0) continue;
+                GSurface s = gbufferSurface(ivec2(x, y));
+                if (!s.geometry) continue;
                 if (onlyUnclassified != 0 && clusterOfPixel[y * viewport.x + x] != kUnclassified) continue;
-                eps += clusterError(p.xyz, texelFetch(gNormal, ivec2(x, y), 0).xyz, mean, n);
+                eps += clusterError(s.position, s.normal, mean, n);
             }
     }
     quadNodes[index].normal.w = eps;

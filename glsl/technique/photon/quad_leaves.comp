@@ -18,10 +18,10 @@ void main()
     if (q.x >= quadSize || q.y >= quadSize) return;
     QuadNode node = QuadNode(vec4(0.0), vec4(0.0));
     if (q.x < viewport.x && q.y < viewport.y) {
-        vec4 p = texelFetch(gPosition, q, 0);
-        bool member = p.w != 0.0;
+        GSurface s = gbufferSurface(q);
+        bool member = s.geometry;
         if (onlyUnclassified != 0) member = member && clusterOfPixel[q.y * viewport.x + q.x] == kUnclassified;
-        if (member) node = QuadNode(vec4(p.xyz, 1.0), vec4(texelFetch(gNormal, q, 0).xyz, 0.0));
+        if (member) node = QuadNode(vec4(s.position, 1.0), vec4(s.normal, 0.0));
     }
     quadNodes[quadIndex(0, q)] = node;
 }

@@ -15,8 +15,9 @@ void main()
     if (q.x >= viewport.x || q.y >= viewport.y) return;
     uvec2 s = seeds[quadIndex(0, q)];
     if (s.y == 0u) return;
-    vec3 n = texelFetch(gNormal, q, 0).xyz;
-    clusters[s.x].centre = vec4(texelFetch(gPosition, q, 0).xyz, 1.0);
+    GSurface g = gbufferSurface(q);
+    vec3 n = g.normal;
+    clusters[s.x].centre = vec4(g.position, 1.0);
     clusters[s.x].normal = vec4(n, 0.0);
     clusters[s.x].samplePoint = vec4(0.0, 0.0, 0.0, -1.0);
     clusters[s.x].sampleNormal = vec4(n, 0.0);
