@@ -1,12 +1,13 @@
 // The multiresolution eye-space pyramid and its joint bilateral upsampling (Nichols, Shopf & Wyman 2009,
 // §3.2.1-3.2.2, after Nichols & Wyman 2009 [NW09]): a frame service for every technique that computes
-// light at a subset of pixels, one per multiresolution patch, and upsamples it. Passes:
+// light at a subset of pixels, one per multiresolution patch, and upsamples it. Passes, both fragment
+// passes as in the paper (on llvmpipe a compute pass pays per lane for every image store):
 //   "minmax-mipmap"  eye-space depth / normal min-max pyramid of the G-buffer, with the patch means
-//                    (position, normal, diffuse colour) a technique shades (Fig. 2b-c);
-//                    glsl/frame/multires_minmax.comp
+//                    (position, normal, diffuse colour) a technique shades (Fig. 2b-c), one draw per
+//                    level into the pyramid's six targets; glsl/frame/multires_minmax.frag
 //   "upsample"       every pixel takes the valid fragment covering it in a flattened illumination buffer,
 //                    interpolated among same-surface neighbours of its level, times the full-resolution
-//                    diffuse colour, into frame.indirect(); glsl/frame/multires_upsample.comp
+//                    diffuse colour, into frame.indirect(); glsl/frame/multires_upsample.frag
 // Layout of the levels and of the flattened buffer, the discontinuity test, the valid-fragment rule and the
 // same-surface rule: glsl/common/multires.glsl. Choosing the valid fragments and computing their light is
 // the technique's part (image-space radiosity: a stencil pass and a stenciled gather, gl/technique/isr/).
@@ -18,6 +19,7 @@
 #include <glm/glm.hpp>
 
 #include "gl/frame/frame.h"
+#include "gl/resource/framebuffer.h"
 #include "gl/resource/program.h"
 #include "gl/resource/texture.h"
 #include "gl/resource/timer.h"
@@ -59,6 +61,9 @@ public:
     // alpha 0 elsewhere. `unmodulated`, when given (same size, RGBA32F), is interpolated with the same
     // weights and added without the diffuse colour: glossy reflected radiance.
     void upsample(Frame& frame, const Texture& illumination, PassTimers& timers, const Texture* unmodulated = nullptr);
+    // Level l's rectangle in the flattened buffer as a viewport (origin, size), for passes drawn level by
+    // level over it (the stencil pass and the gathers of image-space radiosity).
+    glm::ivec4 levelViewport(int level) const { return levelRect(level); }
 
     // Binds the pyramid textures (units UNIT_MULTIRES_FIRST + 0..5, gl/frame/bindings.h) and sets the layout and threshold
     // uniforms of glsl/common/multires.glsl on `program`.
@@ -87,7 +92,8 @@ private:
     glm::ivec2 flattened_{0};
     std::vector<glm::ivec4> rects_;
     Texture position_, normal_, diffuse_, depth_, normalMin_, normalMax_;
-    Program reduce_, upsample_, upsampleUnmodulated_;
+    Framebuffer pyramidFbo_, upsampleFbo_;
+    Program reduceFromGBuffer_, reduce_, upsample_, upsampleUnmodulated_;
 };
 
 // Layout of the flattened buffer for a width x height image with at most `coarsestLevel` levels above

@@ -69,22 +69,28 @@ bool levelContains(int level, ivec2 t)
 // Texel of patch t of level l >= 1 in the pyramid textures.
 ivec2 pyramidTexel(int level, ivec2 t) { return levelOrigin[level] - ivec2(levelSize[0].x, 0) + t; }
 
-MultiresPatch loadPatch(int level, ivec2 t)
+// Pixel t of level 0 as a patch (empty outside the image or without geometry).
+MultiresPatch loadPixel(ivec2 t)
+{
+    MultiresPatch p = emptyPatch();
+    if (!levelContains(0, t)) return p;
+    GSurface s = gbufferSurface(t);
+    if (!s.geometry) return p;
+    p.position = s.position;
+    p.count = 1.0;
+    p.normal = s.normal;
+    p.diffuse = gbufferDiffuse(t).rgb;
+    p.depthRange = vec2(s.eyeDepth);
+    p.normalMin = s.normal;
+    p.normalMax = s.normal;
+    return p;
+}
+
+// Patch t of level >= 1 (empty outside the level).
+MultiresPatch loadPyramidPatch(int level, ivec2 t)
 {
     MultiresPatch p = emptyPatch();
     if (!levelContains(level, t)) return p;
-    if (level == 0) {
-        GSurface s = gbufferSurface(t);
-        if (!s.geometry) return p;
-        p.position = s.position;
-        p.count = 1.0;
-        p.normal = s.normal;
-        p.diffuse = gbufferDiffuse(t).rgb;
-        p.depthRange = vec2(s.eyeDepth);
-        p.normalMin = s.normal;
-        p.normalMax = s.normal;
-        return p;
-    }
     ivec2 a = pyramidTexel(level, t);
     vec4 pc = texelFetch(mrPosition, a, 0);
     p.position = pc.xyz;
@@ -97,6 +103,13 @@ MultiresPatch loadPatch(int level, ivec2 t)
     return p;
 }
 
+// Patch t of any level. A shader that knows its level at compile time should call one of the two above:
+// a SIMD rasteriser runs both paths of this one whenever the level is not a constant.
+MultiresPatch loadPatch(int level, ivec2 t)
+{
+    return level == 0 ? loadPixel(t) : loadPyramidPatch(level, t);
+}
+
 // Fig. 2c, IsDiscontinuity: the test on a patch's depth and normal ranges (min-max pass).
 bool rangesDiscontinuous(vec2 depthRange, vec3 normalMin, vec3 normalMax)
 {
@@ -105,7 +118,7 @@ bool rangesDiscontinuous(vec2 depthRange, vec3 normalMin, vec3 normalMax)
     return max(spread.x, max(spread.y, spread.z)) >= normalThreshold;
 }
 
-// Patch states, classified once by the min-max pass (multires_minmax.comp) and kept in mrNormal.w, so
+// Patch states, classified once by the min-max pass (multires_minmax.frag) and kept in mrNormal.w, so
 // that the stencil pass reads one texel per level it looks at.
 const float kPatchEmpty = 0.0;         // no pixel with geometry
 const float kPatchContinuous = 1.0;

@@ -48,10 +48,23 @@ void MultiresGather::buildPyramid(Frame& frame, PassTimers& timers)
     pyramid_.build(frame, timers);
 }
 
+void MultiresGather::drawLevels(Program& program, PassState state, const std::function<void(int)>& perLevel)
+{
+    program.use();
+    fullscreenVao_.bind();
+    for (int level = 0; level <= pyramid_.coarsestLevel(); ++level) {
+        state.viewport = pyramid_.levelViewport(level);
+        state.apply();
+        program.set("drawLevel", level);
+        if (perLevel) perLevel(level);
+        glDrawArrays(GL_TRIANGLES, 0, 3); // frame/fullscreen.vert's triangle, clipped to the level's viewport
+    }
+}
+
 void MultiresGather::markValidFragments(Frame& frame, PassTimers& timers)
 {
-    // multires_stencil.frag per texel of the flattened buffer: locate the level, two patch states, and for
-    // a valid fragment its eight neighbours' states and ranges (three texels each).
+    // multires_stencil.frag per patch of a level: two patch states, and for a valid fragment above level 0
+    // its eight neighbours' states and ranges (five texels each).
     PassCost cost;
     cost.flops = 150;
     cost.fetches = 2 + 8 * 5;
@@ -60,7 +73,6 @@ void MultiresGather::markValidFragments(Frame& frame, PassTimers& timers)
     const double flattened = double(illumination_.width()) * illumination_.height();
     cost.bytesFixed = flattened * (16 + 4); // the clears
     auto t = timers.scope("stencil-setup", cost);
-    counts_.clearToZero();
     PassState state = PassState::fullscreen(fbo_, illumination_.width(), illumination_.height());
     state.stencil.test = true;
     state.stencil.ref = 1;
@@ -71,10 +83,18 @@ void MultiresGather::markValidFragments(Frame& frame, PassTimers& timers)
     glClearNamedFramebufferfi(fbo_.id(), GL_DEPTH_STENCIL, 0, 1.0f, 0);
     frame.bindGBuffer();
     pyramid_.bind();
-    counts_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_ISR_FRAGMENT_COUNTS);
     pyramid_.setUniforms(stencilSetup_);
-    stencilSetup_.use();
-    frame.drawFullscreen();
+    while (int(validQueries_.size()) <= pyramid_.coarsestLevel())
+        validQueries_.emplace_back(GL_SAMPLES_PASSED,
+                                   "multires.validFragments." + std::to_string(validQueries_.size()));
+    // Every fragment the shader keeps is a valid one (the rest are discarded): the samples that pass are
+    // the level's valid fragments, counted without a shader atomic.
+    drawLevels(stencilSetup_, state, [&](int level) {
+        if (level > 0) validQueries_[std::size_t(level - 1)].end();
+        validQueries_[std::size_t(level)].begin();
+    });
+    validQueries_[std::size_t(pyramid_.coarsestLevel())].end();
+    countsFromQueries_ = true;
 }
 
 void MultiresGather::gather(Frame& frame, Program& program, PassTimers& timers, int draws,
@@ -87,14 +107,6 @@ void MultiresGather::gather(Frame& frame, Program& program, PassTimers& timers, 
     perInvocation.bytesRead = 16;
     perInvocation.bytesWritten = 16;
     auto t = timers.scope("gather", perInvocation);
-    double valid = 0.0;
-    for (int n : fragmentsPerLevel()) valid += n;
-    PassCost work;
-    work.flopsFixed = valid * draws * perFragment.flops;
-    work.fetchesFixed = valid * draws * perFragment.fetches;
-    work.bytesFixed = valid * draws * (perFragment.bytesRead + perFragment.bytesWritten);
-    work.uniformWordsFixed = valid * draws * perFragment.uniformWords;
-    t.addWork(work);
     PassState state = PassState::fullscreen(fbo_, illumination_.width(), illumination_.height());
     state.stencil.test = true;
     state.stencil.func = GL_EQUAL; // only the valid multiresolution fragments (§3.2.1)
@@ -110,9 +122,17 @@ void MultiresGather::gather(Frame& frame, Program& program, PassTimers& timers, 
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_UNIFORM_BARRIER_BIT);
     for (int i = 0; i < draws; ++i) {
         if (setupDraw) setupDraw(program, i);
-        program.use();
-        frame.drawFullscreen();
+        drawLevels(program, state);
     }
+    // After the draws are issued, so that waiting for the stencil pass's counts stalls nothing queued.
+    double valid = 0.0;
+    for (int n : fragmentsPerLevel()) valid += n;
+    PassCost work;
+    work.flopsFixed = valid * draws * perFragment.flops;
+    work.fetchesFixed = valid * draws * perFragment.fetches;
+    work.bytesFixed = valid * draws * (perFragment.bytesRead + perFragment.bytesWritten);
+    work.uniformWordsFixed = valid * draws * perFragment.uniformWords;
+    t.addWork(work);
 }
 
 int MultiresGather::loopBudget()
@@ -173,6 +193,7 @@ int MultiresGather::refine(Frame& frame, PassTimers& timers)
         }
     }
     counts_.clearToZero();
+    countsFromQueries_ = false;
     refineCounts_.clearToZero();
     const float zero[4] = {0, 0, 0, 0};
     illumination_.clear(0, zero);
@@ -236,10 +257,17 @@ void MultiresGather::splat(Frame& frame, const Buffer& vpls, int vplCount, PassT
 
 std::vector<int> MultiresGather::fragmentsPerLevel() const
 {
+    const int levels = pyramid_.coarsestLevel() + 1;
+    if (countsFromQueries_) {
+        std::vector<int> out(std::size_t(levels), 0);
+        for (int l = 0; l < levels && l < int(validQueries_.size()); ++l)
+            out[std::size_t(l)] = int(validQueries_[l].result());
+        return out;
+    }
     std::vector<unsigned> raw(kMaxLevels, 0u);
-    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT); // the stencil pass's atomic adds
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT); // the refinement's atomic adds
     counts_.download(0, raw.size() * sizeof(unsigned), raw.data());
-    return std::vector<int>(raw.begin(), raw.begin() + pyramid_.coarsestLevel() + 1);
+    return std::vector<int>(raw.begin(), raw.begin() + levels);
 }
 
 std::vector<Counter> MultiresGather::counters() const

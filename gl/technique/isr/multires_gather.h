@@ -4,11 +4,15 @@
 // paper's own part, here. Passes, in order:
 //   "minmax-mipmap"  eye-space depth / normal min-max pyramid of the G-buffer, with the patch averages
 //                    (position, normal, diffuse colour) the gather shades (§3.2.1, Fig. 2b-c; frame)
-//   "stencil-setup"  ONE full-screen pass over the flattened multiresolution buffer that sets the stencil
-//                    of exactly the valid fragments (the pseudo code of §3.2.1), counts them per level and
-//                    marks which neighbours each may be interpolated with
-//   "gather"         ONE full-screen quad, stencil EQUAL, that gathers light at every valid fragment
-//                    (the VPL cache of §3.2.2 by default; hisr plugs in its VPL-tree traversal)
+//   "stencil-setup"  one pass over the flattened multiresolution buffer that sets the stencil of exactly
+//                    the valid fragments (the pseudo code of §3.2.1), counts them per level (an occlusion
+//                    query per level) and marks which neighbours each may be interpolated with
+//   "gather"         one pass, stencil EQUAL, that gathers light at every valid fragment (the VPL cache of
+//                    §3.2.2 by default; hisr plugs in its VPL-tree traversal)
+// Departure: the paper draws each of the two as one full-screen quad over the flattened buffer; here each
+// is one quad per level, over that level's rectangle. The same fragments run, but each knows its level
+// from a uniform instead of searching the level rectangles for itself: a SIMD rasteriser (llvmpipe) runs
+// every iteration of that search for every lane, which made it a third of the stencil pass.
 //   "upsample"       every pixel takes the valid fragment covering it, interpolated among same-level
 //                    neighbours [NW09], times the full-resolution diffuse colour, into frame.indirect()
 //                    (frame)
@@ -31,7 +35,9 @@
 #include "gl/frame/multires.h"
 #include "gl/resource/buffer.h"
 #include "gl/resource/framebuffer.h"
+#include "gl/resource/pass_state.h"
 #include "gl/resource/program.h"
+#include "gl/resource/query.h"
 #include "gl/resource/texture.h"
 #include "gl/resource/timer.h"
 #include "gl/technique/technique.h"
@@ -85,7 +91,8 @@ public:
     // diffuse colour; a 0 where no valid fragment, else 1 + the mask of the neighbours the upsampling
     // interpolates with (glsl/common/multires.glsl: sameSurfaceNeighbours).
     const Texture& illumination() const { return illumination_; }
-    // Valid fragments per level of the last frame (reads a small buffer back: call after the frame).
+    // Valid fragments per level of the last frame (waits for the stencil pass's occlusion queries, or
+    // reads the refinement's counters back).
     std::vector<int> fragmentsPerLevel() const;
     // "fragments.level0" ... "fragments.levelN" and "fragments.total".
     std::vector<Counter> counters() const;
@@ -94,7 +101,13 @@ private:
     MultiresPyramid pyramid_;
     Texture illumination_, stencil_;
     Framebuffer fbo_;
-    Buffer counts_;
+    Buffer counts_;                   // the refinement's valid fragments per level (multires-splat)
+    std::vector<Query> validQueries_; // the stencil pass's, one GL_SAMPLES_PASSED per level
+    bool countsFromQueries_ = true;   // which of the two the last frame filled
+    VertexArray fullscreenVao_{"multires.fullscreen"};
+    // Draws a full-screen triangle clipped to each level's rectangle of the flattened buffer, with the
+    // level in the program's drawLevel uniform; perLevel(level) runs before the level's draw.
+    void drawLevels(Program& program, PassState state, const std::function<void(int)>& perLevel = {});
     Program stencilSetup_, cacheGather_;
     // [NW09]'s path, allocated on the first refine(): work lists, counters, the splat vertices.
     Buffer workLists_[2], refineCounts_, splatVertices_;

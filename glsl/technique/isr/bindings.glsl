@@ -8,7 +8,7 @@
 #define SSBO_ISR_CLUSTER_SLOTS 7     // isr_cluster*.comp: emit marks, then their prefix sums
 #define SSBO_ISR_VPL_CACHE 8         // vpl_write.glsl: the VPL cache written by sampling and clustering
 #define SSBO_ISR_VPL_COUNT 9         // isr_cluster.comp: VPLs written, per level
-#define SSBO_ISR_FRAGMENT_COUNTS 11  // multires_stencil.frag, multires_refine.comp: valid fragments per level
+#define SSBO_ISR_FRAGMENT_COUNTS 11  // multires_refine.comp: valid fragments per level (the stencil pass counts by queries)
 #define SSBO_ISR_VPL_TREE 12         // vpl_tree_*.comp: the VPL tree's nodes
 #define SSBO_ISR_TREE_STATS 13       // hisr_gather.frag: VPLs gathered and fragments
 #define SSBO_ISR_WORK_IN 14          // multires_refine.comp: patches to test at this level

@@ -1,6 +1,7 @@
 #version 450 core
 // Upsample and combine (§3.2.2, after [NW09]): full-resolution indirect light from the flattened
-// multiresolution illumination buffer. For each pixel with geometry:
+// multiresolution illumination buffer, a full-screen fragment pass into the frame's indirect texture.
+// For each pixel with geometry:
 //  1. its level k: the one level whose patch p >> k covering it is a valid fragment (alpha >= 1; exactly
 //     one exists, common/multires.glsl);
 //  2. k = 0: that pixel's own value. k >= 1: bilinear interpolation at the pixel centre among the four
@@ -11,17 +12,15 @@
 //     renormalised. So light is blended across patch borders on smooth surfaces, never across edges,
 //     and never with fragments of other levels;
 //  3. times the pixel's own diffuse colour rho_i (the gather left it out): Eq. 5's rho_i at full resolution.
-// UNMODULATED: a second buffer (image 1, rgb) is interpolated with the same weights and added as it is,
-// not times rho_i: glossy reflected radiance (point-based final gathering, gl/frame/points/).
+// UNMODULATED: a second buffer (rgb, the flattened layout) is interpolated with the same weights and
+// added as it is, not times rho_i: glossy reflected radiance (point-based final gathering, gl/frame/points/).
 #include "common/multires.glsl"
 
-layout(local_size_x = 8, local_size_y = 8) in;
-
 layout(binding = UNIT_MULTIRES_ILLUMINATION) uniform sampler2D mrIllumination;
-layout(rgba32f, binding = 0) uniform writeonly image2D indirectOut;
+layout(location = 0) out vec4 outIndirect;
 #ifdef UNMODULATED
-layout(rgba32f, binding = 1) uniform readonly image2D unmodulated;
-vec3 unmodulatedAt(int level, ivec2 t) { return imageLoad(unmodulated, levelOrigin[level] + t).rgb; }
+layout(binding = UNIT_MULTIRES_UNMODULATED) uniform sampler2D mrUnmodulated;
+vec3 unmodulatedAt(int level, ivec2 t) { return texelFetch(mrUnmodulated, levelOrigin[level] + t, 0).rgb; }
 #else
 vec3 unmodulatedAt(int level, ivec2 t) { return vec3(0.0); }
 #endif
@@ -30,8 +29,7 @@ vec4 illuminationAt(int level, ivec2 t) { return texelFetch(mrIllumination, leve
 
 void main()
 {
-    ivec2 px = ivec2(gl_GlobalInvocationID.xy);
-    if (!levelContains(0, px)) return;
+    ivec2 px = ivec2(gl_FragCoord.xy);
     vec3 result = vec3(0.0);
     if (gbufferHasGeometry(px)) {
         int k = -1;
@@ -69,5 +67,5 @@ void main()
         }
         result = gbufferDiffuse(px).rgb * e + g;
     }
-    imageStore(indirectOut, px, vec4(result, 1.0));
+    outIndirect = vec4(result, 1.0);
 }
