@@ -103,7 +103,8 @@ void Renderer::renderFrame(bool keepTimings)
         renderCoarseIndirect();
     else
         technique_->render(*frame_, timers_);
-    frame_->composite(timers_);
+    // A technique that claims only direct light adds nothing: no composite pass, the result is the direct light.
+    frame_->composite(timers_, info_->lightPaths != core::LightPaths::Direct);
     timers_.endFrame(keepTimings);
 }
 

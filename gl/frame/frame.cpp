@@ -9,13 +9,15 @@ namespace bounce::gl {
 
 namespace {
 
-// The G-buffer targets a scene needs: no specular target without a glossy lobe, no emission target
-// without an emitter (common/gbuffer.glsl).
-std::vector<Define> gbufferDefinesFor(const core::Scene& scene, const GpuScene& gpu)
+// What the scene lacks, for the programs specialised to it: no glossy lobe (no specular target, no GGX
+// terms), no emitter (no emission target), no base-colour texture (no lookup): common/gbuffer.glsl,
+// common/brdf.glsl, common/base_color.glsl.
+std::vector<Define> sceneDefines(const core::Scene& scene, const GpuScene& gpu)
 {
     std::vector<Define> d;
     if (!scene.hasGlossy()) d.push_back({"SCENE_DIFFUSE_ONLY", "1"});
     if (gpu.emissiveTriangleCount() == 0) d.push_back({"SCENE_NO_EMITTERS", "1"});
+    if (!gpu.hasTextures()) d.push_back({"SCENE_NO_TEXTURES", "1"});
     return d;
 }
 
@@ -24,7 +26,7 @@ std::vector<Define> gbufferDefinesFor(const core::Scene& scene, const GpuScene& 
 // of the emitting triangles most of all (glsl/common/lighting.glsl).
 Program directProgram(const core::Scene& scene, const GpuScene& gpu)
 {
-    std::vector<Define> kinds = gbufferDefinesFor(scene, gpu);
+    std::vector<Define> kinds = sceneDefines(scene, gpu);
     if (gpu.punctualLightCount() > 0) kinds.push_back({"PUNCTUAL_LIGHTS", "1"});
     if (int(gpu.lights().size()) > gpu.punctualLightCount()) kinds.push_back({"AREA_LIGHTS", "1"});
     return Program::graphics("direct", "frame/fullscreen.vert", "frame/direct.frag", kinds);
@@ -32,7 +34,7 @@ Program directProgram(const core::Scene& scene, const GpuScene& gpu)
 
 SceneProgram gbufferProgram(const core::Scene& scene, const GpuScene& gpu, const FrameSettings& settings)
 {
-    std::vector<Define> defines = gbufferDefinesFor(scene, gpu);
+    std::vector<Define> defines = sceneDefines(scene, gpu);
     if (settings.gbufferConstantFragment) defines.push_back({"GBUFFER_CONSTANT_FRAGMENT", "1"});
     SceneProgram p("gbuffer", "frame/gbuffer.vert", "frame/gbuffer.frag", defines);
     p.prepare(gpu);
@@ -212,7 +214,7 @@ void Frame::updateGBufferCamera()
 
 std::vector<Define> Frame::gbufferDefines() const
 {
-    return gbufferDefinesFor(scene_, gpu_);
+    return sceneDefines(scene_, gpu_);
 }
 
 void Frame::bindGBuffer() const
@@ -257,7 +259,7 @@ void Frame::renderDirect(PassTimers& timers)
     directProgram_.set("cameraPosition", camera_.position);
     directProgram_.set("punctualLightCount", gpu_.punctualLightCount());
     directProgram_.set("lightCount", shadows_.lightCount());
-    directProgram_.set("pcfRadius", settings_.pcfRadius);
+    shadows_.setPcfUniforms(directProgram_, settings_.pcfRadius);
     directProgram_.use();
     drawFullscreen();
 }
@@ -268,8 +270,10 @@ void Frame::clearIndirect()
     indirect_.clear(0, zero);
 }
 
-void Frame::composite(PassTimers& timers)
+void Frame::composite(PassTimers& timers, bool withIndirect)
 {
+    compositeUsed_ = withIndirect;
+    if (!withIndirect) return; // direct + nothing: the direct texture is the result
     PassCost cost;
     cost.flops = 4;
     cost.fetches = 2;

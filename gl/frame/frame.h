@@ -56,15 +56,18 @@ public:
     void renderShadowMaps(PassTimers& timers);
     void renderGBuffer(PassTimers& timers);
     void renderDirect(PassTimers& timers);
-    void composite(PassTimers& timers);
+    // direct + indirect into result(). withIndirect false (a technique that claims only direct light): no
+    // pass at all, result() is the direct texture itself.
+    void composite(PassTimers& timers, bool withIndirect = true);
     void clearIndirect();
 
     // Binds the G-buffer (glsl/common/gbuffer.glsl): its textures at UNIT_G_*, a 1x1 black texture for a
     // target the scene does not need, and the camera block at UBO_GBUFFER_CAMERA.
     void bindGBuffer() const;
-    // SCENE_DIFFUSE_ONLY / SCENE_NO_EMITTERS where the scene has no glossy material / no emitter: a
-    // program compiled with them reads no texel for what is not there (common/gbuffer.glsl). Programs
-    // without them read the black 1x1 texture instead, and are right too.
+    // SCENE_DIFFUSE_ONLY / SCENE_NO_EMITTERS / SCENE_NO_TEXTURES where the scene has no glossy material /
+    // no emitter / no base-colour texture: a program compiled with them reads no texel for what is not
+    // there (common/gbuffer.glsl, brdf.glsl, base_color.glsl). Programs without them read the black 1x1
+    // texture instead, and are right too.
     std::vector<Define> gbufferDefines() const;
     bool hasSpecularTarget() const { return bool(specular_); }
     bool hasEmissionTarget() const { return bool(emission_); }
@@ -92,7 +95,7 @@ public:
     const Texture& depth() const { return depth_; }
     const Texture& direct() const { return direct_; }
     Texture& indirect() { return indirect_; }
-    const Texture& result() const { return composite_; }
+    const Texture& result() const { return compositeUsed_ ? composite_ : direct_; }
 
     // Reads an RGBA32F texture back as an RGB image, row 0 at the top.
     core::Image read(const Texture& texture) const;
@@ -120,6 +123,7 @@ private:
     SceneProgram gbufferProgram_;
     Program directProgram_, compositeProgram_;
     int frameIndex_ = -1;
+    bool compositeUsed_ = true;
     FrameVersion version_;
     void allocateTargets();
     void updateGBufferCamera();

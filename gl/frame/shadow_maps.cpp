@@ -94,6 +94,12 @@ void ShadowMaps::setPcf(bool hardwareFilter)
     if (depth_) depth_.setFilter(hardwareFilter ? GL_LINEAR : GL_NEAREST, hardwareFilter ? GL_LINEAR : GL_NEAREST);
 }
 
+void ShadowMaps::setPcfUniforms(Program& program, int radius) const
+{
+    program.set("pcfRadius", radius);
+    program.set("pcfNearest", linear_ ? 0 : 1);
+}
+
 void ShadowMaps::render(const GpuScene& scene)
 {
     if (views_.empty()) return;

@@ -35,6 +35,9 @@ public:
     // SSBO bindings 1 (lights), 2 (shadow views), 3 (area polygons) and the depth array at unit 5.
     void bind() const;
     void setPcf(bool hardwareFilter);
+    // The PCF uniforms of glsl/common/shadow.glsl on a program that includes it: the kernel radius, and
+    // whether the taps are nearest (the shader gathers texels itself and weights them as the filter would).
+    void setPcfUniforms(Program& program, int radius) const;
 
     int lightCount() const { return int(gpuLights_.size()); }
     const std::vector<GpuLight>& gpuLights() const { return gpuLights_; }

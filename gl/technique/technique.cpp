@@ -228,9 +228,9 @@ const std::vector<PassDecl>& framePasses()
 {
     static const std::vector<PassDecl> p = {
         {"shadow", "shadow maps of every light (gl/frame/shadow_maps.cpp)", ""},
-        {"gbuffer", "the G-buffer: position, normal, diffuse, specular, emission, depth", ""},
+        {"gbuffer", "the G-buffer: eye depth and normal, diffuse, specular and emission where the scene has them", ""},
         {"direct", "emission and direct light with shadow maps", ""},
-        {"composite", "direct + the technique's indirect light", ""},
+        {"composite", "direct + the technique's indirect light", "the technique adds indirect light"},
     };
     return p;
 }

@@ -9,10 +9,16 @@
 layout(binding = UNIT_BASE_COLOR) uniform sampler2DArray baseColorTextures;
 
 // The material's texel at uv: rgb linear (sRGB decoded by the texture format), a the alpha; 1 without a
-// texture. Level 0 (the array has no mipmaps), so compute shaders read it alike.
+// texture. Level 0 (the array has no mipmaps), so compute shaders read it alike. SCENE_NO_TEXTURES (the
+// scene has none, gl/frame/frame.cpp: sceneDefines): no lookup compiled in, which a SIMD rasteriser would
+// otherwise make for every pixel whatever the material.
 vec4 baseColorTexel(Material m, vec2 uv)
 {
+#ifdef SCENE_NO_TEXTURES
+    return vec4(1.0);
+#else
     return m.flags.x >= 0 ? textureLod(baseColorTextures, vec3(uv, float(m.flags.x)), 0.0) : vec4(1.0);
+#endif
 }
 
 // glTF MASK: a hole where baseColorFactor.a x texture alpha < alphaCutoff. Opaque materials carry a

@@ -10,7 +10,10 @@
 in vec3 vNormal;
 in vec2 vUv;
 in float vEyeDepth;
-flat in uint vMaterial;
+flat in vec4 vBaseColorMetallic; // the triangle's material (gbuffer.vert)
+flat in vec4 vEmissionRoughness;
+flat in vec4 vSpecularColorSpecular;
+flat in ivec4 vFlags;
 
 layout(location = 0) out uvec2 outGeometry;
 layout(location = 1) out vec4 outDiffuse;
@@ -40,7 +43,7 @@ void main()
 #else
 void main()
 {
-    Material m = materials[vMaterial];
+    Material m = Material(vBaseColorMetallic, vEmissionRoughness, vSpecularColorSpecular, vFlags);
     vec3 n = normalize(vNormal);
     bool doubleSided = m.flags.y != 0;
     vec4 texel = baseColorTexel(m, vUv);

@@ -1,4 +1,9 @@
 #version 450 core
+// The G-buffer pass's vertices. The material is read here, once per vertex, and handed to the fragments
+// as flat inputs: a fragment shader that indexes the material buffer by a per-fragment value loads it
+// lane by lane on a SIMD rasteriser (llvmpipe: 2.2 of the pass's 6 ms at 512x512 on cornell-spot).
+#include "common/scene.glsl"
+
 layout(location = 0) in vec3 inPosition;
 layout(location = 1) in vec3 inNormal;
 layout(location = 2) in vec2 inUv;
@@ -10,13 +15,20 @@ uniform mat4 view;
 out vec3 vNormal;
 out vec2 vUv;
 out float vEyeDepth;
-flat out uint vMaterial;
+flat out vec4 vBaseColorMetallic;
+flat out vec4 vEmissionRoughness;
+flat out vec4 vSpecularColorSpecular;
+flat out ivec4 vFlags;
 
 void main()
 {
     vNormal = inNormal;
     vUv = inUv;
-    vMaterial = inMaterial;
+    Material m = materials[inMaterial];
+    vBaseColorMetallic = m.baseColorMetallic;
+    vEmissionRoughness = m.emissionRoughness;
+    vSpecularColorSpecular = m.specularColorSpecular;
+    vFlags = m.flags;
     vEyeDepth = -(view * vec4(inPosition, 1.0)).z;
     gl_Position = viewProj * vec4(inPosition, 1.0);
 }

@@ -69,7 +69,7 @@ void setPointLightUniforms(Program& program, const Frame& frame)
 {
     program.set("punctualLightCount", frame.gpuScene().punctualLightCount());
     program.set("lightCount", frame.shadowMaps().lightCount());
-    program.set("pcfRadius", frame.settings().pcfRadius);
+    frame.shadowMaps().setPcfUniforms(program, frame.settings().pcfRadius);
 }
 
 PointCloud::PointCloud(Frame& frame, std::size_t count, std::uint64_t seed, bool keepDirect) : keepDirect_(keepDirect)

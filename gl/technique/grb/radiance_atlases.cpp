@@ -81,7 +81,7 @@ void RadianceAtlases::seed(const Frame& frame, const GrbAtlas& atlas, PassTimers
     frame.bindSceneData();
     atlas.bind();
     seedProgram_.set("punctualLightCount", frame.gpuScene().punctualLightCount());
-    seedProgram_.set("pcfRadius", frame.settings().pcfRadius);
+    frame.shadowMaps().setPcfUniforms(seedProgram_, frame.settings().pcfRadius);
     seedProgram_.set("atlasWidth", width_);
     seedProgram_.use();
     vao_.bind();
@@ -103,7 +103,7 @@ void RadianceAtlases::transfer(const Frame& frame, const GrbAtlas& atlas, const 
     transfer_.set("nextDir", next);
     transfer_.set("atlasWidth", width_);
     transfer_.set("punctualLightCount", frame.gpuScene().punctualLightCount());
-    transfer_.set("pcfRadius", frame.settings().pcfRadius);
+    frame.shadowMaps().setPcfUniforms(transfer_, frame.settings().pcfRadius);
     transfer_.use();
     vao_.bind();
     glDrawArrays(GL_TRIANGLES, 0, 3);

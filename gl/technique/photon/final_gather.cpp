@@ -53,7 +53,7 @@ void FinalGather::gather(const Frame& frame, const RayCaster& caster, const Phot
     program_.set("punctualLightCount", frame.gpuScene().punctualLightCount());
     program_.set("lightCount", frame.shadowMaps().lightCount());
     // One shadow-map tap per hit: hundreds of rays average a sample's light, PCF would only cost.
-    program_.set("pcfRadius", 0);
+    frame.shadowMaps().setPcfUniforms(program_, 0);
     program_.set("densityPhotons", settings_.densityPhotons);
     program_.set("clusterCount", clusters.count());
     program_.set("gatherRays", unsigned(std::max(settings_.rays, 1)));
