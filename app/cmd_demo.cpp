@@ -16,7 +16,9 @@ namespace {
 const std::string kUsage =
     std::string(
         "usage: bounce demo [--scene NAME|PATH] [--technique NAME] [--size WxH] [--set key=value]...\n"
-        "                   [--reference FILE.exr] [--script STEPS] [--camera POS:TARGET[:FOV]] [--light SPEC]...\n"
+        "                   [--reference FILE.exr] [--script STEPS] [--frame-log FILE.csv] [--camera "
+        "POS:TARGET[:FOV]]\n"
+        "                   [--light SPEC]...\n"
         "\n"
         "Opens a window. Right mouse drag looks around, W/A/S/D/Q/E move, F12 saves a screenshot\n"
         "(EXR + PNG in out/). The panel switches techniques, sets their parameters and the frame's (a frame\n"
@@ -33,6 +35,9 @@ const std::string kUsage =
         "               frame's, e.g. set:shadow.size=512), compare:NAME (side by side),\n"
         "               screenshot:FILE.exr (also the .png; when comparing, FILE-right.exr/.png too),\n"
         "               move:N (the camera moves sideways for N frames), budget:MS (the frame budget), quit\n"
+        "  --frame-log  a CSV of every frame, written when the demo ends: seconds since start, frame_ms (since\n"
+        "               the last frame), render_ms (the renderers alone), indirect_scale (1: full resolution),\n"
+        "               moving, technique, passes (the left renderer's: name=ms;...)\n"
         "\n"
         "Frame budget (panel, 100 ms by default): while the camera or the light moves and frames take longer\n"
         "than the budget, indirect light is computed at 1/2, 1/4 or 1/8 of the resolution and upsampled\n"
@@ -52,7 +57,8 @@ int cmdDemo(const Args& args)
                      {"reference"},
                      {"script"},
                      {"camera"},
-                     {"light", true, true}},
+                     {"light", true, true},
+                     {"frame-log"}},
                     kUsage);
     if (o.helpRequested()) {
         std::fputs(kUsage.c_str(), stdout);
@@ -73,6 +79,14 @@ int cmdDemo(const Args& args)
     settings.techniqueValues = gl::ParamValues(info->params);
     applySets(o.all("set"), *info, settings.frameValues, settings.techniqueValues);
     settings.script = parseDemoScript(o.get("script"), settings.technique);
+    if (o.has("frame-log")) {
+        try {
+            core::checkOutputPath(o.get("frame-log"));
+        } catch (const core::ImageError& e) {
+            throw UsageError(e.what());
+        }
+        settings.frameLog = o.get("frame-log");
+    }
     if (o.has("reference")) {
         try {
             settings.reference = core::readImage(o.get("reference"));

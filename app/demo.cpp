@@ -148,11 +148,26 @@ Demo::~Demo()
 int Demo::run()
 {
     double last = glfwGetTime();
+    const double start = last;
+    if (!s_.frameLog.empty())
+        frameLog_ = "seconds,frame_ms,render_ms,indirect_scale,moving,technique,passes\n"; // frame_ms: since the last
     while (!glfwWindowShouldClose(window_)) {
         glfwPollEvents();
         const double now = glfwGetTime();
         const float dt = float(now - last);
         last = now;
+        if (!s_.frameLog.empty() && now > start) {
+            char row[256];
+            std::snprintf(row, sizeof row, "%.4f,%.3f,%.3f,%d,%d,%s,", now - start, 1e3 * double(dt), frameMs_,
+                          indirectScale_, movingForLog_ ? 1 : 0, s_.technique.c_str());
+            frameLog_ += row;
+            std::string passes; // the left renderer's passes of the frame before: name=ms;...
+            for (const gl::PassStat& p : left_->timers().lastFrame()) {
+                std::snprintf(row, sizeof row, "%s%s=%.3f", passes.empty() ? "" : ";", p.pass.c_str(), p.medianMs);
+                passes += row;
+            }
+            frameLog_ += passes + "\n";
+        }
         if (!runScript()) break;
         if (waitFrames_ > 0) --waitFrames_;
         int fbw = 0, fbh = 0;
@@ -170,6 +185,7 @@ int Demo::run()
         present(fbw, fbh);
         context_.swapBuffers();
     }
+    if (!s_.frameLog.empty()) core::writeFileAtomic(s_.frameLog, frameLog_);
     return 0;
 }
 
@@ -291,6 +307,7 @@ void Demo::applyBudget(double now)
     if (movedThisFrame_) lastMoveTime_ = now;
     movedThisFrame_ = false;
     const bool moving = now - lastMoveTime_ < kStillSeconds;
+    movingForLog_ = moving;
     int scale = indirectScale_;
     if (!budgetOn_ || !moving)
         scale = 1;

@@ -23,6 +23,7 @@ struct DemoSettings {
     gl::ParamValues frameValues, techniqueValues; // checked against the declarations
     core::Image reference;                        // empty: none
     std::vector<DemoStep> script;                 // checked by parseDemoScript
+    std::string frameLog;                         // CSV of every frame's times (empty: none), checked writable
 };
 
 class Demo {
@@ -81,6 +82,8 @@ private:
     float budgetMs_ = 100.0f;
     int indirectScale_ = 1;
     double lastMoveTime_ = -1e30, frameMs_ = 0.0;
+    std::string frameLog_; // the CSV rows so far, written at exit through a temporary name
+    bool movingForLog_ = false;
     bool movedThisFrame_ = false;
     void applyBudget(double now);
 };

@@ -647,9 +647,10 @@ TEST(Cli, DemoFrameBudgetCoarsensWhileMovingAndReturnsWhenStill)
     if (!std::getenv("DISPLAY")) GTEST_SKIP() << "no DISPLAY: the suite runs under xvfb-run in CI (test.sh)";
     const fs::path d = outDir("demo-budget");
     const std::string moved = (d / "moved.exr").string(), still = (d / "still.exr").string();
-    const CliRun r = run("demo --scene cornell-spot --size 96x64 --technique rsm --script set:vpls=16,budget:1,move:4,"
-                         "screenshot:" +
-                         moved + ",move:3,wait:12,screenshot:" + still + ",quit");
+    const std::string log = (d / "frames.csv").string();
+    const CliRun r = run("demo --scene cornell-spot --size 96x64 --technique rsm --frame-log " + log +
+                         " --script set:vpls=16,budget:1,move:4,screenshot:" + moved +
+                         ",move:3,wait:60,screenshot:" + still + ",quit");
     ASSERT_EQ(r.status, 0) << r.output;
     const auto coarse = r.output.find("budget: indirect light at 1/2 resolution (48x32) while moving");
     ASSERT_NE(coarse, std::string::npos) << r.output;
@@ -659,6 +660,23 @@ TEST(Cli, DemoFrameBudgetCoarsensWhileMovingAndReturnsWhenStill)
     const bounce::core::Image a = bounce::core::readImage(moved), b = bounce::core::readImage(still);
     EXPECT_EQ(a.width, 96);
     EXPECT_EQ(b.width, 96);
+    // The frame log: a row per frame, moving frames at a coarser scale, the last ones still at full
+    // resolution, and the passes of each frame.
+    std::ifstream in(log);
+    std::string line;
+    ASSERT_TRUE(std::getline(in, line));
+    EXPECT_EQ(line, "seconds,frame_ms,render_ms,indirect_scale,moving,technique,passes");
+    int rows = 0, coarseMoving = 0;
+    std::string last;
+    while (std::getline(in, line)) {
+        ++rows;
+        last = line;
+        if (line.find(",1,rsm,") != std::string::npos && line.find(",1,1,rsm,") == std::string::npos) ++coarseMoving;
+    }
+    EXPECT_GE(rows, 60) << "the moves run during the waits: 60 frames at least";
+    EXPECT_GT(coarseMoving, 0) << "no moving frame at a coarser scale";
+    EXPECT_NE(last.find(",1,0,rsm,"), std::string::npos) << "the last frame is not still at full resolution: " << last;
+    EXPECT_NE(last.find("gather="), std::string::npos) << last;
 }
 
 // A frame parameter set while comparing rebuilds both halves: with the same technique on both sides the
