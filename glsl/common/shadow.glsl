@@ -19,6 +19,16 @@ uniform int pcfNearest; // 1: nearest taps (shadow.linear off); 0, the default: 
 // every lookup lane by lane).
 float percentageCloser(vec2 uv, float layer, float ref)
 {
+#ifdef SHADOW_PCF_TAPS
+    // The direct way, for the test that the gathers sum the same (tests/gl/shadow_pcf_test.cpp): (2r+1)^2
+    // lookups, each filtered by the texture's own filter (linear or nearest) and compared by the hardware.
+    vec2 texel = 1.0 / vec2(textureSize(shadowMaps, 0).xy);
+    float tapSum = 0.0;
+    for (int y = -pcfRadius; y <= pcfRadius; ++y)
+        for (int x = -pcfRadius; x <= pcfRadius; ++x)
+            tapSum += texture(shadowMaps, vec4(uv + vec2(x, y) * texel, layer, ref));
+    return tapSum / float((2 * pcfRadius + 1) * (2 * pcfRadius + 1));
+#endif
     vec2 size = vec2(textureSize(shadowMaps, 0).xy);
     vec2 st = uv * size - 0.5;
     vec2 base = floor(st);

@@ -26,6 +26,7 @@
 #include "core/metrics.h"
 #include "gl/renderer.h"
 #include "ref/reference.h"
+#include "tests/gl/cornell_directional.h"
 #include "tests/gl/gl_test_fixture.h"
 #include "tests/image_expect.h"
 
@@ -194,24 +195,9 @@ struct LightCase {
     const char* whyTolerance; // what remains
 };
 
-// cornell-spot with its spot replaced by a directional light shining through the open front of the box
-// (down and in, so that the floor, the back wall and the blocks' shadows are lit): the one light kind
-// no Cornell variant has.
-core::Scene cornellDirectional()
-{
-    core::Scene s = core::makeCornell("cornell-spot");
-    core::Light sun;
-    sun.name = "sun";
-    sun.type = core::LightType::Directional;
-    sun.direction = glm::normalize(glm::vec3(0.25f, -0.6f, 1.0f));
-    sun.intensity = glm::vec3(3.0f, 2.8f, 2.5f); // W/m^2
-    s.lights = {sun};
-    return s;
-}
-
 core::Scene lightCaseScene(const std::string& name)
 {
-    return name == "cornell-directional" ? cornellDirectional() : core::makeCornell(name);
+    return name == "cornell-directional" ? test::cornellDirectional() : core::makeCornell(name);
 }
 
 core::Image glDirect(const core::Scene& scene, int supersample)
