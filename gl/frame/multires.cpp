@@ -4,6 +4,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "gl/context/context.h"
 #include "gl/frame/bindings.h"
 #include "gl/gl.h"
 #include "gl/resource/pass_state.h"
@@ -81,12 +82,12 @@ int autoCoarsestLevel(int width, int height)
 
 MultiresPyramid::MultiresPyramid(int width, int height, const MultiresSettings& settings)
     : settings_(settings),
-      pyramidFbo_("multires.pyramid.fbo"),
       upsampleFbo_("multires.upsample.fbo"),
-      reduceFromGBuffer_(Program::graphics("multires.minmax.level1", "frame/fullscreen.vert",
-                                           "frame/multires_minmax.frag", {{"FROM_GBUFFER", "1"}})),
-      reduce_(Program::graphics("multires.minmax", "frame/fullscreen.vert", "frame/multires_minmax.frag")),
-      upsample_(Program::graphics("multires.upsample", "frame/fullscreen.vert", "frame/multires_upsample.frag"))
+      reduceFromGBuffer_(
+          Program::compute("multires.minmax.level1", "frame/multires_minmax.comp", {{"FROM_GBUFFER", "1"}})),
+      reduce_(Program::compute("multires.minmax", "frame/multires_minmax.comp")),
+      upsampleAsFragments_(softwareRasterizer()),
+      upsample_(upsampleProgram(upsampleAsFragments_, false))
 {
     if (settings_.coarsestLevel < MultiresSettings::kAutoLevel)
         throw std::invalid_argument("coarsestLevel must be at least 0, or -1 for the paper's 64 x 64 coarsest buffer");
@@ -116,12 +117,6 @@ bool MultiresPyramid::resize(int width, int height)
     depth_ = Texture::create2D("multires.pyramid.depthRange", GL_RG32F, pyrW, pyrH);
     normalMin_ = Texture::create2D("multires.pyramid.normalMin", GL_RGBA16F, pyrW, pyrH);
     normalMax_ = Texture::create2D("multires.pyramid.normalMax", GL_RGBA16F, pyrW, pyrH);
-    pyramidFbo_ = Framebuffer("multires.pyramid.fbo");
-    const Texture* targets[] = {&position_, &normal_, &diffuse_, &depth_, &normalMin_, &normalMax_};
-    for (int i = 0; i < 6; ++i) pyramidFbo_.attach(GL_COLOR_ATTACHMENT0 + i, *targets[i]);
-    pyramidFbo_.setDrawBuffers({GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2, GL_COLOR_ATTACHMENT3,
-                                GL_COLOR_ATTACHMENT4, GL_COLOR_ATTACHMENT5});
-    pyramidFbo_.checkComplete();
     return true;
 }
 
@@ -150,8 +145,8 @@ void MultiresPyramid::bind() const
 void MultiresPyramid::build(Frame& frame, PassTimers& timers)
 {
     resize(frame.width(), frame.height());
-    // multires_minmax.frag per patch: four children (two G-buffer texels at level 1, six pyramid texels
-    // above; about four on average), six render targets written.
+    // multires_minmax.comp per patch: four children (two G-buffer texels at level 1, six pyramid texels
+    // above; about four on average), six image stores.
     PassCost cost;
     cost.flops = 70;
     cost.fetches = 4 * 4;
@@ -161,49 +156,64 @@ void MultiresPyramid::build(Frame& frame, PassTimers& timers)
     if (levels_ == 0) return; // a 1x1 image, or coarsestLevel 0: the pixels are the only level
     frame.bindGBuffer();
     bind();
+    position_.bindImage(0, GL_WRITE_ONLY);
+    normal_.bindImage(1, GL_WRITE_ONLY);
+    diffuse_.bindImage(2, GL_WRITE_ONLY);
+    depth_.bindImage(3, GL_WRITE_ONLY);
+    normalMin_.bindImage(4, GL_WRITE_ONLY);
+    normalMax_.bindImage(5, GL_WRITE_ONLY);
     setUniforms(reduceFromGBuffer_);
     setUniforms(reduce_);
-    PassState state = PassState::fullscreen(pyramidFbo_, position_.width(), position_.height());
     for (int l = 1; l <= levels_; ++l) {
-        // Level l's patches in the pyramid textures (one column: level 0 lives in the G-buffer).
-        state.viewport = glm::ivec4(rects_[l].x - width_, rects_[l].y, rects_[l].z, rects_[l].w);
-        state.apply();
         Program& program = l == 1 ? reduceFromGBuffer_ : reduce_;
         program.set("level", l);
         program.use();
-        frame.drawFullscreen();
-        // Level l is read by the next level's draw from the textures it was written into: disjoint
-        // texels, and this barrier between the draws, keep the feedback defined (GL 4.5, 9.3.1).
-        glTextureBarrier();
+        glDispatchCompute(GLuint(ceilDiv(rects_[l].z, 8)), GLuint(ceilDiv(rects_[l].w, 8)), 1);
+        // Level l is read (texelFetch) by the next level and by every pass of the technique after it.
+        glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
     }
 }
 
 void MultiresPyramid::upsample(Frame& frame, const Texture& illumination, PassTimers& timers,
                                const Texture* unmodulated)
 {
-    // multires_upsample.frag per pixel: its geometry flag, the levels up to its fragment's, four
-    // neighbours and the diffuse colour; one RGBA32F target.
+    // multires_upsample.glsl per pixel: its geometry flag, the levels up to its fragment's, four
+    // neighbours and the diffuse colour; one RGBA32F target or image.
     PassCost cost;
     cost.flops = 40;
     cost.fetches = 2 + 2 + 4;
     cost.bytesRead = 8 + 2 * 16 + 4 * 16 + 8;
     cost.bytesWritten = 16;
     auto t = timers.scope("upsample", cost);
-    upsampleFbo_.attach(GL_COLOR_ATTACHMENT0, frame.indirect());
-    PassState::fullscreen(upsampleFbo_, width_, height_).apply();
     frame.bindGBuffer();
     bind();
     illumination.bind(UNIT_MULTIRES_ILLUMINATION);
-    if (unmodulated && !upsampleUnmodulated_)
-        upsampleUnmodulated_ = Program::graphics("multires.upsample.unmodulated", "frame/fullscreen.vert",
-                                                 "frame/multires_upsample.frag", {{"UNMODULATED", "1"}});
+    if (unmodulated && !upsampleUnmodulated_) upsampleUnmodulated_ = upsampleProgram(upsampleAsFragments_, true);
     Program& program = unmodulated ? upsampleUnmodulated_ : upsample_;
     if (unmodulated) unmodulated->bind(UNIT_MULTIRES_UNMODULATED);
     setUniforms(program);
     program.use();
     // The technique rendered (or stored, from compute passes) into the illumination buffers.
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
-    frame.drawFullscreen();
+    if (upsampleAsFragments_) {
+        upsampleFbo_.attach(GL_COLOR_ATTACHMENT0, frame.indirect());
+        PassState::fullscreen(upsampleFbo_, width_, height_).apply();
+        frame.drawFullscreen();
+        return;
+    }
+    frame.indirect().bindImage(0, GL_WRITE_ONLY, 0, GL_RGBA32F);
+    glDispatchCompute(GLuint(ceilDiv(width_, 8)), GLuint(ceilDiv(height_, 8)), 1);
+    // The composite (and any read-back) samples the indirect texture.
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+}
+
+Program MultiresPyramid::upsampleProgram(bool asFragments, bool unmodulated)
+{
+    std::vector<Define> d;
+    if (unmodulated) d.push_back({"UNMODULATED", "1"});
+    const std::string label = unmodulated ? "multires.upsample.unmodulated" : "multires.upsample";
+    return asFragments ? Program::graphics(label, "frame/fullscreen.vert", "frame/multires_upsample.frag", d)
+                       : Program::compute(label, "frame/multires_upsample.comp", d);
 }
 
 } // namespace bounce::gl

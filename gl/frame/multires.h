@@ -1,13 +1,13 @@
 // The multiresolution eye-space pyramid and its joint bilateral upsampling (Nichols, Shopf & Wyman 2009,
 // §3.2.1-3.2.2, after Nichols & Wyman 2009 [NW09]): a frame service for every technique that computes
-// light at a subset of pixels, one per multiresolution patch, and upsamples it. Passes, both fragment
-// passes as in the paper (on llvmpipe a compute pass pays per lane for every image store):
+// light at a subset of pixels, one per multiresolution patch, and upsamples it. Passes:
 //   "minmax-mipmap"  eye-space depth / normal min-max pyramid of the G-buffer, with the patch means
-//                    (position, normal, diffuse colour) a technique shades (Fig. 2b-c), one draw per
-//                    level into the pyramid's six targets; glsl/frame/multires_minmax.frag
+//                    (position, normal, diffuse colour) a technique shades (Fig. 2b-c), one compute
+//                    dispatch per level; glsl/frame/multires_minmax.comp
 //   "upsample"       every pixel takes the valid fragment covering it in a flattened illumination buffer,
 //                    interpolated among same-surface neighbours of its level, times the full-resolution
-//                    diffuse colour, into frame.indirect(); glsl/frame/multires_upsample.frag
+//                    diffuse colour, into frame.indirect(); glsl/frame/multires_upsample.glsl, as a fragment
+//                    pass on a software rasteriser and a compute pass on a GPU (see upsampleAsFragments_)
 // Layout of the levels and of the flattened buffer, the discontinuity test, the valid-fragment rule and the
 // same-surface rule: glsl/common/multires.glsl. Choosing the valid fragments and computing their light is
 // the technique's part (image-space radiosity: a stencil pass and a stenciled gather, gl/technique/isr/).
@@ -61,6 +61,16 @@ public:
     // alpha 0 elsewhere. `unmodulated`, when given (same size, RGBA32F), is interpolated with the same
     // weights and added without the diffuse colour: glossy reflected radiance.
     void upsample(Frame& frame, const Texture& illumination, PassTimers& timers, const Texture* unmodulated = nullptr);
+    // Which stage runs the upsampling (the default: fragments on a software rasteriser, compute on a GPU);
+    // the two write the same image (tests/gl/isr_multires_test.cpp).
+    void setUpsampleAsFragments(bool asFragments)
+    {
+        if (asFragments == upsampleAsFragments_) return;
+        upsampleAsFragments_ = asFragments;
+        upsample_ = upsampleProgram(asFragments, false);
+        upsampleUnmodulated_ = Program();
+    }
+    bool upsampleAsFragments() const { return upsampleAsFragments_; }
     // Level l's rectangle in the flattened buffer as a viewport (origin, size), for passes drawn level by
     // level over it (the stencil pass and the gathers of image-space radiosity).
     glm::ivec4 levelViewport(int level) const { return levelRect(level); }
@@ -92,8 +102,14 @@ private:
     glm::ivec2 flattened_{0};
     std::vector<glm::ivec4> rects_;
     Texture position_, normal_, diffuse_, depth_, normalMin_, normalMax_;
-    Framebuffer pyramidFbo_, upsampleFbo_;
-    Program reduceFromGBuffer_, reduce_, upsample_, upsampleUnmodulated_;
+    Framebuffer upsampleFbo_;
+    Program reduceFromGBuffer_, reduce_;
+    // The upsampling as a fragment pass on a software rasteriser (llvmpipe stores a compute pass's images
+    // lane by lane: 0.81 of the compute pass's time as fragments), as a compute pass on a GPU (an H200:
+    // 0.019 ms against 0.098 as fragments). Both from frame/multires_upsample.glsl.
+    bool upsampleAsFragments_;
+    Program upsample_, upsampleUnmodulated_;
+    static Program upsampleProgram(bool asFragments, bool unmodulated);
 };
 
 // Layout of the flattened buffer for a width x height image with at most `coarsestLevel` levels above

@@ -25,7 +25,7 @@
 
 // Texture units (glBindTextureUnit(unit, texture)). Units 21 and up belong to the technique.
 #define UNIT_G_GEOMETRY 0        // gbuffer.glsl: eye depth and normal
-#define UNIT_MULTIRES_UNMODULATED 1 // frame/multires_upsample.frag (UNMODULATED): the second, unmodulated buffer
+#define UNIT_MULTIRES_UNMODULATED 1 // frame/multires_upsample.glsl (UNMODULATED): the second, unmodulated buffer
 #define UNIT_G_DIFFUSE 2
 #define UNIT_G_SPECULAR 3
 #define UNIT_G_EMISSION 4
@@ -34,7 +34,7 @@
 #define UNIT_RSM_SOLID_ANGLES 7  // rsm.frag: exact texel solid angles, one layer per view
 #define UNIT_RSM_FIRST 8         // rsm.glsl: position, normal, flux, depth range, normal min, max: 8..13
 #define UNIT_MULTIRES_FIRST 14   // multires.glsl: position, normal, diffuse, depth range, normal min, max: 14..19
-#define UNIT_MULTIRES_ILLUMINATION 20 // frame/multires_upsample.frag: the flattened illumination buffer
+#define UNIT_MULTIRES_ILLUMINATION 20 // frame/multires_upsample.glsl: the flattened illumination buffer
 // The composite, tone-map and joint-upsample passes bind no G-buffer units; their inputs take the first units.
 #define UNIT_COMPOSITE_DIRECT 0
 #define UNIT_COMPOSITE_INDIRECT 1

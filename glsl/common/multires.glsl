@@ -118,7 +118,7 @@ bool rangesDiscontinuous(vec2 depthRange, vec3 normalMin, vec3 normalMax)
     return max(spread.x, max(spread.y, spread.z)) >= normalThreshold;
 }
 
-// Patch states, classified once by the min-max pass (multires_minmax.frag) and kept in mrNormal.w, so
+// Patch states, classified once by the min-max pass (multires_minmax.comp) and kept in mrNormal.w, so
 // that the stencil pass reads one texel per level it looks at.
 const float kPatchEmpty = 0.0;         // no pixel with geometry
 const float kPatchContinuous = 1.0;

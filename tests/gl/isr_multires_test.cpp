@@ -232,6 +232,38 @@ TEST_F(IsrMultiresTest, EveryPixelCoveredExactlyOnce)
     checkCoverage(45, 31, s);
 }
 
+// The upsampling runs as a fragment pass on a software rasteriser and as a compute pass on a GPU
+// (gl/frame/multires.h): the two stages, one shader body, must write the same image.
+TEST_F(IsrMultiresTest, UpsamplingAsFragmentsEqualsUpsamplingAsCompute)
+{
+    const core::Scene scene = core::makeCornell("cornell-spot");
+    gl::PassTimers timers;
+    const auto framePtr = testFrame(scene, 333, 200, timers); // odd sizes: partial patches at every level
+    gl::Frame& frame = *framePtr;
+    const std::vector<GpuVpl> vpls = {{{0.3f, 0.0f, 0.3f, 1e-3f}, {0, 1, 0, 0}, {0.01f, 0.01f, 0.01f, 0}},
+                                      {{0.55f, 0.3f, 0.3f, 1e-3f}, {-1, 0, 0, 0}, {0.02f, 0.0f, 0.0f, 0}}};
+    const gl::Buffer cache = vplCache(vpls);
+    gl::MultiresSettings s;
+    s.coarsestLevel = 4;
+    gl::MultiresGather gather(frame, s);
+    std::vector<float> images[2];
+    for (bool asFragments : {true, false}) {
+        gather.pyramid().setUpsampleAsFragments(asFragments);
+        frame.clearIndirect();
+        gather.run(frame, cache, int(vpls.size()), timers);
+        timers.endFrame(false);
+        images[asFragments ? 0 : 1] = frame.indirect().readFloats(0, 4);
+    }
+    int lit = 0;
+    float worst = 0.0f;
+    for (std::size_t i = 0; i < images[0].size(); ++i) {
+        worst = std::max(worst, std::abs(images[0][i] - images[1][i]));
+        lit += i % 4 == 0 && images[0][i] > 0.0f;
+    }
+    EXPECT_GT(lit, 10000);
+    EXPECT_LT(worst, 1e-6f) << "the same arithmetic in both stages";
+}
+
 // ---------------------------------------------------------------------------------------------------
 // Equal to the full-resolution gathers at zero thresholds.
 

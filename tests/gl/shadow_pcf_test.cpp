@@ -10,9 +10,9 @@
 #include <gtest/gtest.h>
 
 #include "core/cornell.h"
+#include "gl/context/context.h"
 #include "gl/frame/bindings.h"
 #include "gl/frame/frame.h"
-#include "gl/context/context.h"
 #include "gl/gl.h"
 #include "gl/resource/framebuffer.h"
 #include "gl/resource/pass_state.h"
@@ -27,7 +27,8 @@ class ShadowPcfTest : public GlTest {};
 
 std::vector<float> visibility(gl::Frame& frame, const std::vector<gl::Define>& defines, int radius)
 {
-    gl::Program p = gl::Program::graphics("test.shadow", "frame/fullscreen.vert", "test/shadow_visibility.frag", defines);
+    gl::Program p =
+        gl::Program::graphics("test.shadow", "frame/fullscreen.vert", "test/shadow_visibility.frag", defines);
     gl::Texture target = gl::Texture::create2D("test.shadow.visibility", GL_RGBA32F, frame.width(), frame.height());
     gl::Framebuffer fbo("test.shadow.fbo");
     fbo.attach(GL_COLOR_ATTACHMENT0, target);

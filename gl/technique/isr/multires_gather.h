@@ -83,6 +83,7 @@ public:
 
     const MultiresSettings& settings() const { return pyramid_.settings(); }
     const MultiresPyramid& pyramid() const { return pyramid_; }
+    MultiresPyramid& pyramid() { return pyramid_; }
     // Levels actually used: coarsestLevel, or fewer when one patch already covers the whole image.
     int coarsestLevel() const { return pyramid_.coarsestLevel(); }
     // Where level l lies in the flattened buffer: origin (x, y) and size (w, h) in texels.

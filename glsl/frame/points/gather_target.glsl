@@ -5,7 +5,7 @@
 //                     coarser patch (the paper's gathering "at a subset of all image locations"); the BRDF
 //                     from the G-buffer at the patch's middle pixel. The result goes to two flattened
 //                     illumination images: rgb the diffuse part without the receiver's diffuse colour
-//                     (alpha 1 + the same-surface neighbour mask, what frame/multires_upsample.frag wants),
+//                     (alpha 1 + the same-surface neighbour mask, what frame/multires_upsample.glsl wants),
 //                     and the glossy part, reflected radiance as it is (upsampled unmodulated).
 //   GATHER_AT_POINTS  every stride-th point of the cloud, diffuse only (the multi-bounce iteration): the
 //                     result, the diffuse part, goes to pointGathered for point_relight.comp.
