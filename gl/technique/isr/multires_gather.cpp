@@ -120,9 +120,12 @@ void MultiresGather::gather(Frame& frame, Program& program, PassTimers& timers, 
     pyramid_.setUniforms(program);
     // VPLs and clusters written by compute passes must be visible to this pass's SSBO and uniform-block reads.
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_UNIFORM_BARRIER_BIT);
+    state.apply();
+    fullscreenVao_.bind();
     for (int i = 0; i < draws; ++i) {
         if (setupDraw) setupDraw(program, i);
-        drawLevels(program, state);
+        program.use();
+        glDrawArrays(GL_TRIANGLES, 0, 3); // the paper's one quad over the flattened buffer
     }
     // After the draws are issued, so that waiting for the stencil pass's counts stalls nothing queued.
     double valid = 0.0;

@@ -1,6 +1,6 @@
 #version 450 core
 // Hierarchical image-space radiosity, the gather (§3.5.1): like the stenciled gather of §3.2
-// (technique/isr/multires_gather.frag: a quad per level, stencil EQUAL, light WITHOUT the receiver's rho_i), but
+// (technique/isr/multires_gather.frag: one quad, stencil EQUAL, light WITHOUT the receiver's rho_i), but
 // each valid fragment chooses its own VPL clusters: it walks the VPL tree from every top patch and
 // refines cluster j (visits its four children instead) when
 //     |V_ij|^2 <= T |V_j|^2                                          (Eq. 8)
@@ -31,7 +31,6 @@ uniform int rootEnd;         // (long traversals take several additive draws)
 uniform float refineT;       // Eq. 8's T
 uniform int alwaysRefine;    // tau = 0
 uniform int discontinuityLevel; // discontinuous clusters above this level are always refined
-uniform int drawLevel;       // the eye-space level this draw covers
 
 layout(location = 0) out vec4 outIllumination;
 
@@ -40,10 +39,12 @@ int levelOffset(int m) { return ((1 << (2 * (treeDepth - m))) - 1) / 3; }
 
 void main()
 {
+    int level;
+    ivec2 t;
     vec3 sum = vec3(0.0);
     uint gathered = 0u;
-    {
-        MultiresPatch mp = loadPatch(drawLevel, ivec2(gl_FragCoord.xy) - levelOrigin[drawLevel]);
+    if (locateInFlattened(ivec2(gl_FragCoord.xy), level, t)) {
+        MultiresPatch mp = loadPatch(level, t);
         float len = length(mp.normal);
         if (len > 0.0 && max(mp.diffuse.r, max(mp.diffuse.g, mp.diffuse.b)) > 0.0) {
             vec3 p = mp.position, n = mp.normal / len;
