@@ -63,15 +63,23 @@ void MultiresGather::drawLevels(Program& program, PassState state, const std::fu
 
 void MultiresGather::markValidFragments(Frame& frame, PassTimers& timers)
 {
-    // multires_stencil.frag per patch of a level: two patch states, and for a valid fragment above level 0
-    // its eight neighbours' states and ranges (five texels each).
+    // multires_stencil.frag per patch of a level: two patch states; for a valid fragment its marks and
+    // stencil, and above level 0 its eight neighbours' states and ranges (five texels each). The valid
+    // fragments are the last frame's counts (this frame's arrive with the pass's queries).
     PassCost cost;
-    cost.flops = 150;
-    cost.fetches = 2 + 8 * 5;
-    cost.bytesRead = 2 * 8 + 8 * 5 * 8;
-    cost.bytesWritten = 16 + 4; // marks and stencil
+    cost.flops = 20;
+    cost.fetches = 2;
+    cost.bytesRead = 2 * 8;
     const double flattened = double(illumination_.width()) * illumination_.height();
     cost.bytesFixed = flattened * (16 + 4); // the clears
+    double validCoarse = 0.0, valid = 0.0;
+    for (std::size_t l = 0; l < lastValid_.size(); ++l) {
+        valid += lastValid_[l];
+        if (l > 0) validCoarse += lastValid_[l];
+    }
+    cost.bytesFixed += valid * (16 + 4) + validCoarse * 8 * 5 * 8;
+    cost.fetchesFixed = validCoarse * 8 * 5;
+    cost.flopsFixed = validCoarse * 8 * 20;
     auto t = timers.scope("stencil-setup", cost);
     PassState state = PassState::fullscreen(fbo_, illumination_.width(), illumination_.height());
     state.stencil.test = true;
@@ -265,6 +273,7 @@ std::vector<int> MultiresGather::fragmentsPerLevel() const
         std::vector<int> out(std::size_t(levels), 0);
         for (int l = 0; l < levels && l < int(validQueries_.size()); ++l)
             out[std::size_t(l)] = int(validQueries_[l].result());
+        lastValid_ = out;
         return out;
     }
     std::vector<unsigned> raw(kMaxLevels, 0u);

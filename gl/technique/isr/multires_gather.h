@@ -103,9 +103,10 @@ private:
     MultiresPyramid pyramid_;
     Texture illumination_, stencil_;
     Framebuffer fbo_;
-    Buffer counts_;                   // the refinement's valid fragments per level (multires-splat)
-    std::vector<Query> validQueries_; // the stencil pass's, one GL_SAMPLES_PASSED per level
-    bool countsFromQueries_ = true;   // which of the two the last frame filled
+    Buffer counts_;                      // the refinement's valid fragments per level (multires-splat)
+    std::vector<Query> validQueries_;    // the stencil pass's, one GL_SAMPLES_PASSED per level
+    bool countsFromQueries_ = true;      // which of the two the last frame filled
+    mutable std::vector<int> lastValid_; // the counts fragmentsPerLevel() last read (the stencil pass's cost)
     VertexArray fullscreenVao_{"multires.fullscreen"};
     // Draws a full-screen triangle clipped to each level's rectangle of the flattened buffer, with the
     // level in the program's drawLevel uniform; perLevel(level) runs before the level's draw.
