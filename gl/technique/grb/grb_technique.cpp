@@ -29,9 +29,10 @@ struct GrbChoice {
 };
 
 // kbuffer=auto: stencil routing where the start-up probe finds it exact, else the atomic capture.
-GrbChoice chooseCapture(const std::string& name)
+GrbChoice chooseCapture(const std::string& name, int samples)
 {
     GrbChoice c;
+    c.kbuffer.samples = samples;
     if (name == "atomic") {
         c.kbuffer.capture = KBufferCapture::Atomic;
         c.reason = "kbuffer=atomic";
@@ -39,7 +40,7 @@ GrbChoice chooseCapture(const std::string& name)
         c.kbuffer.capture = KBufferCapture::Peel;
         c.reason = "kbuffer=peel";
     } else {
-        c.probe = &stencilProbe();
+        c.probe = &stencilProbe(samples);
         c.kbuffer.multisample = c.probe->multisample;
         if (name == "stencil") {
             c.kbuffer.capture = KBufferCapture::Stencil;
@@ -67,13 +68,12 @@ class GlobalRayBundles final : public Technique {
 public:
     GlobalRayBundles(Frame& frame, const ParamValues& v)
         : directionsPerFrame_(v.getInt("directionsPerFrame")),
-          choice_(chooseCapture(v.getChoice(grbTechniqueInfo().params, "kbuffer"))),
+          choice_(chooseCapture(v.getChoice(grbTechniqueInfo().params, "kbuffer"), v.getInt("samples"))),
           atlas_(frame.scene(), atlasSettings(frame.scene(), v))
     {
         PassTimers setup;
         atlas_.fill(frame, setup);
         choice_.kbuffer.size = v.getInt("kbufferSize");
-        choice_.kbuffer.samples = v.getInt("samples");
         if (v.isAuto("k")) {
             choice_.depth =
                 // Depth complexity hardly depends on the resolution: measured at 128^2 at most.

@@ -382,7 +382,7 @@ int mismatchedPixels(const std::vector<KBuffer::Pixel>& a, const std::vector<KBu
     return bad;
 }
 
-StencilProbe runStencilProbe()
+StencilProbe runStencilProbe(int samples)
 {
     // cornell-slats at a k-buffer of 32^2: thin slats whose edges cross pixels at every angle, and
     // depth complexity within k = 8 (two slices of 4 on llvmpipe).
@@ -397,7 +397,7 @@ StencilProbe runStencilProbe()
     PassTimers timers;
     atlas.fill(frame, timers);
     StencilProbe probe;
-    probe.samples = maxKBufferSamples();
+    probe.samples = samples;
     constexpr int kSize = 32, kDirections = 4, kEntries = 8;
     KBufferSettings ks;
     ks.size = kSize;
@@ -432,8 +432,8 @@ StencilProbe runStencilProbe()
     probe.reason = probe.exact
                        ? std::string("stencil routing exact on this driver (GL_MULTISAMPLE ") +
                              (probe.multisample ? "on" : "off") + ", " + std::to_string(probe.samples) + " samples)"
-                       : "stencil routing inexact on this driver: " + std::to_string(best) + " of " +
-                             std::to_string(probe.pixels) +
+                       : "stencil routing inexact on this driver with " + std::to_string(probe.samples) +
+                             " samples: " + std::to_string(best) + " of " + std::to_string(probe.pixels) +
                              " probe pixels differ from the atomic capture (best with GL_MULTISAMPLE " +
                              (probe.multisample ? "on" : "off") + ")";
     return probe;
@@ -441,14 +441,14 @@ StencilProbe runStencilProbe()
 
 } // namespace
 
-const StencilProbe& stencilProbe()
+const StencilProbe& stencilProbe(int samples)
 {
-    // One probe per driver (the renderer string) for the life of the process.
-    static std::map<std::string, std::unique_ptr<StencilProbe>> probes;
+    // One probe per driver (the renderer string) and sample count for the life of the process.
+    static std::map<std::pair<std::string, int>, std::unique_ptr<StencilProbe>> probes;
     const char* r = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
-    const std::string key = r ? r : "";
-    auto& p = probes[key];
-    if (!p) p = std::make_unique<StencilProbe>(runStencilProbe());
+    samples = std::clamp(samples, 1, maxKBufferSamples());
+    auto& p = probes[{r ? r : "", samples}];
+    if (!p) p = std::make_unique<StencilProbe>(runStencilProbe(samples));
     return *p;
 }
 

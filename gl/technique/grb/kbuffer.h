@@ -98,9 +98,11 @@ struct DepthComplexity {
 DepthComplexity measureDepthComplexity(const Frame& frame, const GrbAtlas& atlas, int size, int directions,
                                        PassTimers& timers);
 
-// Whether stencil routing is exact on the driver in use: a tiny scene captured by Stencil (with
-// GL_MULTISAMPLE off, as the GL specification routes every fragment to every sample, then on) and by
-// Atomic along a few directions; exact when every pixel holds the same entries. Run once per process.
+// Whether stencil routing with `samples` samples per slice (clamped to maxKBufferSamples) is exact on the
+// driver in use: a tiny scene captured by Stencil (with GL_MULTISAMPLE off, as the GL specification
+// routes every fragment to every sample, then on) and by Atomic along a few directions; exact when every
+// pixel holds the same entries. Run once per process for each driver and sample count: a driver may
+// route exactly at one count and not at another, so the probe tests the count the capture will use.
 struct StencilProbe {
     bool exact = false;
     bool multisample = false; // the GL_MULTISAMPLE setting that was exact (or the better one)
@@ -109,6 +111,6 @@ struct StencilProbe {
     int pixels = 0;
     std::string reason;
 };
-const StencilProbe& stencilProbe();
+const StencilProbe& stencilProbe(int samples);
 
 } // namespace bounce::gl
