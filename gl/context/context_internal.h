@@ -38,6 +38,11 @@ void finishContext(const Binding& binding, ContextInfo& info, bool debug);
 // there is: "GL_VERSION (GL_RENDERER)", read through `loader` without touching glad's pointers.
 std::string describeCurrentGl(ProcLoader loader);
 
+// Whether EGL's client extensions (`eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS)`) let devices be
+// enumerated and opened as displays: EGL_EXT_platform_device with EGL_EXT_device_enumeration (Mesa) or
+// EGL_EXT_device_base, the older extension that holds enumeration and query (NVIDIA names only this).
+bool eglCanEnumerateDevices(const char* clientExtensions);
+
 std::unique_ptr<Context> createEgl(const ContextOptions& options);
 std::unique_ptr<Context> createOsMesa(const ContextOptions& options);
 std::unique_ptr<Context> createGlfw(const ContextOptions& options);

@@ -205,6 +205,16 @@ private:
     EGLSurface surface_ = EGL_NO_SURFACE;
 };
 
+} // namespace
+
+bool eglCanEnumerateDevices(const char* client)
+{
+    return (hasExtension(client, "EGL_EXT_device_enumeration") || hasExtension(client, "EGL_EXT_device_base")) &&
+           hasExtension(client, "EGL_EXT_platform_device");
+}
+
+namespace {
+
 struct Candidate {
     EGLDisplay display;
     std::string platform; // what ContextInfo::platform will say
@@ -216,8 +226,7 @@ std::vector<Candidate> candidateDisplays(const std::string& only)
 {
     const char* client = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
     std::vector<Candidate> hardware, software, surfaceless;
-    if (only != "surfaceless" && hasExtension(client, "EGL_EXT_device_enumeration") &&
-        hasExtension(client, "EGL_EXT_platform_device") && eglQueryDevicesEXT && eglGetPlatformDisplayEXT) {
+    if (only != "surfaceless" && eglCanEnumerateDevices(client) && eglQueryDevicesEXT && eglGetPlatformDisplayEXT) {
         EGLint count = 0;
         eglQueryDevicesEXT(0, nullptr, &count);
         std::vector<EGLDeviceEXT> devices(std::size_t(count > 0 ? count : 0));

@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include "gl/context/context.h"
+#include "gl/context/context_internal.h"
 #include "gl/debug.h"
 #include "gl/gl.h"
 #include "tests/gl/gl_test_fixture.h"
@@ -180,6 +181,23 @@ TEST(ContextTest, EglDeviceGivesCore45)
     expectCore45(*context, "egl");
     expectCountsUp(countUpOnGpu(64));
     expectNoGlErrors("egl-device");
+}
+
+// The client extensions two drivers really report: Mesa 22.3 names device enumeration on its own,
+// NVIDIA 580 only inside EGL_EXT_device_base; both enumerate devices. Without the platform, neither.
+TEST(ContextTest, DeviceEnumerationReadFromEitherExtension)
+{
+    const char* mesa = "EGL_EXT_device_base EGL_EXT_device_enumeration EGL_EXT_device_query EGL_EXT_platform_base "
+                       "EGL_KHR_client_get_all_proc_addresses EGL_EXT_client_extensions EGL_KHR_debug "
+                       "EGL_EXT_platform_device EGL_EXT_platform_wayland EGL_MESA_platform_surfaceless";
+    const char* nvidia = "EGL_EXT_platform_base EGL_EXT_device_base EGL_KHR_client_get_all_proc_addresses "
+                         "EGL_EXT_client_extensions EGL_KHR_debug EGL_KHR_platform_x11 EGL_EXT_platform_x11 "
+                         "EGL_EXT_platform_device EGL_MESA_platform_surfaceless EGL_EXT_explicit_device";
+    EXPECT_TRUE(detail::eglCanEnumerateDevices(mesa));
+    EXPECT_TRUE(detail::eglCanEnumerateDevices(nvidia));
+    EXPECT_FALSE(detail::eglCanEnumerateDevices("EGL_EXT_device_base EGL_MESA_platform_surfaceless"));
+    EXPECT_FALSE(detail::eglCanEnumerateDevices("EGL_EXT_device_base_x EGL_EXT_platform_device"));
+    EXPECT_FALSE(detail::eglCanEnumerateDevices(nullptr));
 }
 
 TEST(ContextTest, NamesAreChecked)
