@@ -14,7 +14,7 @@ uniform mat4 view;
 
 out vec3 vNormal;
 out vec2 vUv;
-out float vEyeDepth;
+out vec3 vEye; // eye-space position (m)
 flat out vec4 vBaseColorMetallic;
 flat out vec4 vEmissionRoughness;
 flat out vec4 vSpecularColorSpecular;
@@ -29,6 +29,6 @@ void main()
     vEmissionRoughness = m.emissionRoughness;
     vSpecularColorSpecular = m.specularColorSpecular;
     vFlags = m.flags;
-    vEyeDepth = -(view * vec4(inPosition, 1.0)).z;
+    vEye = (view * vec4(inPosition, 1.0)).xyz;
     gl_Position = viewProj * vec4(inPosition, 1.0);
 }

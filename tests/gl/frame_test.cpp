@@ -5,11 +5,20 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
+#include <cstring>
+#include <vector>
+
 #include "core/cornell.h"
 #include "gl/context/context.h"
+#include "gl/gl.h"
 #include "gl/renderer.h"
+#include "gl/resource/buffer.h"
+#include "gl/resource/dispatch.h"
+#include "gl/resource/program.h"
 #include "tests/gl/cpu_raycast.h"
 #include "tests/gl/gl_test_fixture.h"
+#include "tests/gl/photon_test_scenes.h"
 
 namespace bounce {
 namespace {
@@ -113,6 +122,55 @@ TEST_F(FrameTest, ShadowAndConeWhereGeometrySays)
     EXPECT_GT(shadowed, 10);
     EXPECT_GT(outside, 100);
     EXPECT_GT(lit, 200);
+}
+
+// The position every technique reads is rebuilt from the eye depth (common/gbuffer.glsl). A fragment and a
+// compute shader rebuild the very same bits for a pixel (photon mapping matches pixels to their cluster
+// samples exactly), and the position lies on the surface that an independent CPU ray through the pixel's
+// centre meets: at the scene's size and at a thousand times it, in a viewport of odd sizes.
+TEST_F(FrameTest, RebuiltPositionSameInEveryStageAndOnTheSurface)
+{
+    constexpr int w = 37, h = 29;
+    for (float k : {1.0f, 1000.0f}) {
+        SCOPED_TRACE(k);
+        const core::Scene scene = photontest::scaledScene(core::makeCornell("cornell-spot"), k);
+        gl::Renderer r(scene, "direct", gl::ParamValues(gl::frameParams()), gl::ParamValues(), w, h);
+        r.renderFrame();
+        const std::vector<float> fragment = r.frame().readPositions(); // RGBA, GL rows (row 0 at the bottom)
+        gl::Buffer out("test.gbuffer.positions", std::size_t(w * h) * sizeof(glm::vec4));
+        gl::Program program = gl::Program::compute("test.gbuffer.positions", "test/gbuffer_positions.comp",
+                                                   r.frame().gbufferDefines());
+        r.frame().bindGBuffer();
+        out.bindBase(GL_SHADER_STORAGE_BUFFER, 0);
+        program.set("size", glm::ivec2(w, h));
+        gl::dispatchCompute(program, {w, h, 1}, {8, 8, 1});
+        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+        const std::vector<glm::vec4> compute = out.download<glm::vec4>();
+        int differ = 0, surface = 0, onSurface = 0;
+        float worst = 0.0f;
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) {
+                const float* f = &fragment[std::size_t(y * w + x) * 4];
+                const glm::vec4& c = compute[std::size_t(y * w + x)];
+                differ += std::memcmp(f, &c, sizeof c) != 0;
+                if (f[3] == 0.0f) continue;
+                // Image rows go down; GL rows go up.
+                const glm::vec3 d = scene.camera.rayDirection(x + 0.5f, (h - 1 - y) + 0.5f, w, h);
+                const auto hit = raycast(scene, scene.camera.position, d);
+                if (!hit) continue;
+                ++surface;
+                const float gap = glm::length(glm::vec3(f[0], f[1], f[2]) - hit->position) / hit->t;
+                worst = std::max(worst, gap);
+                onSurface += gap <= 1e-5f; // float rounding of depth and ray: a few 1e-7 of the distance
+            }
+        EXPECT_EQ(differ, 0) << "pixels whose fragment and compute positions differ in any bit";
+        EXPECT_GT(surface, w * h / 2);
+        // Pixels on a silhouette may see another surface than the CPU ray: at most a few.
+        EXPECT_GE(onSurface, surface - surface / 50) << "largest gap " << worst << " of the distance";
+        std::printf("[ measured ] scale %g: %d of %d positions within 1e-5 of the distance from the ray cast's, "
+                    "largest %.3g; %d differ between stages\n",
+                    double(k), onSurface, surface, double(worst), differ);
+    }
 }
 
 // The emitter of cornell-area is seen with exactly its radiance (17, 12, 4): half floats hold these
