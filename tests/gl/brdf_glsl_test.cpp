@@ -65,8 +65,9 @@ TEST_F(BrdfGlslTest, GlslMatchesCpp)
         const glm::vec3 cpu =
             core::evalBrdf(p, glm::vec3(cases[i].nRoughness), glm::vec3(cases[i].wo), glm::vec3(cases[i].wi));
         for (int c = 0; c < 3; ++c) {
-            // 1e-5 relative, with an absolute floor for values that cancel to almost nothing.
-            ASSERT_NEAR(gpu[i][c], cpu[c], 1e-5f * std::abs(cpu[c]) + 1e-7f) << "case " << i << " channel " << c;
+            // 3e-5 relative, with an absolute floor for values that cancel to almost nothing: llvmpipe agrees to
+            // 1e-5; an NVIDIA H200's division and pow reached 1.13e-5 (a wrong term is off by far more).
+            ASSERT_NEAR(gpu[i][c], cpu[c], 3e-5f * std::abs(cpu[c]) + 1e-7f) << "case " << i << " channel " << c;
         }
         nonZero += cpu.x > 0.0f;
     }
