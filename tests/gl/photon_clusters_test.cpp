@@ -57,8 +57,12 @@ Clustered clusterScene(const core::Scene& scene, int w, int h, const gl::Shading
 float error(const Clustered& c, std::size_t pixel, const gl::GpuCluster& k)
 {
     const glm::vec3 x(c.position[pixel]), n(c.normal[pixel]);
-    return c.alpha * glm::length(x - glm::vec3(k.centre)) +
-           std::sqrt(std::max(0.0f, 2.0f - 2.0f * glm::dot(n, glm::vec3(k.normal))));
+    // Eq. 2's normal term as the chord |n - n_k| (equal to sqrt(2 - 2 n . n_k) for unit normals), as
+    // shading_clusters.glsl computes it: the square root's form magnifies an ulp of the dot product.
+    const glm::vec3 nk(k.normal);
+    const float normalTerm = glm::dot(nk, nk) > 0.5f ? glm::length(n - nk)
+                                                     : std::sqrt(std::max(0.0f, 2.0f - 2.0f * glm::dot(n, nk)));
+    return c.alpha * glm::length(x - glm::vec3(k.centre)) + normalTerm;
 }
 
 std::size_t validPixels(const Clustered& c)

@@ -27,10 +27,15 @@ layout(std430, binding = SSBO_CLUSTER_CENTRES) buffer Clusters { Cluster cluster
 
 uniform float alpha; // Eq. 2's weight of position, already divided by the scene's size (1/m)
 
-// Eq. 2: eps = alpha |x_i - x_k| + sqrt(2 - 2 n_i . n_k).
+// Eq. 2: eps = alpha |x_i - x_k| + sqrt(2 - 2 n_i . n_k). For unit normals the square root is the chord
+// |n_i - n_k|, which is written so: sqrt(2 - 2 n_i . n_k) turns one ulp of the dot product of two equal
+// normals into 3.5e-4, enough to hand a point between two clusters of one wall to either (an NVIDIA
+// H200 decoded a normal an ulp apart in a compute and a fragment shader). A centre without a normal
+// (opposite normals cancelled: meanNormal's zero fallback) keeps Eq. 2's value, sqrt(2).
 float clusterError(vec3 x, vec3 n, vec3 xk, vec3 nk)
 {
-    return alpha * length(x - xk) + sqrt(max(0.0, 2.0 - 2.0 * dot(n, nk)));
+    float normalTerm = dot(nk, nk) > 0.5 ? length(n - nk) : sqrt(max(0.0, 2.0 - 2.0 * dot(n, nk)));
+    return alpha * length(x - xk) + normalTerm;
 }
 
 // The mean of summed unit normals; when they cancel (a cluster of opposite normals), `fallback`.
