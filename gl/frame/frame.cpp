@@ -193,9 +193,9 @@ void Frame::renderGBuffer(PassTimers& timers)
     // The eye-space ray through pixel centre c (gl_FragCoord.xy) is ((2 c / size - 1) / diag(P), -1): the
     // same ray updateGBufferCamera gives in world space.
     const glm::mat4 p = projection();
-    gbufferProgram_.set("eyeRay", glm::vec4(2.0f / (float(settings_.width) * p[0][0]),
-                                            2.0f / (float(settings_.height) * p[1][1]), -1.0f / p[0][0],
-                                            -1.0f / p[1][1]));
+    gbufferProgram_.set("eyeRay",
+                        glm::vec4(2.0f / (float(settings_.width) * p[0][0]), 2.0f / (float(settings_.height) * p[1][1]),
+                                  -1.0f / p[0][0], -1.0f / p[1][1]));
     gpu_.materials().bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_MATERIALS);
     gpu_.baseColorTextures().bind(UNIT_BASE_COLOR);
     gbufferProgram_.draw(gpu_);

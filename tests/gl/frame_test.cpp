@@ -138,8 +138,8 @@ TEST_F(FrameTest, RebuiltPositionSameInEveryStageAndOnTheSurface)
         r.renderFrame();
         const std::vector<float> fragment = r.frame().readPositions(); // RGBA, GL rows (row 0 at the bottom)
         gl::Buffer out("test.gbuffer.positions", std::size_t(w * h) * sizeof(glm::vec4));
-        gl::Program program = gl::Program::compute("test.gbuffer.positions", "test/gbuffer_positions.comp",
-                                                   r.frame().gbufferDefines());
+        gl::Program program =
+            gl::Program::compute("test.gbuffer.positions", "test/gbuffer_positions.comp", r.frame().gbufferDefines());
         r.frame().bindGBuffer();
         out.bindBase(GL_SHADER_STORAGE_BUFFER, 0);
         program.set("size", glm::ivec2(w, h));

@@ -60,8 +60,8 @@ float error(const Clustered& c, std::size_t pixel, const gl::GpuCluster& k)
     // Eq. 2's normal term as the chord |n - n_k| (equal to sqrt(2 - 2 n . n_k) for unit normals), as
     // shading_clusters.glsl computes it: the square root's form magnifies an ulp of the dot product.
     const glm::vec3 nk(k.normal);
-    const float normalTerm = glm::dot(nk, nk) > 0.5f ? glm::length(n - nk)
-                                                     : std::sqrt(std::max(0.0f, 2.0f - 2.0f * glm::dot(n, nk)));
+    const float normalTerm =
+        glm::dot(nk, nk) > 0.5f ? glm::length(n - nk) : std::sqrt(std::max(0.0f, 2.0f - 2.0f * glm::dot(n, nk)));
     return c.alpha * glm::length(x - glm::vec3(k.centre)) + normalTerm;
 }
 
