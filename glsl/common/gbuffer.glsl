@@ -9,8 +9,8 @@
 //   gEmission  RGBA16F  rgb emitted radiance; only when a material emits
 // The world position is not stored: it is the camera position plus the eye depth along the pixel's ray
 // (gbufferPosition; the G-buffer pass writes the depth where that ray meets the triangle's plane, see
-// frame/gbuffer.frag), on the surface to float rounding, where an RGBA32F target cost 16 bytes per pixel to write and
-// to read. A scene without glossy materials or emitters gets no specular or emission target: the frame
+// frame/gbuffer.frag), on the surface to float rounding, where an RGBA32F target cost 16 bytes per pixel
+// to write and to read. A scene without glossy materials or emitters gets no specular or emission target: the frame
 // binds a 1x1 black texture instead and gbufferCamera.present zeroes the fetch coordinates; programs
 // compiled with Frame::gbufferDefines() (SCENE_DIFFUSE_ONLY, SCENE_NO_EMITTERS) do not fetch at all.
 #ifndef BOUNCE_GBUFFER_GLSL

@@ -43,7 +43,8 @@ float eyeDepthOnPlane()
     vec3 ray = vec3(gl_FragCoord.xy * eyeRay.xy + eyeRay.zw, -1.0);
     float along = dot(plane, ray), interpolated = -vEye.z;
     float depth = dot(plane, vEye) / along;
-    bool grazing = !(abs(along) > 1e-3 * length(plane) * length(ray));
+    // |cos| of the ray to the plane's normal above 1e-3, compared squared: no square root per fragment.
+    bool grazing = !(along * along > 1e-6 * dot(plane, plane) * dot(ray, ray));
     return grazing || !(abs(depth - interpolated) <= 1e-2 * interpolated) ? interpolated : depth;
 }
 
