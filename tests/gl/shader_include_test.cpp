@@ -16,13 +16,15 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// Points BOUNCE_ROOT at a scratch tree with a glsl/ folder for the test's life.
+// Points BOUNCE_ROOT at a scratch tree with a glsl/ folder for the test's life. Each test has its own tree:
+// ctest runs the tests of this suite in parallel, and a shared one was removed under a running test.
 class ShaderIncludeTest : public GlTest {
 protected:
     void SetUp() override
     {
         GlTest::SetUp();
-        root_ = fs::path(BOUNCE_TEST_OUT) / "shader-include";
+        root_ = fs::path(BOUNCE_TEST_OUT) / "shader-include" /
+                ::testing::UnitTest::GetInstance()->current_test_info()->name();
         fs::remove_all(root_);
         fs::create_directories(root_ / "glsl");
         if (const char* old = std::getenv("BOUNCE_ROOT")) old_ = old, hadOld_ = true;
