@@ -1,5 +1,7 @@
 #include "gl/resource/allocations.h"
 
+#include <cstdlib>
+
 namespace bounce::gl {
 
 Allocations& Allocations::instance()
@@ -32,6 +34,24 @@ std::size_t Allocations::totalBytes() const
     std::size_t n = 0;
     for (const auto& [t, e] : entries_) n += e.bytes;
     return n;
+}
+
+namespace {
+int poisonSetting = -1; // -1: not set yet, read from the environment on first use
+}
+
+bool poisonNewStorage()
+{
+    if (poisonSetting < 0) {
+        const char* env = std::getenv("BOUNCE_POISON_STORAGE");
+        poisonSetting = env && *env && std::string(env) != "0" ? 1 : 0;
+    }
+    return poisonSetting == 1;
+}
+
+void setPoisonNewStorage(bool on)
+{
+    poisonSetting = on ? 1 : 0;
 }
 
 } // namespace bounce::gl

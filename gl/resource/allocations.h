@@ -53,4 +53,12 @@ private:
     int ticket_ = 0;
 };
 
+// Storage a wrapper makes without data is undefined in GL: llvmpipe gives zeros, a GPU driver whatever
+// the memory held. With poisoning on (setPoisonNewStorage, or BOUNCE_POISON_STORAGE=1 in the environment)
+// buffers are filled with 0xff bytes (NaN as a float, 0xffffffff as a uint) and textures with NaN (float
+// formats), 1 (normalised), all ones (integer) or 0.5 (depth), so that reading what no pass wrote shows
+// on a software rasteriser too.
+bool poisonNewStorage();
+void setPoisonNewStorage(bool on);
+
 } // namespace bounce::gl

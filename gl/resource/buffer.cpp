@@ -18,6 +18,10 @@ Buffer::Buffer(const std::string& label, std::size_t bytes, const void* data) : 
     // Zero-sized storage is an error in GL; keep one word so empty scenes still bind something.
     glNamedBufferStorage(id, GLsizeiptr(bytes ? bytes : 4), data, GL_DYNAMIC_STORAGE_BIT);
     labelObject(GL_BUFFER, id, label);
+    if (!data && poisonNewStorage()) {
+        const unsigned char poison = 0xff; // bytes: a storage size need not be a multiple of four
+        glClearNamedBufferData(id, GL_R8UI, GL_RED_INTEGER, GL_UNSIGNED_BYTE, &poison);
+    }
 }
 
 void Buffer::update(std::size_t offset, std::size_t bytes, const void* data)

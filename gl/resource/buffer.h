@@ -17,7 +17,8 @@ struct BufferDeleter {
 class Buffer {
 public:
     Buffer() = default;
-    // Immutable storage (glNamedBufferStorage) with GL_DYNAMIC_STORAGE_BIT so update() works.
+    // Immutable storage (glNamedBufferStorage) with GL_DYNAMIC_STORAGE_BIT so update() works; without
+    // data it is undefined, or poisoned (allocations.h: poisonNewStorage).
     Buffer(const std::string& label, std::size_t bytes, const void* data = nullptr);
     template <class T>
     static Buffer fromVector(const std::string& label, const std::vector<T>& v)

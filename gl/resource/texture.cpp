@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <limits>
 #include <stdexcept>
 
 #include "gl/debug.h"
@@ -95,6 +96,57 @@ void checkStorage(const Texture& t, const std::string& label, std::size_t bytes)
                    (e == GL_OUT_OF_MEMORY ? std::string("GL_OUT_OF_MEMORY") : "GL error 0x" + std::to_string(e)));
 }
 
+// Fills every level of new storage with a value no pass would write by chance (allocations.h), when
+// poisoning is on. Errors are dropped: a driver may refuse to clear a multisample texture, and then it
+// keeps its undefined contents.
+void poisonStorage(const Texture& t)
+{
+    if (!poisonNewStorage()) return;
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    const float floats[4] = {nan, nan, nan, nan}, ones[4] = {1.0f, 1.0f, 1.0f, 1.0f};
+    const unsigned uints[4] = {~0u, ~0u, ~0u, ~0u};
+    const float depth = 0.5f;
+    const unsigned depth24Stencil8 = 0x800000ffu; // depth 0.5 in the high 24 bits, stencil 255
+    const struct {
+        float depth;
+        unsigned stencil;
+    } depth32fStencil8 = {0.5f, 0xffu}; // FLOAT_32_UNSIGNED_INT_24_8_REV
+    for (int level = 0; level < t.levels(); ++level) {
+        switch (t.internalFormat()) {
+        case GL_R16F:
+        case GL_RG16F:
+        case GL_RGBA16F:
+        case GL_R32F:
+        case GL_RG32F:
+        case GL_RGB32F:
+        case GL_RGBA32F:
+        case GL_R11F_G11F_B10F: glClearTexImage(t.id(), level, GL_RGBA, GL_FLOAT, floats); break;
+        case GL_R8:
+        case GL_RG8:
+        case GL_RGBA8:
+        case GL_SRGB8_ALPHA8:
+        case GL_RGB10_A2:
+        case GL_RGBA8_SNORM: glClearTexImage(t.id(), level, GL_RGBA, GL_FLOAT, ones); break;
+        case GL_R8UI:
+        case GL_R32UI:
+        case GL_RG32UI:
+        case GL_RGBA32UI: glClearTexImage(t.id(), level, GL_RGBA_INTEGER, GL_UNSIGNED_INT, uints); break;
+        case GL_R32I: glClearTexImage(t.id(), level, GL_RGBA_INTEGER, GL_INT, uints); break;
+        case GL_DEPTH_COMPONENT16:
+        case GL_DEPTH_COMPONENT24:
+        case GL_DEPTH_COMPONENT32F: glClearTexImage(t.id(), level, GL_DEPTH_COMPONENT, GL_FLOAT, &depth); break;
+        case GL_DEPTH24_STENCIL8:
+            glClearTexImage(t.id(), level, GL_DEPTH_STENCIL, GL_UNSIGNED_INT_24_8, &depth24Stencil8);
+            break;
+        case GL_DEPTH32F_STENCIL8:
+            glClearTexImage(t.id(), level, GL_DEPTH_STENCIL, GL_FLOAT_32_UNSIGNED_INT_24_8_REV, &depth32fStencil8);
+            break;
+        default: break;
+        }
+    }
+    while (glGetError() != GL_NO_ERROR) {}
+}
+
 } // namespace
 
 Texture Texture::make(const std::string& label, unsigned target, unsigned format, int w, int h, int levels, int layers,
@@ -129,6 +181,7 @@ Texture Texture::create2D(const std::string& label, unsigned f, int w, int h, in
     glTextureStorage2D(t.id(), levels, f, w, h);
     checkStorage(t, label,
                  std::size_t(t.width()) * std::size_t(t.height()) * std::size_t(t.layers()) * bytesPerTexel(f));
+    poisonStorage(t);
     t.setFilter(levels > 1 ? GL_NEAREST_MIPMAP_NEAREST : GL_NEAREST, GL_NEAREST);
     t.setWrap(GL_CLAMP_TO_EDGE);
     return t;
@@ -140,6 +193,7 @@ Texture Texture::create2DArray(const std::string& label, unsigned f, int w, int 
     glTextureStorage3D(t.id(), 1, f, w, h, layers);
     checkStorage(t, label,
                  std::size_t(t.width()) * std::size_t(t.height()) * std::size_t(t.layers()) * bytesPerTexel(f));
+    poisonStorage(t);
     t.setFilter(GL_NEAREST, GL_NEAREST);
     t.setWrap(GL_CLAMP_TO_EDGE);
     return t;
@@ -151,6 +205,7 @@ Texture Texture::createCube(const std::string& label, unsigned f, int size)
     glTextureStorage2D(t.id(), 1, f, size, size);
     checkStorage(t, label,
                  std::size_t(t.width()) * std::size_t(t.height()) * std::size_t(t.layers()) * bytesPerTexel(f));
+    poisonStorage(t);
     t.setFilter(GL_NEAREST, GL_NEAREST);
     t.setWrap(GL_CLAMP_TO_EDGE);
     return t;
@@ -162,6 +217,7 @@ Texture Texture::createCubeArray(const std::string& label, unsigned f, int size,
     glTextureStorage3D(t.id(), 1, f, size, size, 6 * cubes);
     checkStorage(t, label,
                  std::size_t(t.width()) * std::size_t(t.height()) * std::size_t(t.layers()) * bytesPerTexel(f));
+    poisonStorage(t);
     t.setFilter(GL_NEAREST, GL_NEAREST);
     t.setWrap(GL_CLAMP_TO_EDGE);
     return t;
@@ -173,6 +229,7 @@ Texture Texture::create2DMultisample(const std::string& label, unsigned f, int w
     glTextureStorage2DMultisample(t.id(), samples, f, w, h, GL_TRUE);
     checkStorage(t, label,
                  std::size_t(t.width()) * std::size_t(t.height()) * std::size_t(t.layers()) * bytesPerTexel(f));
+    poisonStorage(t);
     return t;
 }
 
@@ -182,6 +239,7 @@ Texture Texture::create2DMultisampleArray(const std::string& label, unsigned f, 
     t.layers_ = layers;
     glTextureStorage3DMultisample(t.id(), samples, f, w, h, layers, GL_TRUE);
     checkStorage(t, label, std::size_t(w) * std::size_t(h) * std::size_t(samples * layers) * bytesPerTexel(f));
+    poisonStorage(t);
     return t;
 }
 
