@@ -1,8 +1,7 @@
 #version 450 core
 // One level of the cut's influence boxes, bottom-up: a cut node reaches as far as its kernel (r_p around
 // its centre, Eq. 5) and its fallback kernel (twice that: photon_gather.glsl), a node above the cut as
-// far as its children, a
-// node below the cut nowhere. The gather walks the tree from the root and skips every subtree whose
+// far as its children, a node below the cut nowhere. The gather walks the tree from the root and skips every subtree whose
 // box does not hold the point: the subtree above the cut is the kd-tree of the cut's nodes (section 3.3).
 #include "technique/photon/illumination_cut.glsl"
 
@@ -31,6 +30,8 @@ void main()
     }
     cutNodes[i].influenceLo.xyz = lo;
     cutNodes[i].influenceHi.xyz = hi;
-    cutNodes[i].fallbackLo.xyz = fallbackLo;
-    cutNodes[i].fallbackHi.xyz = fallbackHi;
+    // Whole words, the unused w included: the buffer's storage starts undefined on a GPU, and a node's
+    // bytes are the same in every run only if every one of them is written.
+    cutNodes[i].fallbackLo = vec4(fallbackLo, 0.0);
+    cutNodes[i].fallbackHi = vec4(fallbackHi, 0.0);
 }
