@@ -18,7 +18,9 @@ void main()
     vec3 l = vec3(0.0);
     if (hasGeometry(px))
         l = gbufferDiffuse(px).rgb * imageLoad(lightDiffuse, px).rgb + imageLoad(lightGlossy, px).rgb;
-    vec3 mean = mix(imageLoad(accumulated, px).rgb, l, newWeight);
+    // The first frame of a run replaces what the image holds without reading it: new storage is undefined
+    // (NaN on some drivers, and NaN x 0 is NaN).
+    vec3 mean = newWeight >= 1.0 ? l : mix(imageLoad(accumulated, px).rgb, l, newWeight);
     imageStore(accumulated, px, vec4(mean, 1.0));
     imageStore(indirectOut, px, vec4(mean, 1.0));
 }
