@@ -30,10 +30,11 @@ struct CliRun {
     std::string output; // stdout and stderr together
 };
 
-// `prefix` runs the binary under another command (e.g. env -u DISPLAY).
+// `prefix` runs the binary under another command (e.g. env -u DISPLAY). New GL storage is poisoned
+// (gl/resource/allocations.h), as in the GL suite.
 CliRun run(const std::string& args, const std::string& prefix = "")
 {
-    const std::string cmd = prefix + std::string(BOUNCE_BINARY) + " " + args + " 2>&1";
+    const std::string cmd = "BOUNCE_POISON_STORAGE=1 " + prefix + std::string(BOUNCE_BINARY) + " " + args + " 2>&1";
     CliRun r;
     FILE* p = popen(cmd.c_str(), "r");
     if (!p) return r;

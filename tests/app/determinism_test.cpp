@@ -35,10 +35,11 @@ std::vector<std::string> techniqueNames()
     return names;
 }
 
-// Runs `bounce args`; the output (stdout and stderr) when it fails, empty when it exits 0.
+// Runs `bounce args` with new GL storage poisoned (gl/resource/allocations.h: two runs agree only if no
+// pass reads what none wrote); the output (stdout and stderr) when it fails, empty when it exits 0.
 std::string renderFails(const std::string& args)
 {
-    const std::string cmd = std::string(BOUNCE_BINARY) + " " + args + " 2>&1";
+    const std::string cmd = "BOUNCE_POISON_STORAGE=1 " + std::string(BOUNCE_BINARY) + " " + args + " 2>&1";
     FILE* p = popen(cmd.c_str(), "r");
     if (!p) return "cannot run " + cmd;
     std::string output;

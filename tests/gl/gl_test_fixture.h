@@ -1,6 +1,6 @@
 // The GoogleTest fixture for GL tests: one context per test suite (OSMesa unless BOUNCE_TEST_BACKEND says
 // egl, osmesa or glfw), current in every test, and any GL error or high-severity debug message during a
-// test fails it. Derive a suite from it: `class FrameTest : public GlTest {};`.
+// test fails it; new GL storage is poisoned. Derive a suite from it: `class FrameTest : public GlTest {};`.
 #pragma once
 
 #include <cstdlib>
@@ -12,11 +12,15 @@
 
 #include "gl/context/context.h"
 #include "gl/debug.h"
+#include "gl/resource/allocations.h"
 
 class GlTest : public ::testing::Test {
 public:
     static void SetUpTestSuite()
     {
+        // New GL storage poisoned (gl/resource/allocations.h): llvmpipe hands out zeros where a GPU
+        // driver hands out whatever the memory held, so a pass reading what no pass wrote fails here too.
+        bounce::gl::setPoisonNewStorage(true);
         creationError().clear();
         const char* name = std::getenv("BOUNCE_TEST_BACKEND");
         bounce::gl::ContextOptions options;
