@@ -201,7 +201,7 @@ TEST_F(PhotonCutTest, SamePhotonsGiveTheSameCut)
     s.eminLevel = 8;
     const core::Scene scene = core::makeCornell("cornell-point");
     // The second build's buffers start as 0xff bytes, the first's as llvmpipe gives them (zeros): a GPU
-    // driver hands out whatever memory held, so a byte no pass writes must not reach the result.
+    // driver hands out whatever the memory held, so a byte no pass writes must not reach the result.
     const bool poisoned = gl::poisonNewStorage();
     gl::setPoisonNewStorage(false);
     const Built a = buildScene(scene, 8192, s);

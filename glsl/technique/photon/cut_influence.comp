@@ -1,8 +1,9 @@
 #version 450 core
 // One level of the cut's influence boxes, bottom-up: a cut node reaches as far as its kernel (r_p around
 // its centre, Eq. 5) and its fallback kernel (twice that: photon_gather.glsl), a node above the cut as
-// far as its children, a node below the cut nowhere. The gather walks the tree from the root and skips every subtree whose
-// box does not hold the point: the subtree above the cut is the kd-tree of the cut's nodes (section 3.3).
+// far as its children, a node below the cut nowhere. The gather walks the tree from the root and skips
+// every subtree whose box does not hold the point: the subtree above the cut is the kd-tree of the cut's
+// nodes (section 3.3).
 #include "technique/photon/illumination_cut.glsl"
 
 layout(local_size_x = 64) in;
