@@ -72,6 +72,11 @@ protected:
 // work is rasterised later than its draw call, so timer scopes wait for it (PassTimers).
 bool softwareRasterizer();
 
+// Why this process cannot make an OSMesa context (libOSMesa missing, or without an entry point Bounce
+// calls); empty when it can. OSMesa is Mesa's alone and gone from Mesa 25.1: a GPU machine that carries
+// only its vendor's EGL has none, and what needs it there skips with this reason.
+std::string osMesaUnavailable();
+
 // Whether the current context exposes the GL extension `name` (glGetStringi(GL_EXTENSIONS, i)).
 bool hasGlExtension(const char* name);
 

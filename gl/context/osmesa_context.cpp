@@ -153,3 +153,12 @@ std::unique_ptr<Context> createOsMesa(const ContextOptions& options)
 }
 
 } // namespace bounce::gl::detail
+
+namespace bounce::gl {
+
+std::string osMesaUnavailable()
+{
+    return detail::osMesa().error;
+}
+
+} // namespace bounce::gl

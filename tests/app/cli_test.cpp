@@ -19,11 +19,13 @@
 #include "core/gltf_io.h"
 #include "core/image.h"
 #include "core/metrics.h"
+#include "tests/app/test_backend.h"
 #include "tests/core/gltf_bad_cases.h"
 
 namespace {
 
 namespace fs = std::filesystem;
+using bounce::testing::testBackend;
 
 struct CliRun {
     int status = -1;
@@ -80,7 +82,7 @@ TEST(Cli, ListShowsScenesTechniquesAndParameters)
 TEST(Cli, BadInputExitsTwoAndWritesNothing)
 {
     const fs::path d = outDir("bad");
-    const std::string out = " --backend osmesa --out " + (d / "x.exr").string();
+    const std::string out = " --backend " + testBackend() + " --out " + (d / "x.exr").string();
     const struct {
         std::string args, says;
     } cases[] = {
@@ -136,7 +138,8 @@ TEST(Cli, MalformedGltfExitsTwoWithTheMessageAndLeavesNothing)
         const std::string file = c.write(scene);
         const auto before = listing(scene);
         const std::string common = " --scene '" + file + "' --size 16x16 --out '";
-        const CliRun r = run("render" + common + (out / "x.exr").string() + "' --frames 1 --warmup 0 --backend osmesa");
+        const CliRun r =
+            run("render" + common + (out / "x.exr").string() + "' --frames 1 --warmup 0 --backend " + testBackend());
         if (c.words.empty()) {
             EXPECT_EQ(r.status, 0) << c.name << "\n" << r.output;
             EXPECT_TRUE(fs::exists(out / "x.exr") && fs::exists(out / "x.png") && fs::exists(out / "x.json")) << c.name;
@@ -162,8 +165,8 @@ TEST(Cli, MalformedGltfExitsTwoWithTheMessageAndLeavesNothing)
 TEST(Cli, RenderWritesExrPngAndJsonRecord)
 {
     const fs::path d = outDir("render");
-    const CliRun r = run("render --scene cornell-spot --size 48x32 --frames 2 --warmup 1 --backend osmesa --out " +
-                         (d / "spot.png").string());
+    const CliRun r = run("render --scene cornell-spot --size 48x32 --frames 2 --warmup 1 --backend " + testBackend() +
+                         " --out " + (d / "spot.png").string());
     ASSERT_EQ(r.status, 0) << r.output;
     EXPECT_NE(r.output.find("GL renderer"), std::string::npos);
     ASSERT_TRUE(fs::exists(d / "spot.exr"));
@@ -175,7 +178,7 @@ TEST(Cli, RenderWritesExrPngAndJsonRecord)
     std::ifstream in(d / "spot.json");
     const nlohmann::json j = nlohmann::json::parse(in);
     EXPECT_EQ(j["technique"], "direct");
-    EXPECT_EQ(j["backend"], "osmesa");
+    EXPECT_EQ(j["backend"], testBackend());
     EXPECT_FALSE(j["renderer"].get<std::string>().empty());
     EXPECT_GE(j["passes"].size(), 3u);
     for (const auto& p : j["passes"]) EXPECT_EQ(p["frames"], 2);
@@ -193,9 +196,10 @@ TEST(Cli, ProbeCachesCeilingsAndRenderRecordsBounds)
 {
     const fs::path d = outDir("probe");
     const std::string env = "env BOUNCE_CACHE=" + (d / "cache").string() + " ";
-    const CliRun bad = run("probe --size 5 --backend osmesa", env);
+    const CliRun bad = run("probe --size 5 --backend " + testBackend(), env);
     EXPECT_EQ(bad.status, 2) << bad.output;
-    const CliRun probe = run("probe --size 64 --repeats 1 --backend osmesa --json " + (d / "c.json").string(), env);
+    const CliRun probe =
+        run("probe --size 64 --repeats 1 --backend " + testBackend() + " --json " + (d / "c.json").string(), env);
     ASSERT_EQ(probe.status, 0) << probe.output;
     std::ifstream cin(d / "c.json");
     const nlohmann::json c = nlohmann::json::parse(cin);
@@ -207,8 +211,8 @@ TEST(Cli, ProbeCachesCeilingsAndRenderRecordsBounds)
     for (const auto& e : fs::directory_iterator(d / "cache"))
         cached |= e.path().filename().string().rfind("probe-", 0) == 0;
     ASSERT_TRUE(cached) << "the measured ceilings are cached under the renderer";
-    const CliRun render = run("render --scene cornell-spot --size 32x32 --frames 1 --warmup 0 --backend osmesa --out " +
-                                  (d / "r.exr").string(),
+    const CliRun render = run("render --scene cornell-spot --size 32x32 --frames 1 --warmup 0 --backend " +
+                                  testBackend() + " --out " + (d / "r.exr").string(),
                               env);
     ASSERT_EQ(render.status, 0) << render.output;
     std::ifstream rin(d / "r.json");
@@ -225,8 +229,8 @@ TEST(Cli, ProbeCachesCeilingsAndRenderRecordsBounds)
     EXPECT_TRUE(anyBound) << render.output;
     // Without cached ceilings the record has the work but no bounds.
     fs::remove_all(d / "cache");
-    const CliRun plain = run("render --scene cornell-spot --size 32x32 --frames 1 --warmup 0 --backend osmesa --out " +
-                                 (d / "p.exr").string(),
+    const CliRun plain = run("render --scene cornell-spot --size 32x32 --frames 1 --warmup 0 --backend " +
+                                 testBackend() + " --out " + (d / "p.exr").string(),
                              env);
     ASSERT_EQ(plain.status, 0) << plain.output;
     std::ifstream pin(d / "p.json");
@@ -384,8 +388,8 @@ TEST(Cli, BenchWritesTheFourFilesWithTheirFigures)
                                 "scenes": ["cornell-area"],
                                 "runs": [{"technique": "direct"}, {"technique": "rsm", "sweep": {"vpls": [4, 64]}}]})";
     const std::string cache = " --cache-dir " + (d / "cache").string();
-    const CliRun r = run("bench --backend osmesa --config " + config.string() + " --out " + (d / "out").string() +
-                         " --cache " + (d / "cache").string());
+    const CliRun r = run("bench --backend " + testBackend() + " --config " + config.string() + " --out " +
+                         (d / "out").string() + " --cache " + (d / "cache").string());
     ASSERT_EQ(r.status, 0) << r.output;
     for (const char* f : {"results.csv", "results.json", "report.md", "speed_error.png"})
         EXPECT_TRUE(fs::exists(d / "out" / f)) << f << "\n" << r.output;
@@ -412,7 +416,8 @@ TEST(Cli, BenchWritesTheFourFilesWithTheirFigures)
         const std::string technique = row.at("technique"), params = row.at("params");
         const fs::path file = d / ("render-" + technique + std::to_string(&row - &rows[0]) + ".exr");
         const std::string set = params == "defaults" ? "" : " --set " + params;
-        const CliRun render = run("render --backend osmesa --scene cornell-area --size 16x16 --frames 1 --warmup 0 "
+        const CliRun render = run("render --backend " + testBackend() +
+                                  " --scene cornell-area --size 16x16 --frames 1 --warmup 0 "
                                   "--technique " +
                                   technique + set + " --out " + file.string());
         ASSERT_EQ(render.status, 0) << render.output;
@@ -507,8 +512,8 @@ TEST(Cli, BenchConfigIsCheckedBeforeAnythingRuns)
         const fs::path config = d / ("config" + std::to_string(i++) + ".json");
         std::ofstream(config) << c.config;
         const fs::path out = d / "out";
-        const CliRun r = run("bench --backend osmesa --config " + config.string() + " --out " + out.string() +
-                             " --cache " + (d / "cache").string());
+        const CliRun r = run("bench --backend " + testBackend() + " --config " + config.string() + " --out " +
+                             out.string() + " --cache " + (d / "cache").string());
         EXPECT_EQ(r.status, 2) << c.config << "\n" << r.output;
         EXPECT_NE(r.output.find("bench config: " + c.key + ": "), std::string::npos) << c.config << "\n" << r.output;
         EXPECT_NE(r.output.find(c.says), std::string::npos) << c.config << "\n" << r.output;
@@ -525,8 +530,8 @@ TEST(Cli, BenchReportsRayCastingAgainstEmbree)
     const fs::path config = d / "rays.json";
     std::ofstream(config) << R"({"size": "8x8", "warmup": 0, "frames": 1, "reference": {"spp": 1}, "rays": 1024,
                                 "scenes": ["cornell-area"], "runs": [{"technique": "direct"}]})";
-    const CliRun r = run("bench --backend osmesa --config " + config.string() + " --out " + (d / "out").string() +
-                         " --cache " + (d / "cache").string());
+    const CliRun r = run("bench --backend " + testBackend() + " --config " + config.string() + " --out " +
+                         (d / "out").string() + " --cache " + (d / "cache").string());
     ASSERT_EQ(r.status, 0) << r.output;
     std::ifstream in(d / "out" / "rays.json");
     ASSERT_TRUE(in) << r.output;
@@ -552,11 +557,11 @@ TEST(Cli, RenderAGltfByPath)
 {
     const fs::path d = outDir("gltf");
     const std::string asset = std::string(BOUNCE_SOURCE_ROOT) + "/assets/cornell-spot.gltf";
-    const CliRun a = run("render --scene " + asset + " --size 32x32 --frames 1 --warmup 0 --backend osmesa --out " +
-                         (d / "a.exr").string());
+    const CliRun a = run("render --scene " + asset + " --size 32x32 --frames 1 --warmup 0 --backend " + testBackend() +
+                         " --out " + (d / "a.exr").string());
     ASSERT_EQ(a.status, 0) << a.output;
-    const CliRun b = run("render --scene cornell-spot --size 32x32 --frames 1 --warmup 0 --backend osmesa --out " +
-                         (d / "b.exr").string());
+    const CliRun b = run("render --scene cornell-spot --size 32x32 --frames 1 --warmup 0 --backend " + testBackend() +
+                         " --out " + (d / "b.exr").string());
     ASSERT_EQ(b.status, 0) << b.output;
     const auto ia = bounce::core::readImage((d / "a.exr").string()),
                ib = bounce::core::readImage((d / "b.exr").string());
@@ -752,21 +757,22 @@ TEST(Cli, ListJsonIsTheWholeRegistry)
 TEST(Cli, RenderReferenceGivesTheErrorInTheRecord)
 {
     const fs::path d = outDir("reference-error");
-    ASSERT_EQ(run("render --backend osmesa --technique direct --size 16x16 --frames 1 --warmup 0 --out " +
-                  (d / "ref.exr").string())
+    ASSERT_EQ(run("render --backend " + testBackend() +
+                  " --technique direct --size 16x16 --frames 1 --warmup 0 --out " + (d / "ref.exr").string())
                   .status,
               0);
-    const CliRun same =
-        run("render --backend osmesa --technique direct --size 16x16 --frames 1 --warmup 0 --reference " +
-            (d / "ref.exr").string() + " --out " + (d / "same.exr").string());
+    const CliRun same = run("render --backend " + testBackend() +
+                            " --technique direct --size 16x16 --frames 1 --warmup 0 --reference " +
+                            (d / "ref.exr").string() + " --out " + (d / "same.exr").string());
     ASSERT_EQ(same.status, 0) << same.output;
     EXPECT_EQ(nlohmann::json::parse(std::ifstream(d / "same.json"))["relativeRmse"].get<double>(), 0.0)
         << "the same deterministic render";
 
     // Another technique at twice the size: the record's figure is the error of its image, box-downsampled
     // to the reference's size, as computed here from the written files.
-    const CliRun other = run("render --backend osmesa --technique rsm --size 32x32 --frames 1 --warmup 0 --reference " +
-                             (d / "ref.exr").string() + " --out " + (d / "rsm.exr").string());
+    const CliRun other =
+        run("render --backend " + testBackend() + " --technique rsm --size 32x32 --frames 1 --warmup 0 --reference " +
+            (d / "ref.exr").string() + " --out " + (d / "rsm.exr").string());
     ASSERT_EQ(other.status, 0) << other.output;
     const double recorded = nlohmann::json::parse(std::ifstream(d / "rsm.json"))["relativeRmse"].get<double>();
     const double expected = bounce::core::relativeRmse(
@@ -776,7 +782,7 @@ TEST(Cli, RenderReferenceGivesTheErrorInTheRecord)
     EXPECT_NEAR(recorded, expected, 1e-6 * expected);
 
     const fs::path bad = outDir("reference-error-bad");
-    const CliRun r = run("render --backend osmesa --technique direct --size 30x30 --reference " +
+    const CliRun r = run("render --backend " + testBackend() + " --technique direct --size 30x30 --reference " +
                          (d / "ref.exr").string() + " --out " + (bad / "x.exr").string());
     EXPECT_EQ(r.status, 2) << r.output;
     EXPECT_NE(r.output.find("must divide"), std::string::npos) << r.output;
@@ -819,9 +825,8 @@ TEST(Cli, RenderAgainstANanReferenceRecordsAnInfiniteError)
     bounce::core::Image nan(8, 8);
     for (float& v : nan.rgb) v = std::numeric_limits<float>::quiet_NaN();
     bounce::core::writeImage((d / "nan.exr").string(), nan);
-    const CliRun r =
-        run("render --scene cornell-spot --size 16x16 --frames 1 --warmup 0 --backend osmesa --reference " +
-            (d / "nan.exr").string() + " --out " + (d / "x.exr").string());
+    const CliRun r = run("render --scene cornell-spot --size 16x16 --frames 1 --warmup 0 --backend " + testBackend() +
+                         " --reference " + (d / "nan.exr").string() + " --out " + (d / "x.exr").string());
     EXPECT_EQ(r.status, 0) << r.output << " (the image itself is finite)";
     const nlohmann::json j = nlohmann::json::parse(std::ifstream(d / "x.json"));
     EXPECT_EQ(j["relativeRmse"], "inf") << j.dump();
@@ -843,8 +848,8 @@ TEST(Cli, RenderSizeBeyondMemoryIsRefusedUpFront)
     if (available <= 0.0 || side > 16384.0) GTEST_SKIP() << "this machine's memory holds the largest --size";
     const fs::path d = outDir("too-big");
     const std::string size = std::to_string(int(side)) + "x" + std::to_string(int(side));
-    const CliRun r =
-        run("render --scene cornell-glossy --backend osmesa --size " + size + " --out " + (d / "x.exr").string());
+    const CliRun r = run("render --scene cornell-glossy --backend " + testBackend() + " --size " + size + " --out " +
+                         (d / "x.exr").string());
     EXPECT_EQ(r.status, 2) << r.output;
     EXPECT_NE(r.output.find("--size " + size), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("GiB"), std::string::npos) << r.output;
@@ -857,8 +862,8 @@ TEST(Cli, RenderWritesItsFilesAsASet)
 {
     const fs::path d = outDir("file-set");
     fs::create_directories(d / "record.json"); // a folder where the JSON should go
-    const CliRun r = run("render --backend osmesa --size 8x8 --frames 1 --warmup 0 --out " + (d / "img.exr").string() +
-                         " --json " + (d / "record.json").string());
+    const CliRun r = run("render --backend " + testBackend() + " --size 8x8 --frames 1 --warmup 0 --out " +
+                         (d / "img.exr").string() + " --json " + (d / "record.json").string());
     EXPECT_EQ(r.status, 2) << r.output;
     EXPECT_FALSE(fs::exists(d / "img.exr"));
     EXPECT_FALSE(fs::exists(d / "img.png"));
@@ -910,13 +915,14 @@ TEST(Cli, GltfWithoutCameraOrLightRendersWithFramingCameraAndCommandLineLight)
 {
     const fs::path d = outDir("bare-gltf");
     const fs::path bare = cornellWithoutCameraAndLight(d);
-    const CliRun dark = run("render --backend osmesa --size 16x16 --frames 1 --warmup 0 --scene " + bare.string() +
-                            " --out " + (d / "dark.exr").string());
+    const CliRun dark = run("render --backend " + testBackend() + " --size 16x16 --frames 1 --warmup 0 --scene " +
+                            bare.string() + " --out " + (d / "dark.exr").string());
     ASSERT_EQ(dark.status, 0) << dark.output;
     EXPECT_NE(dark.output.find("no light"), std::string::npos) << dark.output;
     EXPECT_NE(dark.output.find("framed the bounds"), std::string::npos) << dark.output;
-    const CliRun lit = run("render --backend osmesa --size 16x16 --frames 1 --warmup 0 --scene " + bare.string() +
-                           " --light 'point:position=0.278,0.4,0.279;intensity=1' --out " + (d / "lit.exr").string());
+    const CliRun lit =
+        run("render --backend " + testBackend() + " --size 16x16 --frames 1 --warmup 0 --scene " + bare.string() +
+            " --light 'point:position=0.278,0.4,0.279;intensity=1' --out " + (d / "lit.exr").string());
     ASSERT_EQ(lit.status, 0) << lit.output;
     EXPECT_GT(imageMean(bounce::core::readImage((d / "lit.exr").string())), 0.01);
     const nlohmann::json rec = nlohmann::json::parse(std::ifstream(d / "lit.json"));
@@ -942,11 +948,12 @@ TEST(Cli, CommandLineLightEqualsTheSameLightInTheGltf)
     const glm::vec3 target = c.position + c.forward;
     std::snprintf(camera, sizeof camera, "%.9g,%.9g,%.9g:%.9g,%.9g,%.9g:%.9g", c.position.x, c.position.y, c.position.z,
                   target.x, target.y, target.z, double(c.yfovRad) * 180.0 / M_PI);
-    const CliRun a = run("render --backend osmesa --size 32x32 --frames 1 --warmup 0 --scene cornell-spot --out " +
-                         (d / "gltf.exr").string());
+    const CliRun a = run("render --backend " + testBackend() +
+                         " --size 32x32 --frames 1 --warmup 0 --scene cornell-spot --out " + (d / "gltf.exr").string());
     ASSERT_EQ(a.status, 0) << a.output;
-    const CliRun b = run("render --backend osmesa --size 32x32 --frames 1 --warmup 0 --scene " + bare.string() +
-                         " --light '" + light + "' --camera '" + camera + "' --out " + (d / "cli.exr").string());
+    const CliRun b =
+        run("render --backend " + testBackend() + " --size 32x32 --frames 1 --warmup 0 --scene " + bare.string() +
+            " --light '" + light + "' --camera '" + camera + "' --out " + (d / "cli.exr").string());
     ASSERT_EQ(b.status, 0) << b.output;
     const auto ia = bounce::core::readImage((d / "gltf.exr").string());
     const auto ib = bounce::core::readImage((d / "cli.exr").string());
@@ -960,8 +967,8 @@ TEST(Cli, SetupWithAMissingAssetExitsTwoNamingTheFile)
 {
     const fs::path d = outDir("setup-missing");
     std::ofstream(d / "s.json") << R"({"gltf": "not-here/model.gltf", "lights": []})";
-    const CliRun r = run("render --backend osmesa --size 8x8 --scene " + (d / "s.json").string() + " --out " +
-                         (d / "out" / "a.exr").string());
+    const CliRun r = run("render --backend " + testBackend() + " --size 8x8 --scene " + (d / "s.json").string() +
+                         " --out " + (d / "out" / "a.exr").string());
     EXPECT_EQ(r.status, 2) << r.output;
     EXPECT_NE(r.output.find("not-here/model.gltf"), std::string::npos) << r.output;
     EXPECT_FALSE(fs::exists(d / "out" / "a.exr"));
@@ -977,7 +984,7 @@ TEST(Cli, GeneratedSetupWithALightRendersLit)
       "camera": {"position": [0.278, 0.273, -0.8], "target": [0.278, 0.273, 0.0], "yfovDeg": 39.3},
       "lights": [{"type": "spot", "position": [0.278, 0.54, 0.279], "direction": [0, -1, 0], "intensity": 1,
                   "outerDeg": 40}]})";
-    const CliRun r = run("render --backend osmesa --size 16x16 --frames 1 --warmup 0 --scene " +
+    const CliRun r = run("render --backend " + testBackend() + " --size 16x16 --frames 1 --warmup 0 --scene " +
                          (d / "setup.json").string() + " --out " + (d / "render.exr").string());
     ASSERT_EQ(r.status, 0) << r.output;
     EXPECT_EQ(r.output.find("no light"), std::string::npos) << r.output;
@@ -991,8 +998,8 @@ TEST(Cli, ShippedSetupsRenderLit)
 {
     const fs::path d = outDir("setups");
     for (const auto& e : fs::directory_iterator(fs::path(BOUNCE_SOURCE_ROOT) / "assets" / "setups")) {
-        const CliRun r = run("render --backend osmesa --size 16x16 --frames 1 --warmup 0 --scene " + e.path().string() +
-                             " --out " + (d / e.path().stem()).string() + ".exr");
+        const CliRun r = run("render --backend " + testBackend() + " --size 16x16 --frames 1 --warmup 0 --scene " +
+                             e.path().string() + " --out " + (d / e.path().stem()).string() + ".exr");
         if (r.status == 2 && r.output.find("is not there") != std::string::npos) {
             std::printf("[ skipped  ] %s: its asset is not there\n", e.path().filename().c_str());
             continue;
@@ -1012,8 +1019,9 @@ namespace {
 TEST(Cli, RaysComparesTheGpuCasterWithEmbree)
 {
     const fs::path d = outDir("rays");
-    const CliRun r = run("rays --backend osmesa --scene cornell-spot --rays 1024 --repeat 1 --threads 1 --json " +
-                         (d / "rays.json").string());
+    const CliRun r =
+        run("rays --backend " + testBackend() + " --scene cornell-spot --rays 1024 --repeat 1 --threads 1 --json " +
+            (d / "rays.json").string());
     ASSERT_EQ(r.status, 0) << r.output;
     const nlohmann::json j = nlohmann::json::parse(std::ifstream(d / "rays.json"));
     for (const char* kind : {"coherent", "incoherent"}) {

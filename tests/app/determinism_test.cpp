@@ -23,10 +23,12 @@
 
 #include "core/image.h"
 #include "gl/technique/technique.h"
+#include "tests/app/test_backend.h"
 
 namespace {
 
 namespace fs = std::filesystem;
+using bounce::testing::testBackend;
 
 std::vector<std::string> techniqueNames()
 {
@@ -82,8 +84,8 @@ TEST_P(Determinism, SameCommandTwiceGivesTheSameExr)
         const fs::path d = fs::path(BOUNCE_TEST_OUT) / "determinism" / technique / scene;
         fs::remove_all(d);
         fs::create_directories(d);
-        std::string command =
-            "render --size 32x32 --frames 2 --warmup 1 --backend osmesa --scene " + scene + " --technique " + technique;
+        std::string command = "render --size 32x32 --frames 2 --warmup 1 --backend " + testBackend() + " --scene " +
+                              scene + " --technique " + technique;
         for (const std::string& kv : bounce::gl::findTechnique(technique).quickSets) command += " --set " + kv;
         command += " --out ";
         for (const char* run : {"first", "second"}) {

@@ -73,6 +73,7 @@ Rendered renderWith(gl::Backend backend, const std::string& technique, const Set
 // the next is made), and GlTest suites destroy theirs at the end of the suite, so nothing else is bound.
 void expectSameImage(const std::string& technique, const Sets& sets)
 {
+    if (const std::string why = gl::osMesaUnavailable(); !why.empty()) GTEST_SKIP() << why;
     const Rendered osmesa = renderWith(gl::Backend::OsMesa, technique, sets);
     Rendered egl;
     try {
