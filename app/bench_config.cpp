@@ -278,6 +278,12 @@ BenchConfig readBenchConfig(const std::string& path, const std::string& cacheDir
             refuse("reference.size", std::to_string(c.reference.width) + "x" + std::to_string(c.reference.height) +
                                          " does not divide the run size " + std::to_string(w) + "x" +
                                          std::to_string(h) + " (" + s.technique + ")");
+        // The reference is rendered at its own size from the same camera: another aspect ratio sees
+        // another field of view, and its pixels would be compared with stretched blocks of the render.
+        if (c.reference.width > 0 && c.reference.height > 0 && w / c.reference.width != h / c.reference.height)
+            refuse("reference.size", std::to_string(c.reference.width) + "x" + std::to_string(c.reference.height) +
+                                         " is not the run size " + std::to_string(w) + "x" + std::to_string(h) + " (" +
+                                         s.technique + ") reduced by one factor: another aspect ratio");
     }
     return c;
 }

@@ -293,7 +293,8 @@ std::vector<BenchRow> pathTracerCurve(const BenchConfig& config, const std::stri
 
 } // namespace
 
-std::vector<BenchRow> runBenchmark(const BenchConfig& config, const gl::ContextInfo& context)
+std::vector<BenchRow> runBenchmark(const BenchConfig& config, const gl::ContextInfo& context,
+                                   const std::function<void(const std::vector<BenchRow>&)>& afterRow)
 {
     std::size_t renders = 0;
     for (const auto& n : config.sceneNames)
@@ -308,6 +309,7 @@ std::vector<BenchRow> runBenchmark(const BenchConfig& config, const gl::ContextI
             if (!s.runsOn(config.sceneNames[si])) continue;
             rows.push_back(runSetting(config, s, config.sceneNames[si], config.scenes[si], context, cache));
             progress.add(1.0);
+            if (afterRow) afterRow(rows);
         }
     }
     progress.finish();

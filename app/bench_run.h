@@ -3,6 +3,7 @@
 // its baseline technique, and, when asked, measured for temporal coherence.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -33,7 +34,9 @@ struct BenchRow {
 void markNonFinite(BenchRow& row);
 
 // Renders the sweep, scene by scene in the config's order (references are rendered or read from the
-// cache as they are first needed). Needs a current GL context.
-std::vector<BenchRow> runBenchmark(const BenchConfig& config, const gl::ContextInfo& context);
+// cache as they are first needed). Needs a current GL context. `afterRow`, when given, sees the rows so
+// far after each one (so that a run cut off by a time limit leaves what it measured).
+std::vector<BenchRow> runBenchmark(const BenchConfig& config, const gl::ContextInfo& context,
+                                   const std::function<void(const std::vector<BenchRow>&)>& afterRow = {});
 
 } // namespace bounce::app

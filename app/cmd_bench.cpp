@@ -68,7 +68,11 @@ int cmdBench(const Args& args)
         std::printf("measuring this machine's ceilings (bounce probe), once per renderer\n");
         measureCeilings();
     }
-    const std::vector<BenchRow> rows = runBenchmark(config, context->info());
+    // The tables are rewritten after every render: a run stopped part way (a time limit on a lent GPU
+    // machine, Ctrl-C) leaves results.json, results.csv and report.md of the renders it finished.
+    const std::vector<BenchRow> rows = runBenchmark(config, context->info(), [&](const std::vector<BenchRow>& done) {
+        writeBenchReport(out, config, done, {}, context->info());
+    });
     std::vector<SceneRays> rays;
     if (config.rays > 0)
         for (std::size_t i = 0; i < config.scenes.size(); ++i) {

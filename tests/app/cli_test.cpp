@@ -504,6 +504,7 @@ TEST(Cli, BenchConfigIsCheckedBeforeAnythingRuns)
         {"{" + direct + R"(, "reference": {"sp": 4}})", "reference.sp", "unknown key"},
         {"{" + direct + R"(, "reference": {"noise": 5}})", "reference.noise", "(0, 1)"},
         {"{" + direct + R"(, "reference": {"size": "7x7"}})", "reference.size", "does not divide"},
+        {"{" + direct + R"(, "size": "64x48", "reference": {"size": "16x16"}})", "reference.size", "aspect ratio"},
         {"{" + direct + R"(, "compareTo": ["twobounce"]})", "compareTo[0]", "twobounce"},
         {"{" + direct + R"(, "rays": 1.5})", "rays", "whole number"},
     };
