@@ -6,6 +6,7 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
+#include "gl/context/context.h"
 #include "gl/debug.h"
 #include "gl/gl.h"
 
@@ -95,10 +96,19 @@ std::string annotateLog(const std::string& log, const std::vector<std::string>& 
     return out.str();
 }
 
+// What every shader may specialise on about the driver at hand: BOUNCE_IEEE_DIVISION where a / b is
+// rounded to nearest as IEEE 754 says (llvmpipe: LLVM's fdiv; GLSL allows 2.5 ulp and NVIDIA's is not),
+// so that glsl/common/raycast.glsl's rayDivide need not correct it.
+std::vector<Define> withDriverDefines(std::vector<Define> defines)
+{
+    if (softwareRasterizer()) defines.push_back({"BOUNCE_IEEE_DIVISION", "1"});
+    return defines;
+}
+
 unsigned compileStage(unsigned stage, const std::string& rel, const std::vector<Define>& defines)
 {
     std::vector<std::string> files;
-    const std::string src = preprocess(rel, defines, files);
+    const std::string src = preprocess(rel, withDriverDefines(defines), files);
     const unsigned s = glCreateShader(stage);
     const char* p = src.c_str();
     glShaderSource(s, 1, &p, nullptr);

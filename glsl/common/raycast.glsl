@@ -77,6 +77,64 @@ struct BvhRay {
     int root;              // first node of the copy for the ray's major direction
 };
 
+// a * b - p exactly, for p = a * b rounded (Dekker 1971, with Veltkamp's split of each factor into halves
+// of 12 bits whose products are exact): every product and sum rounded as written (precise) and no fma,
+// which GLSL lets a driver round twice (an fma-based residual was wrong on llvmpipe).
+float rayProductError(float a, float b, float p)
+{
+    precise float ca = 4097.0 * a, cb = 4097.0 * b;
+    precise float ah = ca - (ca - a), bh = cb - (cb - b);
+    precise float al = a - ah, bl = b - bh;
+    precise float e = ((ah * bh - p) + ah * bl + al * bh) + al * bl;
+    return e;
+}
+
+// a - q b for a quotient q near a / b: a - q b rounded is exact there (Sterbenz), less the product's error.
+float rayResidual(float a, float b, float q)
+{
+    precise float p = q * b;
+    precise float r = (a - p) - rayProductError(q, b, p);
+    return r;
+}
+
+// a / b rounded to nearest, as IEEE 754 divides and so as core::Bvh divides on the CPU. GLSL allows 2.5 ulp
+// for a / b, and NVIDIA's compiler gives a times an approximate reciprocal: the shear and the hit distance
+// then differ from the CPU walk's by an ulp, and a ray aimed at an edge picks the other triangle (an H100
+// and an H200 did). The driver's quotient is corrected by its residual, then whichever of it and its two
+// neighbours leaves the smallest residual is the nearest float to a / b (a quotient of floats is never
+// halfway between two). b is never 0 here (bvhRay's tiny components, bvhHitTriangle's det test).
+// A driver that divides as IEEE 754 does (BOUNCE_IEEE_DIVISION: llvmpipe) skips the correction, a third of
+// the GPU walk's time there. RAYCAST_INEXACT_DIVISION (tests) starts from a quotient one ulp off, as a
+// GPU's may be, and corrects it on any driver.
+float rayDivide(float a, float b)
+{
+#if defined(BOUNCE_IEEE_DIVISION) && !defined(RAYCAST_INEXACT_DIVISION)
+    precise float q = a / b;
+    return q;
+#else
+    precise float q = a / b;
+#ifdef RAYCAST_INEXACT_DIVISION
+    q = uintBitsToFloat(floatBitsToUint(q) + 1u);
+#endif
+    precise float refined = q + rayResidual(a, b, q) / b;
+    float below = uintBitsToFloat(floatBitsToUint(refined) - 1u), above = uintBitsToFloat(floatBitsToUint(refined) + 1u);
+    float best = refined, bestResidual = abs(rayResidual(a, b, refined));
+    float r = abs(rayResidual(a, b, below));
+    if (r < bestResidual) best = below, bestResidual = r;
+    r = abs(rayResidual(a, b, above));
+    if (r < bestResidual) best = above;
+    return best;
+#endif
+}
+
+// x.x * y.x + x.y * y.y + x.z * y.z, each product rounded and summed left to right as glm::dot on the CPU
+// does: dot() is one built-in, which a driver may evaluate with fused multiply-adds even where precise.
+float rayDot(vec3 x, vec3 y)
+{
+    precise float d = x.x * y.x + x.y * y.y + x.z * y.z;
+    return d;
+}
+
 BvhRay bvhRay(vec3 origin, vec3 dir)
 {
     BvhRay r;
@@ -86,7 +144,7 @@ BvhRay bvhRay(vec3 origin, vec3 dir)
     int kx = kz == 2 ? 0 : kz + 1;
     int ky = kx == 2 ? 0 : kx + 1;
     if (dir[kz] < 0.0) { int s = kx; kx = ky; ky = s; }
-    float sx = dir[kx] / dir[kz], sy = dir[ky] / dir[kz], sz = 1.0 / dir[kz];
+    float sx = rayDivide(dir[kx], dir[kz]), sy = rayDivide(dir[ky], dir[kz]), sz = rayDivide(1.0, dir[kz]);
     r.rowX = vec3(0.0);
     r.rowY = vec3(0.0);
     r.rowZ = vec3(0.0);
@@ -98,7 +156,7 @@ BvhRay bvhRay(vec3 origin, vec3 dir)
     // 1/0 = inf, and 0 * inf = NaN for a box face through the origin: a tiny component instead.
     vec3 d = mix(sign(dir) * 1e-30, dir, greaterThan(a, vec3(1e-30)));
     d = mix(vec3(1e-30), d, notEqual(d, vec3(0.0)));
-    r.invDir = 1.0 / d;
+    r.invDir = vec3(rayDivide(1.0, d.x), rayDivide(1.0, d.y), rayDivide(1.0, d.z));
     r.root = (2 * kz + (dir[kz] < 0.0 ? 1 : 0)) * (bvhNodes.length() / 6);
     return r;
 }
@@ -107,8 +165,8 @@ BvhRay bvhRay(vec3 origin, vec3 dir)
 // hit so far times 1 + 8 ulp, so that a triangle a few ulps nearer than its box's entry is not culled.
 bool bvhHitBox(BvhRay r, vec3 lo, vec3 hi, float tMin, float tMax)
 {
-    vec3 t0 = (lo - r.origin) * r.invDir;
-    vec3 t1 = (hi - r.origin) * r.invDir;
+    precise vec3 t0 = (lo - r.origin) * r.invDir;
+    precise vec3 t1 = (hi - r.origin) * r.invDir;
     vec3 tNear = min(t0, t1), tFar = max(t0, t1);
     float enter = max(max(tNear.x, tNear.y), max(tNear.z, tMin));
     float leave = min(min(tFar.x, tFar.y), tFar.z) * 1.0000003576;
@@ -117,21 +175,25 @@ bool bvhHitBox(BvhRay r, vec3 lo, vec3 hi, float tMin, float tMax)
 
 bool bvhHitTriangle(BvhRay r, BvhTriangle tri, float tMin, float tMax, out float t, out vec2 b)
 {
-    vec3 a = tri.v0 - r.origin, bb = tri.v1 - r.origin, c = tri.v2 - r.origin;
-    precise float ax = dot(r.rowX, a), ay = dot(r.rowY, a);
-    precise float bx = dot(r.rowX, bb), by = dot(r.rowY, bb);
-    precise float cx = dot(r.rowX, c), cy = dot(r.rowY, c);
+    // The CPU walk's operations in its order (core/bvh.cpp, intersectTriangle), each rounded alike.
+    precise vec3 a = tri.v0 - r.origin, bb = tri.v1 - r.origin, c = tri.v2 - r.origin;
+    precise float ax = rayDot(r.rowX, a), ay = rayDot(r.rowY, a);
+    precise float bx = rayDot(r.rowX, bb), by = rayDot(r.rowY, bb);
+    precise float cx = rayDot(r.rowX, c), cy = rayDot(r.rowY, c);
     precise float u = cx * by - cy * bx;
     precise float v = ax * cy - ay * cx;
     precise float w = bx * ay - by * ax;
     t = 0.0;
     b = vec2(0.0);
     if ((u < 0.0 || v < 0.0 || w < 0.0) && (u > 0.0 || v > 0.0 || w > 0.0)) return false;
-    float det = u + v + w;
+    precise float det = u + v + w;
     if (det == 0.0) return false;
-    float rcp = 1.0 / det;
-    t = (u * dot(r.rowZ, a) + v * dot(r.rowZ, bb) + w * dot(r.rowZ, c)) * rcp;
-    b = vec2(v, w) * rcp;
+    precise float rcp = rayDivide(1.0, det);
+    precise float tScaled = u * rayDot(r.rowZ, a) + v * rayDot(r.rowZ, bb) + w * rayDot(r.rowZ, c);
+    precise float tHit = tScaled * rcp;
+    precise vec2 bHit = vec2(v, w) * rcp;
+    t = tHit;
+    b = bHit;
     return t > tMin && t < tMax;
 }
 
