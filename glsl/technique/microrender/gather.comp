@@ -174,8 +174,12 @@ void main()
 
 #ifdef RAY_CAST
     // Rays through every micro-pixel when the list holds something (the paper), and through every pixel
-    // the cut left empty (a hole between nodes: the closed-scene guarantee).
-    uint listed = min(listCount, uint(LIST_CAP));
+    // the cut left empty (a hole between nodes: the closed-scene guarantee). The list's order, and which
+    // nodes an overflowing list kept, follow the order in which invocations reached atomicAdd: a GPU runs
+    // them in another order every time. So the search below takes the nearest node with ties to the lower
+    // index, and an overflowed list is not read at all (every hit takes the direct light at the hit, as a
+    // hit no listed leaf holds does): the same image in every run, on any driver.
+    uint listed = listCount > uint(LIST_CAP) ? 0u : listCount;
     bool everyPixel = listCount > 0u;
     uint rays = 0u, taken = 0u;
     for (int p = int(lid); p < kPixels && cosO > 0.0 && MICRO_STAGES >= 3; p += MICRO_GROUP) {
@@ -199,7 +203,8 @@ void main()
                 MicroNode ln = microNodes[listNodes[e]];
                 vec3 dd = hp - ln.sphere.xyz;
                 float dist2 = dot(dd, dd), reach = 2.0 * ln.sphere.w;
-                if (dist2 < bestD2 && dist2 <= reach * reach && dot(ln.cone.xyz, hn) > 0.5) {
+                bool nearer = dist2 < bestD2 || (dist2 == bestD2 && listNodes[e] < best);
+                if (nearer && dist2 <= reach * reach && dot(ln.cone.xyz, hn) > 0.5) {
                     bestD2 = dist2;
                     best = listNodes[e];
                 }
