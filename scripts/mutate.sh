@@ -74,7 +74,7 @@ PY
     if ! cmake --build "$build" -j "$(nproc)" >"$dir/$name.build.log" 2>&1; then
         results+="$name: caught (does not build)\n"
         caught=$((caught + 1))
-    elif (cd "$build" && xvfb-run -a -s "-screen 0 1280x1024x24" ctest -R "$tests" --timeout 900 \
+    elif (cd "$build" && xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" ctest -R "$tests" --timeout 900 \
               >"$dir/$name.log" 2>&1); then
         ran=$(grep -c "Test *#" "$dir/$name.log" || true)
         if [ "$ran" -eq 0 ]; then

@@ -34,6 +34,6 @@ cd build-asan
 status=0
 ASAN_OPTIONS="$asan:detect_leaks=1" ctest --output-on-failure -j "$(nproc)" --timeout 900 -L '^(core|ref)$' \
     -E '^gltf_fuzz$' "$@" || status=1
-xvfb-run -a -s "-screen 0 1280x1024x24" ctest --output-on-failure -j "$(nproc)" --timeout 900 -LE '^(core|ref)$' \
+xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" ctest --output-on-failure -j "$(nproc)" --timeout 900 -LE '^(core|ref)$' \
     -E '^gltf_fuzz$' "$@" || status=1
 exit "$status"
