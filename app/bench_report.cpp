@@ -212,7 +212,7 @@ void writeBenchReport(const std::filesystem::path& out, const BenchConfig& confi
 
 int plotSpeedError(const std::filesystem::path& out)
 {
-    const std::string plot = "/usr/bin/python3 '" +
+    const std::string plot = plotPython() + " '" +
                              (std::filesystem::path(BOUNCE_SOURCE_ROOT) / "bench/plot_speed_error.py").string() +
                              "' '" + (out / "results.csv").string() + "' '" + (out / "speed_error.png").string() + "'";
     const int rc = std::system(plot.c_str());

@@ -105,9 +105,15 @@ std::string rooflineCsv(const std::vector<BenchRow>& rows)
     return csv.str();
 }
 
+std::string plotPython()
+{
+    const char* python = std::getenv("BOUNCE_PYTHON");
+    return python && *python ? python : "/usr/bin/python3";
+}
+
 int plotRoofline(const std::filesystem::path& out)
 {
-    const std::string plot = "/usr/bin/python3 '" +
+    const std::string plot = plotPython() + " '" +
                              (std::filesystem::path(BOUNCE_SOURCE_ROOT) / "bench/plot_roofline.py").string() + "' '" +
                              (out / "roofline.csv").string() + "' '" + (out / "roofline.png").string() + "'";
     const int rc = std::system(plot.c_str());

@@ -20,4 +20,9 @@ std::string rooflineCsv(const std::vector<BenchRow>& rows);
 // Runs the plot script on out/roofline.csv into out/roofline.png; returns its exit status.
 int plotRoofline(const std::filesystem::path& out);
 
+// The Python the plot scripts run under: $BOUNCE_PYTHON, else /usr/bin/python3 (Debian's, with
+// python3-matplotlib; a python3 earlier on PATH may be another one without it). A GPU machine's image
+// often has matplotlib only in another Python (scripts/device-check.sh picks one that imports it).
+std::string plotPython();
+
 } // namespace bounce::app

@@ -61,7 +61,8 @@ out=$(cd "$out" && pwd)
 log() { echo "[device-check $(($(date +%s) - start))s] $*" | tee -a "$out/logs/steps.log"; }
 
 # ---- the machine: carried binaries, GL dispatch, compiled-in paths --------------------------------------
-if [ -f .device/bin.tar.xz ] && { [ ! -x build/app/bounce ] || [ .device/bin.tar.xz -nt build/app/bounce ]; }; then
+# The carried binaries replace build/ only on another machine than the one that packed them.
+if [ -f .device/bin.tar.xz ] && { [ ! -x build/app/bounce ] || [ "$(cat .device/ROOT 2>/dev/null)" != "$root" ]; }; then
     log "unpacking .device/bin.tar.xz"
     mkdir -p .device/unpacked
     tar -C .device/unpacked -xJf .device/bin.tar.xz
@@ -92,6 +93,14 @@ if [ -d .device/assets/sponza ] && [ ! -f ../shared/assets/sponza/Sponza.gltf ];
     mkdir -p ../shared/assets && ln -sfn "$root/.device/assets/sponza" ../shared/assets/sponza &&
         log "linked ../shared/assets/sponza -> .device/assets/sponza"
 fi
+# The bench's plots need matplotlib: Debian's /usr/bin/python3 has it with python3-matplotlib, a GPU image
+# often only in another Python.
+for python in /usr/bin/python3 python3; do
+    if "$python" -c 'import matplotlib' >/dev/null 2>&1; then
+        export BOUNCE_PYTHON="$python"
+        break
+    fi
+done
 export BOUNCE_ROOT="$root"
 export BOUNCE_PROGRESS=0
 export BOUNCE_TEST_BACKEND=egl
@@ -103,7 +112,12 @@ fi
 
 {
     echo "date: $(date -u +%FT%TZ)"
-    echo "commit: $(git rev-parse --short HEAD 2>/dev/null || echo unknown)"
+    # The binaries' commit: device-pack.sh's record of it where they were carried.
+    if [ -f .device/COMMIT ]; then
+        echo "commit: $(cat .device/COMMIT) (built by scripts/device-pack.sh)"
+    else
+        echo "commit: $(git describe --always --dirty 2>/dev/null || echo unknown)"
+    fi
     echo "host: $(uname -srm), $(nproc) cores"
     command -v nvidia-smi >/dev/null && nvidia-smi --query-gpu=name,driver_version,memory.total,clocks.sm,clocks.max.sm \
         --format=csv,noheader 2>&1 | sed 's/^/gpu: /'

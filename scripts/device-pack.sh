@@ -13,6 +13,7 @@
 #                        vertex normals and never decodes them: each is replaced by one small JPEG so that
 #                        the folder fits; the scene, and so the reference cache key, is the same)
 #   .device/ROOT         the checkout's path here: the test binaries have it compiled in
+#   .device/COMMIT       the commit the binaries were built from (-dirty: with uncommitted changes)
 #
 # Usage: scripts/device-pack.sh [--no-references]   (references: about 20 minutes on 2 cores the first
 # time, then cached in .device/cache)
@@ -44,6 +45,7 @@ fi
 scripts/build.sh
 mkdir -p .device/gl .device/cache
 printf '%s\n' "$root" >.device/ROOT
+git describe --always --dirty >.device/COMMIT
 
 # The binaries and the libraries they need beyond glibc, libstdc++ and libgcc (newer on any GPU image).
 stage=$(mktemp -d)
