@@ -408,20 +408,24 @@ TEST_F(IsrMultiresTest, HisrClustersDropAsTauGrows)
 // its G-buffer position) with Eq. 8 and the discontinuity departure, at a tau that refines some clusters
 // and not others; the sum of Eqs. 1 and 5 over the chosen clusters (double) must match the gather (1e-3
 // relative RMSE: float sums, and a cluster whose Eq. 8 test is a tie in float may go either way), and so
-// must the number of clusters gathered (0.1%).
+// must the number of clusters gathered (0.1%). Both forms of the gather: the paper's stenciled quad and
+// the compute pass over the listed valid fragments (what a GPU runs, MultiresGather::gatherAsFragments).
 TEST_F(IsrMultiresTest, HisrTraversalMatchesCpuTraversal)
 {
     const core::Scene scene = core::makeCornell("cornell-spot");
     constexpr int kSize = 24, kRsm = 32;
     const double tau = 1e-3;
-    const Rendered gpu = render(scene, "hisr",
-                                {{"rsmSize", std::to_string(kRsm)},
-                                 {"tau", "1e-3"},
-                                 {"topGrid", "4"},
-                                 {"depthThreshold", "0"},
-                                 {"normalThreshold", "0"},
-                                 {"lightRefineLevel", "1"}},
-                                kSize, kSize);
+    std::vector<std::pair<std::string, Rendered>> forms;
+    for (const char* form : {"fragments", "compute"})
+        forms.emplace_back(form, render(scene, "hisr",
+                                        {{"rsmSize", std::to_string(kRsm)},
+                                         {"tau", "1e-3"},
+                                         {"topGrid", "4"},
+                                         {"depthThreshold", "0"},
+                                         {"normalThreshold", "0"},
+                                         {"lightRefineLevel", "1"},
+                                         {"gather", form}},
+                                        kSize, kSize));
 
     // The same RSM and tree, built again (both are deterministic), and the frame's G-buffer.
     gl::PassTimers timers;
@@ -477,13 +481,33 @@ TEST_F(IsrMultiresTest, HisrTraversalMatchesCpuTraversal)
             for (int root = 0; root < tree.rootCount(); ++root) walk(root, tree.depth(), 0);
             want.set(x, kSize - 1 - y, glm::vec3(sum * glm::dvec3(D[i], D[i + 1], D[i + 2])));
         }
-    testing::expectImagesClose("hisr-vs-cpu-traversal", gpu.indirect, want, testing::ImageMetric::relativeRmse(), 1e-3,
-                               "float sums; an Eq. 8 tie in float may go either way");
-    EXPECT_NEAR(counter(gpu.counters, "clusters.gathered"), clusters, 1e-3 * clusters);
-    EXPECT_EQ(counter(gpu.counters, "fragments.level0"), double(fragments));
+    for (const auto& [form, gpu] : forms) {
+        SCOPED_TRACE("gather as " + form);
+        testing::expectImagesClose("hisr-" + form + "-vs-cpu-traversal", gpu.indirect, want,
+                                   testing::ImageMetric::relativeRmse(), 1e-3,
+                                   "float sums; an Eq. 8 tie in float may go either way");
+        EXPECT_NEAR(counter(gpu.counters, "clusters.gathered"), clusters, 1e-3 * clusters);
+        EXPECT_EQ(counter(gpu.counters, "fragments.level0"), double(fragments));
+    }
     // Some clusters were refined and some were not: the test exercised both branches of Eq. 8.
     EXPECT_GT(clusters / fragments, double(tree.rootCount()));
     EXPECT_LT(clusters / fragments, double(kRsm * kRsm) / 2.0);
+}
+
+// The gather's two forms at a size with partial patches at every level, multiresolution patches of every
+// level, and the default tree, which llvmpipe's loop budget splits into several draws (each compute
+// dispatch adds to what the last wrote): the same fragments, clusters and light.
+TEST_F(IsrMultiresTest, HisrGatherAsComputeEqualsGatherAsFragments)
+{
+    const core::Scene scene = core::makeCornell("cornell-spot");
+    Rendered r[2];
+    for (int i = 0; i < 2; ++i)
+        r[i] = render(scene, "hisr", {{"gather", i == 0 ? "fragments" : "compute"}, {"coarsestLevel", "3"}}, 61, 37);
+    for (const char* c : {"clusters.gathered", "fragments.total", "fragments.level1", "fragments.level3"})
+        EXPECT_EQ(counter(r[0].counters, c), counter(r[1].counters, c)) << c;
+    EXPECT_GT(counter(r[0].counters, "fragments.level3"), 0.0);
+    testing::expectImagesClose("hisr-compute-vs-fragments", r[1].indirect, r[0].indirect,
+                               testing::ImageMetric::relativeRmse(), 1e-6, "one walk, two stages");
 }
 
 // Larger thresholds merge more pixels into coarser patches: the number of valid fragments drops.

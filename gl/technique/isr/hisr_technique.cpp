@@ -46,13 +46,16 @@ namespace {
 class Hisr final : public Technique {
 public:
     Hisr(Frame& frame, const RsmSettings& rsm, double tau, int topGrid, float lightDepthThreshold,
-         float lightNormalThreshold, int discontinuityLevel, const MultiresSettings& multires)
+         float lightNormalThreshold, int discontinuityLevel, const MultiresSettings& multires, bool gatherAsFragments)
         : rsm_(rsm),
           tree_(topGrid, lightDepthThreshold, lightNormalThreshold),
           tau_(tau),
           discontinuityLevel_(discontinuityLevel),
           gather_(frame, multires),
-          program_(MultiresGather::gatherProgram("hisr.gather", "technique/isr/hisr_gather.frag")),
+          asFragments_(gatherAsFragments),
+          program_(gatherAsFragments
+                       ? MultiresGather::gatherProgram("hisr.gather", "technique/isr/hisr_gather.frag")
+                       : MultiresGather::gatherComputeProgram("hisr.gather", "technique/isr/hisr_gather.comp")),
           stats_("hisr.stats", 4 * sizeof(unsigned))
     {}
 
@@ -88,13 +91,14 @@ public:
         // stay in the caches, and counting them as bytes put the bound at the bandwidth ceiling.
         cost.bytesRead = (16 + 8 + 8) / draws + 16;
         cost.bytesWritten = 16;
-        gather_.gather(
-            frame, program_, timers, draws,
-            [&](Program& p, int i) {
-                p.set("rootBegin", i * perDraw);
-                p.set("rootEnd", std::min(roots, (i + 1) * perDraw));
-            },
-            cost);
+        const auto rootsOfDraw = [&](Program& p, int i) {
+            p.set("rootBegin", i * perDraw);
+            p.set("rootEnd", std::min(roots, (i + 1) * perDraw));
+        };
+        if (asFragments_)
+            gather_.gather(frame, program_, timers, draws, rootsOfDraw, cost);
+        else
+            gather_.gatherCompute(frame, program_, timers, draws, rootsOfDraw, cost);
         clustersPerFragment_ = gatheredPerFragment();
         gather_.upsample(frame, timers);
     }
@@ -136,6 +140,7 @@ private:
     double tau_;
     int discontinuityLevel_;
     MultiresGather gather_;
+    bool asFragments_;
     Program program_;
     Buffer stats_;
     double clustersPerFragment_ = 0.0;
@@ -177,6 +182,11 @@ TechniqueInfo hisrTechniqueInfo()
          "log2(rsmSize / 128)"},
     };
     info.params.back().allowAuto = true;
+    info.params.push_back(choiceParam(
+        "gather", {"auto", "fragments", "compute"}, 0,
+        "the gather's form: fragments (the paper's stenciled quad) or compute (the valid fragments listed, one "
+        "invocation each); auto: fragments on a software rasteriser, compute on a GPU, whose graphics units may be "
+        "few"));
     for (const ParamDecl& p : rsmParams()) info.params.push_back(p);
     for (const ParamDecl& p : multiresParams()) info.params.push_back(p);
     info.create = [](Frame& frame, const ParamValues& v) -> std::unique_ptr<Technique> {
@@ -184,9 +194,11 @@ TechniqueInfo hisrTechniqueInfo()
         requireRsmSize("hisr", rsm.size, true, 1024); // the VPL tree is a quadtree over each view
         int level = v.isAuto("lightRefineLevel") ? -1 : v.getInt("lightRefineLevel");
         if (level < 0) level = std::max(0, int(std::bit_width(unsigned(rsm.size))) - 8); // log2(size / 128)
+        const std::string form = v.getChoice(hisrTechniqueInfo().params, "gather");
+        const bool asFragments = form == "auto" ? MultiresGather::defaultGatherAsFragments() : form == "fragments";
         return std::make_unique<Hisr>(frame, rsm, v.get("tau"), v.getInt("topGrid"),
                                       float(v.get("lightDepthThreshold")), float(v.get("lightNormalThreshold")), level,
-                                      multiresSettingsFrom(v));
+                                      multiresSettingsFrom(v), asFragments);
     };
     return info;
 }

@@ -1,6 +1,7 @@
 #include "gl/technique/isr/multires_gather.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -30,6 +31,17 @@ Program MultiresGather::gatherProgram(const std::string& label, const std::strin
     return Program::graphics(label, "frame/fullscreen.vert", fragmentPath, defines);
 }
 
+Program MultiresGather::gatherComputeProgram(const std::string& label, const std::string& computePath,
+                                             const std::vector<Define>& defines)
+{
+    return Program::compute(label, computePath, defines);
+}
+
+bool MultiresGather::defaultGatherAsFragments()
+{
+    return softwareRasterizer();
+}
+
 void MultiresGather::allocate()
 {
     // The flattened multiresolution illumination buffer and its stencil (§3.2.1), laid out as the pyramid's.
@@ -40,6 +52,7 @@ void MultiresGather::allocate()
     fbo_.attach(GL_DEPTH_STENCIL_ATTACHMENT, stencil_);
     fbo_.setDrawBuffers({GL_COLOR_ATTACHMENT0});
     fbo_.checkComplete();
+    validList_ = Buffer();
 }
 
 void MultiresGather::buildPyramid(Frame& frame, PassTimers& timers)
@@ -142,6 +155,53 @@ void MultiresGather::gather(Frame& frame, Program& program, PassTimers& timers, 
     work.flopsFixed = valid * draws * perFragment.flops;
     work.fetchesFixed = valid * draws * perFragment.fetches;
     work.bytesFixed = valid * draws * (perFragment.bytesRead + perFragment.bytesWritten);
+    work.uniformWordsFixed = valid * draws * perFragment.uniformWords;
+    t.addWork(work);
+}
+
+void MultiresGather::gatherCompute(Frame& frame, Program& program, PassTimers& timers, int draws,
+                                   const std::function<void(Program&, int)>& setupDraw, const PassCost& perFragment)
+{
+    const glm::ivec2 size(illumination_.width(), illumination_.height());
+    if (!validList_.id()) {
+        validList_ = Buffer("multires.validList", sizeof(unsigned) * (1 + std::size_t(size.x) * std::size_t(size.y)));
+        validListProgram_ = Program::compute("multires.validList", "technique/isr/multires_valid_list.comp");
+    }
+    // The list: one read of every texel's marks; then per valid fragment and dispatch its entry, and its
+    // texel read and written (below, with the walk's own work). Invocations past the list do nothing.
+    const double flattened = double(size.x) * size.y;
+    PassCost fixed;
+    fixed.bytesFixed = flattened * 16;
+    auto t = timers.scope("gather", fixed);
+    // The stencil pass's marks (a framebuffer write) before the list reads them as an image.
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+    validList_.clearToZero();
+    validList_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_ISR_VALID_LIST);
+    illumination_.bindImage(0, GL_READ_ONLY);
+    validListProgram_.use();
+    glDispatchCompute(GLuint((size.x + 7) / 8), GLuint((size.y + 7) / 8), 1);
+    frame.bindGBuffer();
+    pyramid_.bind();
+    pyramid_.setUniforms(program);
+    // The list, and the VPLs and clusters written by compute passes, before the gather reads them.
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_UNIFORM_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    illumination_.bindImage(0, GL_READ_WRITE);
+    // The valid fragments are the stencil pass's counts (the list holds as many); the dispatch covers
+    // the largest list, whose invocations past the count return at once.
+    double valid = 0.0;
+    for (int n : fragmentsPerLevel()) valid += n;
+    const GLuint groups = GLuint(std::max(1.0, std::ceil(flattened / 64.0)));
+    for (int i = 0; i < draws; ++i) {
+        if (setupDraw) setupDraw(program, i);
+        program.use();
+        glDispatchCompute(groups, 1, 1);
+        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT); // the next dispatch adds to what this one wrote
+    }
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT); // the upsampling samples it
+    PassCost work;
+    work.flopsFixed = valid * draws * perFragment.flops;
+    work.fetchesFixed = valid * draws * perFragment.fetches;
+    work.bytesFixed = valid * (4 + draws * (4 + perFragment.bytesRead + perFragment.bytesWritten));
     work.uniformWordsFixed = valid * draws * perFragment.uniformWords;
     t.addWork(work);
 }

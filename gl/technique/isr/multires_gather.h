@@ -69,6 +69,17 @@ public:
     // perFragment: what one fragment of one draw does (PassCost), for the pass's bound.
     void gather(Frame& frame, Program& program, PassTimers& timers, int draws = 1,
                 const std::function<void(Program&, int)>& setupDraw = {}, const PassCost& perFragment = {});
+    // The same gather as a compute pass ("gather" too): the valid fragments listed from the stencil pass's
+    // marks (multires_valid_list.comp), then `program` (made by gatherComputeProgram()) dispatched over
+    // the list `draws` times, each invocation adding into its fragment's rgb. The same fragments get the
+    // same light; which form runs is gatherAsFragments().
+    void gatherCompute(Frame& frame, Program& program, PassTimers& timers, int draws = 1,
+                       const std::function<void(Program&, int)>& setupDraw = {}, const PassCost& perFragment = {});
+    // Which form of the gather to run: the paper's stenciled quad on a software rasteriser, where fragment
+    // work is as fast as compute work, and a compute pass elsewhere: a GPU may shade fragments on a small
+    // part of its units (an NVIDIA H100: graphics in 2 of 66 TPCs; bounce probe read 1.8 TFLOP/s in a
+    // fragment pass and 46 in a compute pass, and hisr's gather took 16.8 ms as fragments at 1024x768).
+    static bool defaultGatherAsFragments();
     void upsample(Frame& frame, PassTimers& timers);
     // [NW09]'s path, after buildPyramid(): refine() selects the valid fragments by iterative subdivision
     // (the same set, counts and neighbour marks as markValidFragments()) and keeps them as a vertex list;
@@ -81,6 +92,8 @@ public:
     static int loopBudget();
     static Program gatherProgram(const std::string& label, const std::string& fragmentPath,
                                  const std::vector<Define>& defines = {});
+    static Program gatherComputeProgram(const std::string& label, const std::string& computePath,
+                                        const std::vector<Define>& defines = {});
 
     const MultiresSettings& settings() const { return pyramid_.settings(); }
     const MultiresPyramid& pyramid() const { return pyramid_; }
@@ -117,6 +130,9 @@ private:
     VertexArray splatVao_;
     Program refine_, splat_;
     int splatCount_ = 0;
+    // The compute gather's list of valid fragments (a count, then x | y << 16 each), made on its first use.
+    Buffer validList_;
+    Program validListProgram_;
 
     void allocate(); // the illumination buffer and stencil, laid out as the pyramid's flattened buffer
 };

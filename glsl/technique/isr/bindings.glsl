@@ -15,6 +15,7 @@
 #define SSBO_ISR_WORK_OUT 15         //   and their children for the next
 #define SSBO_ISR_REFINE_COUNTS 16
 #define SSBO_ISR_SPLAT_VERTICES 17
+#define SSBO_ISR_VALID_LIST 22      // multires_valid_list.comp: the valid fragments, for a compute gather
 #define UNIT_ISR_VPL_TREE_TEXELS 21  // hisr_gather.frag: the VPL tree as a buffer texture
 
 #endif
