@@ -494,20 +494,31 @@ TEST_F(IsrMultiresTest, HisrTraversalMatchesCpuTraversal)
     EXPECT_LT(clusters / fragments, double(kRsm * kRsm) / 2.0);
 }
 
-// The gather's two forms at a size with partial patches at every level, multiresolution patches of every
-// level, and the default tree, which llvmpipe's loop budget splits into several draws (each compute
-// dispatch adds to what the last wrote): the same fragments, clusters and light.
-TEST_F(IsrMultiresTest, HisrGatherAsComputeEqualsGatherAsFragments)
+// The gathers' two forms (the paper's stenciled quad, and the compute pass over the listed valid fragments
+// that a GPU runs) at a size with partial patches at every level, with gathers split over several draws
+// (hisr's default tree under llvmpipe's loop budget, 1024 VPLs in uniform blocks: each compute dispatch
+// adds to what the last wrote): the same fragments, clusters and light.
+TEST_F(IsrMultiresTest, GatherAsComputeEqualsGatherAsFragments)
 {
     const core::Scene scene = core::makeCornell("cornell-spot");
-    Rendered r[2];
-    for (int i = 0; i < 2; ++i)
-        r[i] = render(scene, "hisr", {{"gather", i == 0 ? "fragments" : "compute"}, {"coarsestLevel", "3"}}, 61, 37);
-    for (const char* c : {"clusters.gathered", "fragments.total", "fragments.level1", "fragments.level3"})
-        EXPECT_EQ(counter(r[0].counters, c), counter(r[1].counters, c)) << c;
-    EXPECT_GT(counter(r[0].counters, "fragments.level3"), 0.0);
-    testing::expectImagesClose("hisr-compute-vs-fragments", r[1].indirect, r[0].indirect,
-                               testing::ImageMetric::relativeRmse(), 1e-6, "one walk, two stages");
+    for (const auto& [technique, sets] : {std::pair<std::string, Sets>{"hisr", {}},
+                                          {"multires-gather", {{"vpls", "1024"}}},
+                                          {"isr", {{"minLevel", "1"}}}}) {
+        SCOPED_TRACE(technique);
+        Rendered r[2];
+        for (int i = 0; i < 2; ++i) {
+            Sets s = sets;
+            s.push_back({"gather", i == 0 ? "fragments" : "compute"});
+            s.push_back({"coarsestLevel", "3"});
+            r[i] = render(scene, technique, s, 61, 37);
+        }
+        std::vector<std::string> same = {"fragments.total", "fragments.level1", "fragments.level3"};
+        if (technique == "hisr") same.push_back("clusters.gathered");
+        for (const std::string& c : same) EXPECT_EQ(counter(r[0].counters, c), counter(r[1].counters, c)) << c;
+        EXPECT_GT(counter(r[0].counters, "fragments.level3"), 0.0);
+        testing::expectImagesClose(technique + "-compute-vs-fragments", r[1].indirect, r[0].indirect,
+                                   testing::ImageMetric::relativeRmse(), 1e-6, "one sum, two stages");
+    }
 }
 
 // Larger thresholds merge more pixels into coarser patches: the number of valid fragments drops.

@@ -51,8 +51,7 @@ public:
           tree_(topGrid, lightDepthThreshold, lightNormalThreshold),
           tau_(tau),
           discontinuityLevel_(discontinuityLevel),
-          gather_(frame, multires),
-          asFragments_(gatherAsFragments),
+          gather_(frame, multires, gatherAsFragments),
           program_(gatherAsFragments
                        ? MultiresGather::gatherProgram("hisr.gather", "technique/isr/hisr_gather.frag")
                        : MultiresGather::gatherComputeProgram("hisr.gather", "technique/isr/hisr_gather.comp")),
@@ -95,7 +94,7 @@ public:
             p.set("rootBegin", i * perDraw);
             p.set("rootEnd", std::min(roots, (i + 1) * perDraw));
         };
-        if (asFragments_)
+        if (gather_.gatherAsFragments())
             gather_.gather(frame, program_, timers, draws, rootsOfDraw, cost);
         else
             gather_.gatherCompute(frame, program_, timers, draws, rootsOfDraw, cost);
@@ -140,7 +139,6 @@ private:
     double tau_;
     int discontinuityLevel_;
     MultiresGather gather_;
-    bool asFragments_;
     Program program_;
     Buffer stats_;
     double clustersPerFragment_ = 0.0;
@@ -182,11 +180,7 @@ TechniqueInfo hisrTechniqueInfo()
          "log2(rsmSize / 128)"},
     };
     info.params.back().allowAuto = true;
-    info.params.push_back(choiceParam(
-        "gather", {"auto", "fragments", "compute"}, 0,
-        "the gather's form: fragments (the paper's stenciled quad) or compute (the valid fragments listed, one "
-        "invocation each); auto: fragments on a software rasteriser, compute on a GPU, whose graphics units may be "
-        "few"));
+    info.params.push_back(MultiresGather::gatherFormParam());
     for (const ParamDecl& p : rsmParams()) info.params.push_back(p);
     for (const ParamDecl& p : multiresParams()) info.params.push_back(p);
     info.create = [](Frame& frame, const ParamValues& v) -> std::unique_ptr<Technique> {
@@ -194,8 +188,7 @@ TechniqueInfo hisrTechniqueInfo()
         requireRsmSize("hisr", rsm.size, true, 1024); // the VPL tree is a quadtree over each view
         int level = v.isAuto("lightRefineLevel") ? -1 : v.getInt("lightRefineLevel");
         if (level < 0) level = std::max(0, int(std::bit_width(unsigned(rsm.size))) - 8); // log2(size / 128)
-        const std::string form = v.getChoice(hisrTechniqueInfo().params, "gather");
-        const bool asFragments = form == "auto" ? MultiresGather::defaultGatherAsFragments() : form == "fragments";
+        const bool asFragments = MultiresGather::gatherAsFragmentsFrom(v, hisrTechniqueInfo().params);
         return std::make_unique<Hisr>(frame, rsm, v.get("tau"), v.getInt("topGrid"),
                                       float(v.get("lightDepthThreshold")), float(v.get("lightNormalThreshold")), level,
                                       multiresSettingsFrom(v), asFragments);

@@ -19,11 +19,12 @@ class Isr final : public Technique {
 public:
     // multires: gather with the stenciled multiresolution gather of §3.2 (the paper's ISR); otherwise at
     // every pixel (for measuring what the multiresolution gather costs in error).
-    Isr(Frame& frame, const RsmSettings& rsm, const IsrClusterSettings& cluster, const MultiresSettings* multires)
+    Isr(Frame& frame, const RsmSettings& rsm, const IsrClusterSettings& cluster, const MultiresSettings* multires,
+        bool gatherAsFragments)
         : rsm_(rsm), settings_(cluster)
     {
         if (multires)
-            multires_ = std::make_unique<MultiresGather>(frame, *multires);
+            multires_ = std::make_unique<MultiresGather>(frame, *multires, gatherAsFragments);
         else
             gather_ = std::make_unique<VplGather>();
     }
@@ -102,6 +103,7 @@ TechniqueInfo isrTechniqueInfo()
     };
     for (const ParamDecl& p : rsmParams()) info.params.push_back(p);
     for (const ParamDecl& p : multiresParams()) info.params.push_back(p); // eye space: as multires-gather
+    info.params.push_back(MultiresGather::gatherFormParam());
     info.create = [](Frame& frame, const ParamValues& v) -> std::unique_ptr<Technique> {
         RsmSettings rsm = rsmSettingsFrom(v);
         requireRsmSize("isr", rsm.size, true); // the light-space pyramid halves it down to its coarsest level
@@ -114,7 +116,8 @@ TechniqueInfo isrTechniqueInfo()
         c.normalThreshold = float(v.get("lightNormalThreshold"));
         rsm.levels = c.maxLevel;
         const MultiresSettings multires = multiresSettingsFrom(v);
-        return std::make_unique<Isr>(frame, rsm, c, v.getBool("multires") ? &multires : nullptr);
+        return std::make_unique<Isr>(frame, rsm, c, v.getBool("multires") ? &multires : nullptr,
+                                     MultiresGather::gatherAsFragmentsFrom(v, isrTechniqueInfo().params));
     };
     return info;
 }

@@ -14,13 +14,17 @@
 
 namespace bounce::gl {
 
-MultiresGather::MultiresGather(Frame& frame, const MultiresSettings& settings)
+MultiresGather::MultiresGather(Frame& frame, const MultiresSettings& settings, bool asFragments)
     : pyramid_(frame.width(), frame.height(), settings),
       fbo_("multires.fbo"),
       counts_("multires.fragmentCounts", sizeof(unsigned) * kMaxLevels),
+      asFragments_(asFragments),
       stencilSetup_(
           Program::graphics("multires.stencil", "frame/fullscreen.vert", "technique/isr/multires_stencil.frag")),
-      cacheGather_(gatherProgram("multires.gather", "technique/isr/multires_gather.frag", vplBlockDefines()))
+      cacheGather_(
+          asFragments
+              ? gatherProgram("multires.gather", "technique/isr/multires_gather.frag", vplBlockDefines())
+              : gatherComputeProgram("multires.gather", "technique/isr/multires_gather.comp", vplBlockDefines()))
 {
     allocate();
 }
@@ -40,6 +44,20 @@ Program MultiresGather::gatherComputeProgram(const std::string& label, const std
 bool MultiresGather::defaultGatherAsFragments()
 {
     return softwareRasterizer();
+}
+
+ParamDecl MultiresGather::gatherFormParam()
+{
+    return choiceParam("gather", {"auto", "fragments", "compute"}, 0,
+                       "the gather's form: fragments (the paper's stenciled quad) or compute (the valid fragments "
+                       "listed, one invocation each); auto: fragments on a software rasteriser, compute on a GPU, "
+                       "whose graphics units may be few");
+}
+
+bool MultiresGather::gatherAsFragmentsFrom(const ParamValues& values, const std::vector<ParamDecl>& decls)
+{
+    const std::string form = values.getChoice(decls, "gather");
+    return form == "auto" ? defaultGatherAsFragments() : form == "fragments";
 }
 
 void MultiresGather::allocate()
@@ -230,9 +248,11 @@ void MultiresGather::run(Frame& frame, const Buffer& vpls, int vplCount, PassTim
     cost.fetches = 3;
     cost.bytesRead = 16 + 8 + 8 + 16; // patch texels, blending's read
     cost.bytesWritten = 16;
-    gather(
-        frame, cacheGather_, timers, draws,
-        [&](Program& p, int block) { p.set("vplCount", bindVplBlock(vpls, block, vplCount)); }, cost);
+    const auto blockOfDraw = [&](Program& p, int block) { p.set("vplCount", bindVplBlock(vpls, block, vplCount)); };
+    if (asFragments_)
+        gather(frame, cacheGather_, timers, draws, blockOfDraw, cost);
+    else
+        gatherCompute(frame, cacheGather_, timers, draws, blockOfDraw, cost);
     upsample(frame, timers);
 }
 

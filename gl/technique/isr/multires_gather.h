@@ -49,7 +49,8 @@ class MultiresGather {
 public:
     static constexpr int kMaxLevels = MultiresPyramid::kMaxLevels;
 
-    MultiresGather(Frame& frame, const MultiresSettings& settings);
+    // asFragments: which form the gathers take (gatherAsFragments()).
+    MultiresGather(Frame& frame, const MultiresSettings& settings, bool asFragments = defaultGatherAsFragments());
 
     // The whole of §3.2 with the VPL cache [0, vplCount) of `vpls` (glsl/technique/isr/vpl.glsl, binding 8).
     void run(Frame& frame, const Buffer& vpls, int vplCount, PassTimers& timers);
@@ -80,6 +81,10 @@ public:
     // part of its units (an NVIDIA H100: graphics in 2 of 66 TPCs; bounce probe read 1.8 TFLOP/s in a
     // fragment pass and 46 in a compute pass, and hisr's gather took 16.8 ms as fragments at 1024x768).
     static bool defaultGatherAsFragments();
+    bool gatherAsFragments() const { return asFragments_; }
+    // The parameter that chooses the form ("gather": auto|fragments|compute), and its value.
+    static ParamDecl gatherFormParam();
+    static bool gatherAsFragmentsFrom(const ParamValues& values, const std::vector<ParamDecl>& decls);
     void upsample(Frame& frame, PassTimers& timers);
     // [NW09]'s path, after buildPyramid(): refine() selects the valid fragments by iterative subdivision
     // (the same set, counts and neighbour marks as markValidFragments()) and keeps them as a vertex list;
@@ -124,7 +129,8 @@ private:
     // Draws a full-screen triangle clipped to each level's rectangle of the flattened buffer, with the
     // level in the program's drawLevel uniform; perLevel(level) runs before the level's draw.
     void drawLevels(Program& program, PassState state, const std::function<void(int)>& perLevel = {});
-    Program stencilSetup_, cacheGather_;
+    bool asFragments_;
+    Program stencilSetup_, cacheGather_; // cacheGather_: the fragment or the compute form
     // [NW09]'s path, allocated on the first refine(): work lists, counters, the splat vertices.
     Buffer workLists_[2], refineCounts_, splatVertices_;
     VertexArray splatVao_;

@@ -16,8 +16,9 @@ namespace {
 // replaces (multires-splat, the other half of the paper's Table 1). Same VPLs, same buffer, same upsampling.
 class MultiresTechnique final : public Technique {
 public:
-    MultiresTechnique(Frame& frame, const RsmSettings& rsm, int vpls, const MultiresSettings& multires, bool splat)
-        : rsm_(rsm), vpls_(vpls), gather_(frame, multires), splat_(splat)
+    MultiresTechnique(Frame& frame, const RsmSettings& rsm, int vpls, const MultiresSettings& multires, bool splat,
+                      bool gatherAsFragments)
+        : rsm_(rsm), vpls_(vpls), gather_(frame, multires, gatherAsFragments), splat_(splat)
     {}
 
     void render(Frame& frame, PassTimers& timers) override
@@ -69,8 +70,10 @@ std::vector<ParamDecl> multiresTechniqueParams()
 
 std::unique_ptr<Technique> createMultires(Frame& frame, const ParamValues& v, bool splat)
 {
+    // Splatting gathers nothing: its buffer is filled by points, whatever the gather's form.
+    const bool asFragments = splat || MultiresGather::gatherAsFragmentsFrom(v, multiresGatherTechniqueInfo().params);
     return std::make_unique<MultiresTechnique>(frame, rsmSettingsFrom(v), v.getInt("vpls"), multiresSettingsFrom(v),
-                                               splat);
+                                               splat, asFragments);
 }
 
 } // namespace
@@ -92,6 +95,7 @@ TechniqueInfo multiresGatherTechniqueInfo()
     info.reads = {GBufferChannel::Position, GBufferChannel::Normal, GBufferChannel::Diffuse};
     info.summary = "rsm's regular-grid VPLs gathered at multiresolution eye-space patches chosen by a one-pass stencil";
     info.params = multiresTechniqueParams();
+    info.params.push_back(MultiresGather::gatherFormParam());
     info.create = [](Frame& frame, const ParamValues& v) { return createMultires(frame, v, false); };
     return info;
 }

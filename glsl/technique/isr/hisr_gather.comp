@@ -6,20 +6,16 @@
 // few graphics units (MultiresGather::gatherAsFragments): on an NVIDIA H100 a fragment pass reached 1.8
 // TFLOP/s and a compute pass 46 (bounce probe).
 #include "technique/isr/hisr_walk.glsl"
+#include "technique/isr/valid_list.glsl"
 
 layout(local_size_x = 64) in;
 
-layout(rgba32f, binding = 0) uniform image2D illumination;
-layout(std430, binding = SSBO_ISR_VALID_LIST) readonly buffer ValidList { uint validCount; uint validFragments[]; };
-
 void main()
 {
-    uint i = gl_GlobalInvocationID.x;
-    if (i >= validCount) return;
-    ivec2 at = ivec2(validFragments[i] & 0xFFFFu, validFragments[i] >> 16);
+    ivec2 at;
+    if (!listedFragment(at)) return;
     uint gathered;
     vec3 sum = hisrGather(at, gathered);
     hisrCount(gathered);
-    vec4 old = imageLoad(illumination, at);
-    imageStore(illumination, at, vec4(old.rgb + sum, old.a));
+    addToFragment(at, sum);
 }
