@@ -52,9 +52,8 @@ public:
           tau_(tau),
           discontinuityLevel_(discontinuityLevel),
           gather_(frame, multires, gatherAsFragments),
-          program_(gatherAsFragments
-                       ? MultiresGather::gatherProgram("hisr.gather", "technique/isr/hisr_gather.frag")
-                       : MultiresGather::gatherComputeProgram("hisr.gather", "technique/isr/hisr_gather.comp")),
+          program_(
+              gather_.gatherProgram("hisr.gather", "technique/isr/hisr_gather.frag", "technique/isr/hisr_gather.comp")),
           stats_("hisr.stats", 4 * sizeof(unsigned))
     {}
 
@@ -90,14 +89,13 @@ public:
         // stay in the caches, and counting them as bytes put the bound at the bandwidth ceiling.
         cost.bytesRead = (16 + 8 + 8) / draws + 16;
         cost.bytesWritten = 16;
-        const auto rootsOfDraw = [&](Program& p, int i) {
-            p.set("rootBegin", i * perDraw);
-            p.set("rootEnd", std::min(roots, (i + 1) * perDraw));
-        };
-        if (gather_.gatherAsFragments())
-            gather_.gather(frame, program_, timers, draws, rootsOfDraw, cost);
-        else
-            gather_.gatherCompute(frame, program_, timers, draws, rootsOfDraw, cost);
+        gather_.gather(
+            frame, program_, timers, draws,
+            [&](Program& p, int i) {
+                p.set("rootBegin", i * perDraw);
+                p.set("rootEnd", std::min(roots, (i + 1) * perDraw));
+            },
+            cost);
         clustersPerFragment_ = gatheredPerFragment();
         gather_.upsample(frame, timers);
     }

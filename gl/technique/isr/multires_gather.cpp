@@ -1,7 +1,6 @@
 #include "gl/technique/isr/multires_gather.h"
 
 #include <algorithm>
-#include <cmath>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -21,23 +20,16 @@ MultiresGather::MultiresGather(Frame& frame, const MultiresSettings& settings, b
       asFragments_(asFragments),
       stencilSetup_(
           Program::graphics("multires.stencil", "frame/fullscreen.vert", "technique/isr/multires_stencil.frag")),
-      cacheGather_(
-          asFragments
-              ? gatherProgram("multires.gather", "technique/isr/multires_gather.frag", vplBlockDefines())
-              : gatherComputeProgram("multires.gather", "technique/isr/multires_gather.comp", vplBlockDefines()))
+      cacheGather_(gatherProgram("multires.gather", "technique/isr/multires_gather.frag",
+                                 "technique/isr/multires_gather.comp", vplBlockDefines()))
 {
     allocate();
 }
 
 Program MultiresGather::gatherProgram(const std::string& label, const std::string& fragmentPath,
-                                      const std::vector<Define>& defines)
+                                      const std::string& computePath, const std::vector<Define>& defines) const
 {
-    return Program::graphics(label, "frame/fullscreen.vert", fragmentPath, defines);
-}
-
-Program MultiresGather::gatherComputeProgram(const std::string& label, const std::string& computePath,
-                                             const std::vector<Define>& defines)
-{
+    if (asFragments_) return Program::graphics(label, "frame/fullscreen.vert", fragmentPath, defines);
     return Program::compute(label, computePath, defines);
 }
 
@@ -139,13 +131,34 @@ void MultiresGather::markValidFragments(Frame& frame, PassTimers& timers)
 void MultiresGather::gather(Frame& frame, Program& program, PassTimers& timers, int draws,
                             const std::function<void(Program&, int)>& setupDraw, const PassCost& perFragment)
 {
-    // The stencil test masks the shader of every fragment that is not valid, but the driver may count
-    // those as invocations (llvmpipe counts the whole flattened buffer): the work is the valid
-    // fragments' (the stencil pass's own counts), and each invocation only blends.
+    // The quad: the stencil test masks the shader of every fragment that is not valid, but the driver may
+    // count those as invocations (llvmpipe counts the whole flattened buffer): the work is the valid
+    // fragments' (the stencil pass's own counts), and each invocation only blends. The list: one read of
+    // every texel's marks, then per valid fragment its entry, and per dispatch the entry again and its
+    // texel read and written; invocations past the list do nothing.
+    const double flattened = double(illumination_.width()) * illumination_.height();
     PassCost perInvocation;
-    perInvocation.bytesRead = 16;
-    perInvocation.bytesWritten = 16;
+    if (asFragments_) {
+        perInvocation.bytesRead = 16;
+        perInvocation.bytesWritten = 16;
+    } else {
+        perInvocation.bytesFixed = flattened * 16;
+    }
     auto t = timers.scope("gather", perInvocation);
+    const double valid =
+        asFragments_ ? gatherAsQuad(frame, program, draws, setupDraw) : gatherAsList(frame, program, draws, setupDraw);
+    PassCost work;
+    work.flopsFixed = valid * draws * perFragment.flops;
+    work.fetchesFixed = valid * draws * perFragment.fetches;
+    work.bytesFixed = valid * draws * (perFragment.bytesRead + perFragment.bytesWritten);
+    if (!asFragments_) work.bytesFixed += valid * (4 + 4 * draws);
+    work.uniformWordsFixed = valid * draws * perFragment.uniformWords;
+    t.addWork(work);
+}
+
+double MultiresGather::gatherAsQuad(Frame& frame, Program& program, int draws,
+                                    const std::function<void(Program&, int)>& setupDraw)
+{
     PassState state = PassState::fullscreen(fbo_, illumination_.width(), illumination_.height());
     state.stencil.test = true;
     state.stencil.func = GL_EQUAL; // only the valid multiresolution fragments (§3.2.1)
@@ -169,59 +182,42 @@ void MultiresGather::gather(Frame& frame, Program& program, PassTimers& timers, 
     // After the draws are issued, so that waiting for the stencil pass's counts stalls nothing queued.
     double valid = 0.0;
     for (int n : fragmentsPerLevel()) valid += n;
-    PassCost work;
-    work.flopsFixed = valid * draws * perFragment.flops;
-    work.fetchesFixed = valid * draws * perFragment.fetches;
-    work.bytesFixed = valid * draws * (perFragment.bytesRead + perFragment.bytesWritten);
-    work.uniformWordsFixed = valid * draws * perFragment.uniformWords;
-    t.addWork(work);
+    return valid;
 }
 
-void MultiresGather::gatherCompute(Frame& frame, Program& program, PassTimers& timers, int draws,
-                                   const std::function<void(Program&, int)>& setupDraw, const PassCost& perFragment)
+double MultiresGather::gatherAsList(Frame& frame, Program& program, int draws,
+                                    const std::function<void(Program&, int)>& setupDraw)
 {
-    const glm::ivec2 size(illumination_.width(), illumination_.height());
+    const int width = illumination_.width(), height = illumination_.height();
     if (!validList_.id()) {
-        validList_ = Buffer("multires.validList", sizeof(unsigned) * (1 + std::size_t(size.x) * std::size_t(size.y)));
+        validList_ = Buffer("multires.validList", sizeof(unsigned) * (1 + std::size_t(width) * std::size_t(height)));
         validListProgram_ = Program::compute("multires.validList", "technique/isr/multires_valid_list.comp");
     }
-    // The list: one read of every texel's marks; then per valid fragment and dispatch its entry, and its
-    // texel read and written (below, with the walk's own work). Invocations past the list do nothing.
-    const double flattened = double(size.x) * size.y;
-    PassCost fixed;
-    fixed.bytesFixed = flattened * 16;
-    auto t = timers.scope("gather", fixed);
     // The stencil pass's marks (a framebuffer write) before the list reads them as an image.
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
     validList_.clearToZero();
     validList_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_ISR_VALID_LIST);
     illumination_.bindImage(0, GL_READ_ONLY);
     validListProgram_.use();
-    glDispatchCompute(GLuint((size.x + 7) / 8), GLuint((size.y + 7) / 8), 1);
+    glDispatchCompute(GLuint((width + 7) / 8), GLuint((height + 7) / 8), 1);
     frame.bindGBuffer();
     pyramid_.bind();
     pyramid_.setUniforms(program);
     // The list, and the VPLs and clusters written by compute passes, before the gather reads them.
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_UNIFORM_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     illumination_.bindImage(0, GL_READ_WRITE);
-    // The valid fragments are the stencil pass's counts (the list holds as many); the dispatch covers
-    // the largest list, whose invocations past the count return at once.
-    double valid = 0.0;
-    for (int n : fragmentsPerLevel()) valid += n;
-    const GLuint groups = GLuint(std::max(1.0, std::ceil(flattened / 64.0)));
+    // Each dispatch covers the longest list there can be; invocations past its count return at once.
+    const GLuint groups = GLuint((std::size_t(width) * std::size_t(height) + 63) / 64);
     for (int i = 0; i < draws; ++i) {
         if (setupDraw) setupDraw(program, i);
         program.use();
         glDispatchCompute(groups, 1, 1);
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT); // the next dispatch adds to what this one wrote
     }
-    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT); // the upsampling samples it
-    PassCost work;
-    work.flopsFixed = valid * draws * perFragment.flops;
-    work.fetchesFixed = valid * draws * perFragment.fetches;
-    work.bytesFixed = valid * (4 + draws * (4 + perFragment.bytesRead + perFragment.bytesWritten));
-    work.uniformWordsFixed = valid * draws * perFragment.uniformWords;
-    t.addWork(work);
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT); // the upsampling samples the buffer
+    double valid = 0.0;                            // the list holds as many as the stencil pass counted
+    for (int n : fragmentsPerLevel()) valid += n;
+    return valid;
 }
 
 int MultiresGather::loopBudget()
@@ -248,11 +244,9 @@ void MultiresGather::run(Frame& frame, const Buffer& vpls, int vplCount, PassTim
     cost.fetches = 3;
     cost.bytesRead = 16 + 8 + 8 + 16; // patch texels, blending's read
     cost.bytesWritten = 16;
-    const auto blockOfDraw = [&](Program& p, int block) { p.set("vplCount", bindVplBlock(vpls, block, vplCount)); };
-    if (asFragments_)
-        gather(frame, cacheGather_, timers, draws, blockOfDraw, cost);
-    else
-        gatherCompute(frame, cacheGather_, timers, draws, blockOfDraw, cost);
+    gather(
+        frame, cacheGather_, timers, draws,
+        [&](Program& p, int block) { p.set("vplCount", bindVplBlock(vpls, block, vplCount)); }, cost);
     upsample(frame, timers);
 }
 

@@ -56,7 +56,8 @@ public:
     void run(Frame& frame, const Buffer& vpls, int vplCount, PassTimers& timers);
 
     // The same passes one by one, for gathers other than the VPL cache (hisr's VPL tree): the program
-    // given to gather() is made by gatherProgram() from a fragment shader that includes common/multires.glsl.
+    // given to gather() is made by gatherProgram() from a fragment shader and a compute shader that run
+    // the same sum (common/multires.glsl; the compute one through technique/isr/valid_list.glsl).
     void buildPyramid(Frame& frame, PassTimers& timers);
     // The eye-space thresholds of multiresSettingsFrom(values), applied from the next frame on.
     void setThresholds(const ParamValues& values)
@@ -68,14 +69,11 @@ public:
     // before draw i: gathers are split into blocks of the VPL cache (vpl_gather.h) or ranges of top
     // patches of the VPL tree (see loopBudget()).
     // perFragment: what one fragment of one draw does (PassCost), for the pass's bound.
+    // As a compute pass (gatherAsFragments() false) the valid fragments are first listed from the stencil
+    // pass's marks (multires_valid_list.comp), then `program` is dispatched over the list `draws` times,
+    // each invocation adding into its fragment's rgb: the same fragments get the same light.
     void gather(Frame& frame, Program& program, PassTimers& timers, int draws = 1,
                 const std::function<void(Program&, int)>& setupDraw = {}, const PassCost& perFragment = {});
-    // The same gather as a compute pass ("gather" too): the valid fragments listed from the stencil pass's
-    // marks (multires_valid_list.comp), then `program` (made by gatherComputeProgram()) dispatched over
-    // the list `draws` times, each invocation adding into its fragment's rgb. The same fragments get the
-    // same light; which form runs is gatherAsFragments().
-    void gatherCompute(Frame& frame, Program& program, PassTimers& timers, int draws = 1,
-                       const std::function<void(Program&, int)>& setupDraw = {}, const PassCost& perFragment = {});
     // Which form of the gather to run: the paper's stenciled quad on a software rasteriser, where fragment
     // work is as fast as compute work, and a compute pass elsewhere: a GPU may shade fragments on a small
     // part of its units (an NVIDIA H100: graphics in 2 of 66 TPCs; bounce probe read 1.8 TFLOP/s in a
@@ -95,10 +93,9 @@ public:
     // loop iterations in total (gallivm's loop limiter, shared by all loops of a shader), so there long
     // gathers are split over several draws; unlimited elsewhere.
     static int loopBudget();
-    static Program gatherProgram(const std::string& label, const std::string& fragmentPath,
-                                 const std::vector<Define>& defines = {});
-    static Program gatherComputeProgram(const std::string& label, const std::string& computePath,
-                                        const std::vector<Define>& defines = {});
+    // The gather's program in this gather's form: the fragment shader or the compute shader.
+    Program gatherProgram(const std::string& label, const std::string& fragmentPath, const std::string& computePath,
+                          const std::vector<Define>& defines = {}) const;
 
     const MultiresSettings& settings() const { return pyramid_.settings(); }
     const MultiresPyramid& pyramid() const { return pyramid_; }
@@ -129,6 +126,9 @@ private:
     // Draws a full-screen triangle clipped to each level's rectangle of the flattened buffer, with the
     // level in the program's drawLevel uniform; perLevel(level) runs before the level's draw.
     void drawLevels(Program& program, PassState state, const std::function<void(int)>& perLevel = {});
+    // gather()'s two forms; each returns the valid fragments the stencil pass counted.
+    double gatherAsQuad(Frame& frame, Program& program, int draws, const std::function<void(Program&, int)>& setupDraw);
+    double gatherAsList(Frame& frame, Program& program, int draws, const std::function<void(Program&, int)>& setupDraw);
     bool asFragments_;
     Program stencilSetup_, cacheGather_; // cacheGather_: the fragment or the compute form
     // [NW09]'s path, allocated on the first refine(): work lists, counters, the splat vertices.
