@@ -70,14 +70,6 @@ std::vector<bool> emitterMask(const core::Image& emission, int width, int height
     return mask;
 }
 
-// Sets the masked pixels to 0 (black: no error there, no weight in the reference's mean).
-core::Image blanked(core::Image image, const std::vector<bool>& mask)
-{
-    for (std::size_t i = 0; i < mask.size(); ++i)
-        if (mask[i]) image.rgb[3 * i] = image.rgb[3 * i + 1] = image.rgb[3 * i + 2] = 0.0f;
-    return image;
-}
-
 std::string passesText(const nlohmann::json& passes)
 {
     std::string text;
@@ -116,8 +108,8 @@ double errorAgainstFull(const BenchConfig& config, const std::string& sceneName,
     if (!cache.references.count(key))
         cache.references[key] = referenceImage(scene, sceneName, "full", rw, rh, config.reference);
     const std::vector<bool> emitters = emitterMask(r.frame().readEmission(), rw, rh);
-    return core::relativeRmse(blanked(core::boxDownsample(r.image(), rw, rh), emitters),
-                              blanked(cache.references[key], emitters));
+    return core::relativeRmse(core::blanked(core::boxDownsample(r.image(), rw, rh), emitters),
+                              core::blanked(cache.references[key], emitters));
 }
 
 // Error figures against each reference: own light paths, `full`, then compareTo.
@@ -134,7 +126,7 @@ void compareWithReferences(const BenchConfig& config, const std::string& sceneNa
     std::vector<bool> emitters;
     try {
         emitters = emitterMask(r.frame().readEmission(), rw, rh);
-        compared = blanked(core::boxDownsample(r.image(), rw, rh), emitters);
+        compared = core::blanked(core::boxDownsample(r.image(), rw, rh), emitters);
     } catch (const std::invalid_argument& e) {
         throw UsageError(std::string("bench config: the reference size must divide every run's size: ") + e.what());
     }
@@ -142,7 +134,7 @@ void compareWithReferences(const BenchConfig& config, const std::string& sceneNa
         const std::string key = paths + "@" + std::to_string(rw) + "x" + std::to_string(rh);
         if (!cache.references.count(key))
             cache.references[key] = referenceImage(scene, sceneName, paths, rw, rh, config.reference);
-        const core::ImageMetrics m = core::compareImages(compared, blanked(cache.references[key], emitters));
+        const core::ImageMetrics m = core::compareImages(compared, core::blanked(cache.references[key], emitters));
         row.record["error"][paths] = {
             {"rmse", m.rmse}, {"relativeRmse", m.relativeRmse}, {"relativeMse", m.relativeMse}, {"mae", m.mae},
             {"ssim", m.ssim}, {"maxError", m.maxError}};
@@ -270,7 +262,7 @@ std::vector<BenchRow> pathTracerCurve(const BenchConfig& config, const std::stri
         row.totalMs = res.seconds * 1000.0;
         const std::vector<bool> emitters = emitterMaskOf(scene, w, h);
         const core::ImageMetrics m =
-            core::compareImages(blanked(res.image, emitters), blanked(cache.references[key], emitters));
+            core::compareImages(core::blanked(res.image, emitters), core::blanked(cache.references[key], emitters));
         row.relRmseFull = row.relRmseOwn = m.relativeRmse;
         row.rmseOwn = m.rmse;
         row.ssimOwn = m.ssim;

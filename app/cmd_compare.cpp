@@ -1,5 +1,6 @@
 // bounce compare: the error figures of an image against a reference (core/metrics.h), optionally with
 // an error heat map and a JSON record.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -17,14 +18,21 @@ namespace bounce::app {
 namespace {
 
 const char* kUsage =
-    "usage: bounce compare IMAGE REFERENCE [--heatmap FILE] [--json FILE]\n"
+    "usage: bounce compare IMAGE REFERENCE [--block N] [--mask-above L] [--heatmap FILE] [--json FILE]\n"
     "\n"
-    "Error figures of IMAGE against REFERENCE (.exr or .pfm, same size), over the RGB values of every\n"
+    "Error figures of IMAGE against REFERENCE (.exr or .pfm; IMAGE the same size or an integer multiple of\n"
+    "it, then box-filtered down to it first), over the RGB values of every\n"
     "pixel: RMSE, relative RMSE (RMSE / mean of the reference), relative MSE (mean (a-r)^2 / (r^2 + 0.01)),\n"
     "mean absolute error, max error and SSIM of the luminance (11x11 Gaussian window, sigma 1.5, dynamic\n"
     "range = the 99th percentile of the reference's luminance). NaN/Inf values are counted and reported;\n"
     "any of them makes every error figure infinite, SSIM 0, and the exit status 1.\n"
     "\n"
+    "  --block    compare the means of NxN-pixel blocks (at the reference's size; N divides it) instead of\n"
+    "             pixels: what is left is shading error, not where a sample fell inside a pixel   [1]\n"
+    "  --mask-above\n"
+    "             leave out the blocks that hold a reference pixel of luminance above L or touch one\n"
+    "             (a visible emitter, whose edges alias against any box-filtered reference); the\n"
+    "             figures then cover the remaining blocks, both images black in the masked ones\n"
     "  --heatmap  write the per-pixel relative error as a colour ramp (.png, or .exr/.pfm): black <= 0.01%,\n"
     "             blue 0.1%, cyan, green 3%, yellow, red 100%, white >= 1000%; magenta = NaN/Inf\n"
     "  --json     write the figures as JSON\n";
@@ -48,7 +56,7 @@ nlohmann::json number(double v)
 
 int cmdCompare(const Args& args)
 {
-    const Options o(args, {{"heatmap"}, {"json"}}, kUsage);
+    const Options o(args, {{"heatmap"}, {"json"}, {"block"}, {"mask-above"}}, kUsage);
     if (o.helpRequested()) {
         std::fputs(kUsage, stdout);
         return 0;
@@ -70,14 +78,36 @@ int cmdCompare(const Args& args)
     } catch (const core::ImageError& e) {
         throw UsageError(e.what());
     }
-    if (a.width != b.width || a.height != b.height)
-        throw UsageError("the images differ in size: " + pathA + " is " + std::to_string(a.width) + "x" +
-                         std::to_string(a.height) + ", " + pathB + " is " + std::to_string(b.width) + "x" +
-                         std::to_string(b.height) + "; compare images of the same size");
+
+    if (a.width != b.width || a.height != b.height) {
+        if (a.width % b.width != 0 || a.height % b.height != 0 || a.width / b.width != a.height / b.height)
+            throw UsageError("the images differ in size: " + pathA + " is " + std::to_string(a.width) + "x" +
+                             std::to_string(a.height) + ", " + pathB + " is " + std::to_string(b.width) + "x" +
+                             std::to_string(b.height) +
+                             "; compare images of the same size or an image an integer multiple of the reference");
+        a = core::boxDownsample(a, b.width, b.height);
+    }
+    const int block = o.getInt("block", 1, 1, std::min(b.width, b.height));
+    if (b.width % block != 0 || b.height % block != 0)
+        throw UsageError("--block " + std::to_string(block) + " does not divide the reference's size " +
+                         std::to_string(b.width) + "x" + std::to_string(b.height));
+    std::size_t masked = 0;
+    if (o.has("mask-above")) {
+        const double limit = o.getDouble("mask-above", 1.0, 0.0, 1e30);
+        const std::vector<bool> mask = core::blocksAbove(b, block, float(limit));
+        a = core::blanked(core::boxDownsample(a, b.width / block, b.height / block), mask);
+        b = core::blanked(core::boxDownsample(b, b.width / block, b.height / block), mask);
+        masked = std::size_t(std::count(mask.begin(), mask.end(), true));
+    } else if (block > 1) {
+        a = core::boxDownsample(a, b.width / block, b.height / block);
+        b = core::boxDownsample(b, b.width / block, b.height / block);
+    }
 
     const core::ImageMetrics m = core::compareImages(a, b);
     std::printf("image:          %s\n", pathA.c_str());
-    std::printf("reference:      %s (%dx%d)\n", pathB.c_str(), m.width, m.height);
+    std::printf("reference:      %s\n", pathB.c_str());
+    std::printf("compared:       %dx%d %s, %zu masked\n", m.width, m.height, block > 1 ? "block means" : "pixels",
+                masked);
     std::printf("RMSE:           %s\n", fmt(m.rmse).c_str());
     std::printf("relative RMSE:  %s\n", fmt(m.relativeRmse).c_str());
     std::printf("relative MSE:   %s\n", fmt(m.relativeMse).c_str());
@@ -100,6 +130,8 @@ int cmdCompare(const Args& args)
         j["reference"] = pathB;
         j["width"] = m.width;
         j["height"] = m.height;
+        j["block"] = block;
+        j["maskedBlocks"] = masked;
         j["rmse"] = number(m.rmse);
         j["relativeRmse"] = number(m.relativeRmse);
         j["relativeMse"] = number(m.relativeMse);

@@ -274,4 +274,27 @@ Image errorHeatmap(const Image& a, const Image& reference)
     return out;
 }
 
+std::vector<bool> blocksAbove(const Image& image, int block, float limit)
+{
+    const int w = image.width / block, h = image.height / block;
+    std::vector<bool> above(std::size_t(w) * std::size_t(h), false), mask(above.size(), false);
+    for (int y = 0; y < h * block; ++y)
+        for (int x = 0; x < w * block; ++x)
+            if (luminance(image.at(x, y)) > limit) above[std::size_t(y / block) * w + std::size_t(x / block)] = true;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            if (!above[std::size_t(y) * w + x]) continue;
+            for (int j = std::max(y - 1, 0); j <= std::min(y + 1, h - 1); ++j)
+                for (int i = std::max(x - 1, 0); i <= std::min(x + 1, w - 1); ++i) mask[std::size_t(j) * w + i] = true;
+        }
+    return mask;
+}
+
+Image blanked(Image image, const std::vector<bool>& mask)
+{
+    for (std::size_t i = 0; i < mask.size(); ++i)
+        if (mask[i]) image.rgb[3 * i] = image.rgb[3 * i + 1] = image.rgb[3 * i + 2] = 0.0f;
+    return image;
+}
+
 } // namespace bounce::core

@@ -69,6 +69,13 @@ double ssim(const Image& a, const Image& reference);
 // same cost carry less noise per pixel (bounce bench's "reference": {"size": ...}).
 Image boxDownsample(const Image& image, int width, int height);
 
+// Which blocks of block x block pixels of `image` (row-major over the (width / block) x (height / block)
+// blocks) hold a pixel of luminance above `limit`, or touch such a block: a visible emitter, left out of
+// the error figures because its edges alias against any box-filtered reference.
+std::vector<bool> blocksAbove(const Image& image, int block, float limit);
+// The image with the pixels where mask is true set to black (no error there, no weight in the mean).
+Image blanked(Image image, const std::vector<bool>& mask);
+
 // Per-pixel relative error e = sum_c |a_c - r_c| / (sum_c r_c + eps), eps = 1% of the reference's mean
 // of sum_c r_c (1e-6 if that is 0, so black regions only light up where a is not black), on a colour
 // ramp linear in log10(e): black at or below 1e-4, blue at 1e-3 (0.1%), cyan at 10^-2.25, green at
