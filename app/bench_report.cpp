@@ -29,14 +29,14 @@ std::string csvText(const BenchConfig& config, const std::vector<BenchRow>& rows
     csv << "scene,technique,params,size,light_paths,total_ms,rel_rmse_own,rel_rmse_full,rmse_own,ssim_own,baseline,"
            "rel_rmse_baseline,flicker,nonfinite_values,passes";
     for (const std::string& p : config.compareTo) csv << ",rel_rmse_" << p;
-    csv << "\n";
+    csv << ",rel_rmse_direct_light\n";
     for (const BenchRow& r : rows) {
         csv << csvField(r.scene) << "," << r.technique << "," << csvField(r.settings) << "," << r.size << ","
             << r.lightPaths << "," << r.totalMs << "," << r.relRmseOwn << "," << r.relRmseFull << "," << r.rmseOwn
             << "," << r.ssimOwn << "," << csvField(r.baseline) << "," << r.relRmseBaseline << "," << r.flicker << ","
             << r.nonFiniteValues << "," << csvField(r.passes);
         for (double v : r.relRmseCompareTo) csv << "," << v;
-        csv << "\n";
+        csv << "," << r.relRmseDirectLight << "\n";
     }
     return csv.str();
 }
@@ -66,8 +66,13 @@ void tableRow(std::ostringstream& md, const nlohmann::json& rec, const std::vect
         std::snprintf(buf, sizeof buf, " %.4f |", rec["error"][p]["relativeRmse"].get<double>());
         md << buf;
     }
-    std::snprintf(buf, sizeof buf, " %.4f | %s | %s |\n", rec["error"][lp]["ssim"].get<double>(), baseline.c_str(),
-                  flicker.c_str());
+    std::string directLight = "-";
+    if (rec["error"].contains("directLight")) {
+        std::snprintf(buf, sizeof buf, "%.4f", rec["error"]["directLight"]["relativeRmse"].get<double>());
+        directLight = buf;
+    }
+    std::snprintf(buf, sizeof buf, " %s | %.4f | %s | %s |\n", directLight.c_str(),
+                  rec["error"][lp]["ssim"].get<double>(), baseline.c_str(), flicker.c_str());
     md << buf;
 }
 
@@ -170,9 +175,11 @@ std::string markdownText(const BenchConfig& config, const std::vector<BenchRow>&
         md << "## " << sceneName
            << "\n\n| technique | parameters | size | light paths | ms | rel. RMSE (own) | rel. RMSE (full) |";
         for (const std::string& p : config.compareTo) md << " rel. RMSE (" << p << ") |";
-        md << " SSIM (own) | rel. RMSE vs baseline (indirect) | flicker |\n|---|---|---|---|---:|---:|---:|";
+        md << " rel. RMSE of the frame's direct light (direct) | SSIM (own) | rel. RMSE vs baseline (indirect) | "
+              "flicker "
+              "|\n|---|---|---|---|---:|---:|---:|";
         for (std::size_t i = 0; i < config.compareTo.size(); ++i) md << "---:|";
-        md << "---:|---|---:|\n";
+        md << "---:|---:|---|---:|\n";
         for (const nlohmann::json* rec : recs) tableRow(md, *rec, config.compareTo);
         md << "\n### per-pass GPU ms\n\n";
         passTable(md, recs);

@@ -86,6 +86,7 @@ std::string passesText(const nlohmann::json& passes)
 // settings and size (e.g. rsm-full at 1024^2: minutes per frame, rendered once per sweep).
 struct SceneCache {
     std::map<std::string, core::Image> references, baselines;
+    std::map<std::string, double> directLight; // by frame parameters, size and frame count
 };
 
 // The emitter mask of a scene seen from its camera at w x h (the `direct` frame's emission channel).
@@ -149,6 +150,29 @@ void compareWithReferences(const BenchConfig& config, const std::string& sceneNa
         row.relRmseCompareTo.push_back(row.record["error"][p]["relativeRmse"].get<double>());
 }
 
+// The frame's direct light under the run's frame parameters, rendered as many frames as the run (so with
+// the same still frames), against the `direct` reference at the reference's size, emitters left out.
+void directLightError(const BenchConfig& config, const std::string& sceneName, const core::Scene& scene,
+                      const gl::ParamValues& frameValues, int w, int h, int frames, SceneCache& cache, BenchRow& row)
+{
+    const int rw = config.reference.width > 0 ? config.reference.width : w;
+    const int rh = config.reference.height > 0 ? config.reference.height : h;
+    const std::string key =
+        frameValues.toJson(gl::frameParams()).dump() + "@" + row.size + "x" + std::to_string(frames);
+    if (!cache.directLight.count(key)) {
+        gl::Renderer d(scene, "direct", frameValues, gl::ParamValues(gl::findTechnique("direct").params), w, h);
+        for (int i = 0; i < frames; ++i) d.renderFrame(false);
+        const std::string refKey = "direct@" + std::to_string(rw) + "x" + std::to_string(rh);
+        if (!cache.references.count(refKey))
+            cache.references[refKey] = referenceImage(scene, sceneName, "direct", rw, rh, config.reference);
+        const std::vector<bool> emitters = emitterMask(d.frame().readEmission(), rw, rh);
+        cache.directLight[key] = core::relativeRmse(core::blanked(core::boxDownsample(d.image(), rw, rh), emitters),
+                                                    core::blanked(cache.references[refKey], emitters));
+    }
+    row.relRmseDirectLight = cache.directLight[key];
+    row.record["error"]["directLight"] = {{"relativeRmse", row.relRmseDirectLight}};
+}
+
 // Relative RMSE of the indirect light against the setting's baseline technique: the quantity the two
 // gathers compute differently.
 void compareWithBaseline(const BenchSetting& s, const core::Scene& scene, gl::Renderer& r, int w, int h,
@@ -179,8 +203,10 @@ void markNonFinite(BenchRow& row)
     row.relRmseOwn = row.relRmseFull = row.rmseOwn = inf;
     row.ssimOwn = 0.0;
     for (double& v : row.relRmseCompareTo) v = inf;
-    for (auto& [paths, figures] : row.record["error"].items())
+    for (auto& [paths, figures] : row.record["error"].items()) {
+        if (paths == "directLight") continue; // a render of its own, `direct`'s
         for (auto& [name, value] : figures.items()) value = name == "ssim" ? 0.0 : inf;
+    }
     if (!row.baseline.empty()) row.record["baseline"]["relativeRmseIndirect"] = row.relRmseBaseline = inf;
     if (row.record.contains("temporal")) row.record["temporal"]["meanFrameDifference"] = row.flicker = inf;
 }
@@ -216,11 +242,13 @@ BenchRow runSetting(const BenchConfig& config, const BenchSetting& s, const std:
     row.size = std::to_string(w) + "x" + std::to_string(h);
     row.lightPaths = core::lightPathsName(info.lightPaths);
     row.relRmseOwn = row.relRmseFull = row.rmseOwn = row.ssimOwn = row.relRmseBaseline = row.flicker = NAN;
+    row.relRmseDirectLight = NAN;
     row.record = runRecord(context, sceneName, r);
     row.record["settings"] = row.settings;
     row.passes = passesText(row.record["passes"]);
     row.totalMs = row.record["totalMs"].get<double>();
     compareWithReferences(config, sceneName, scene, r, w, h, cache, row);
+    directLightError(config, sceneName, scene, f, w, h, config.warmupOf(s) + config.framesOf(s), cache, row);
     if (!s.baseline.empty()) compareWithBaseline(s, scene, r, w, h, cache, row);
     if (s.temporalFrames > 0) {
         row.flicker = temporalFlicker(scene, r, s.temporalFrames);
@@ -266,7 +294,7 @@ std::vector<BenchRow> pathTracerCurve(const BenchConfig& config, const std::stri
         row.relRmseFull = row.relRmseOwn = m.relativeRmse;
         row.rmseOwn = m.rmse;
         row.ssimOwn = m.ssim;
-        row.relRmseBaseline = row.flicker = NAN;
+        row.relRmseBaseline = row.flicker = row.relRmseDirectLight = NAN;
         row.relRmseCompareTo.assign(config.compareTo.size(), NAN);
         row.record = {{"scene", sceneName},
                       {"technique", "path-tracer"},

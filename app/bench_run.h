@@ -22,6 +22,9 @@ struct BenchRow {
     double totalMs = 0.0;
     double relRmseOwn = 0.0, relRmseFull = 0.0, rmseOwn = 0.0, ssimOwn = 0.0;
     double relRmseBaseline = 0.0, flicker = 0.0;
+    // The frame's own direct light under the same frame parameters and frame count (`direct` rendered
+    // alike) against the `direct` reference: no technique can be closer to `full` than this lets it be.
+    double relRmseDirectLight = 0.0;
     std::vector<double> relRmseCompareTo; // one per config.compareTo
     // NaN/Inf values in the rendered image: when there are any, every error figure is +inf (SSIM 0), in
     // the CSV, the JSON and the report, whatever the emitter mask or the downsampling would hide.
