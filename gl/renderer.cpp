@@ -2,6 +2,8 @@
 
 #include <stdexcept>
 
+#include "core/sampling.h"
+
 namespace bounce::gl {
 
 Renderer::Renderer(const core::Scene& scene, const std::string& technique, const ParamValues& frameValues,
@@ -38,6 +40,7 @@ bool Renderer::setTechniqueValues(const ParamValues& techniqueValues)
     }
     techniqueValues_ = techniqueValues;
     technique_->setUniforms(techniqueValues_);
+    stillReady_ = false;
     return false;
 }
 
@@ -51,6 +54,7 @@ void Renderer::make(const TechniqueInfo& info, const ParamValues& techniqueValue
     coarse_.reset();
     coarseTechnique_.reset();
     timers_.clear();
+    stillReady_ = false;
 }
 
 void Renderer::setIndirectScale(int scale)
@@ -59,6 +63,21 @@ void Renderer::setIndirectScale(int scale)
     indirectScale_ = scale;
     coarse_.reset();
     coarseTechnique_.reset();
+    stillReady_ = false;
+}
+
+glm::vec2 Renderer::stillJitter(int index)
+{
+    return glm::vec2(float(core::halton(0, std::uint64_t(index))), float(core::halton(1, std::uint64_t(index)))) - 0.5f;
+}
+
+void Renderer::advanceStill()
+{
+    const bool still = frame_->settings().accumulate && stillReady_ && frame_->version() == stillVersion_;
+    stillIndex_ = still ? stillIndex_ + 1 : 0;
+    stillVersion_ = frame_->version();
+    stillReady_ = true;
+    frame_->setStill(stillIndex_, stillIndex_ > 0 ? stillJitter(stillIndex_) : glm::vec2(0.0f));
 }
 
 void Renderer::renderCoarseIndirect()
@@ -94,6 +113,7 @@ void Renderer::renderFrame(bool keepTimings)
 {
     // Techniques size their buffers from the frame: a resized frame gets a technique made anew.
     if (frame_->width() != techniqueWidth_ || frame_->height() != techniqueHeight_) make(*info_, techniqueValues_);
+    advanceStill();
     frame_->beginFrame();
     frame_->renderShadowMaps(timers_);
     frame_->renderGBuffer(timers_);
@@ -105,6 +125,7 @@ void Renderer::renderFrame(bool keepTimings)
         technique_->render(*frame_, timers_);
     // A technique that claims only direct light adds nothing: no composite pass, the result is the direct light.
     frame_->composite(timers_, info_->lightPaths != core::LightPaths::Direct);
+    frame_->accumulate(timers_, info_->progressive);
     timers_.endFrame(keepTimings);
 }
 

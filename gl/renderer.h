@@ -29,8 +29,22 @@ public:
     // when it was made anew.
     bool setTechniqueValues(const ParamValues& techniqueValues);
     // Progressive techniques: start accumulating again (warm-up frames are not accumulation steps).
-    void restartAccumulation() { technique_->restart(); }
+    void restartAccumulation()
+    {
+        technique_->restart();
+        stillReady_ = false;
+    }
     int accumulatedSteps() const { return technique_->accumulatedSteps(); }
+
+    // Still frames (frame parameter `accumulate`): while the frame's version (scene, lights, camera) and the
+    // technique hold, each frame samples its pixels at another Halton (2, 3) point inside the pixel and
+    // result() is the mean of the frames since the view was last changed (Frame::accumulate), which
+    // converges to the box-filtered pixels the path tracer computes. The count of those frames (0 while
+    // the view moves: nothing is averaged, nothing is jittered).
+    int stillFrames() const { return stillIndex_; }
+    // Still frame i's sub-pixel offset (pixels, each component in [-0.5, 0.5)): Halton (2, 3) point i
+    // less the centre, so that the offsets are stratified over the pixel for any count of frames.
+    static glm::vec2 stillJitter(int index);
 
     // Indirect light at 1/scale of the frame's resolution (the demo's frame budget while the camera or a
     // light moves): the technique runs on a coarse frame of ceil(w/scale) x ceil(h/scale) with the same
@@ -67,6 +81,10 @@ private:
     std::unique_ptr<JointUpsample> upsample_;
     std::uint64_t coarseLights_ = 0; // the full frame's lights version the coarse frame has
     void renderCoarseIndirect();
+    int stillIndex_ = 0;
+    bool stillReady_ = false; // the last frame's version below is comparable (no technique change since)
+    FrameVersion stillVersion_;
+    void advanceStill();
 };
 
 } // namespace bounce::gl

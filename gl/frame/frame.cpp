@@ -1,8 +1,12 @@
 #include "gl/frame/frame.h"
 
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "core/sampling.h"
 #include "gl/frame/bindings.h"
 #include "gl/frame/frame_budget.h"
 #include "gl/gl.h"
+#include "gl/resource/dispatch.h"
 #include "gl/resource/pass_state.h"
 
 namespace bounce::gl {
@@ -24,12 +28,17 @@ std::vector<Define> sceneDefines(const core::Scene& scene, const GpuScene& gpu)
 // The direct-light program for the kinds of light the scene has: a loop over a kind the scene lacks
 // still costs a masked pass through its body on a SIMD rasteriser (llvmpipe), the polygon form factor
 // of the emitting triangles most of all (glsl/common/lighting.glsl).
-Program directProgram(const core::Scene& scene, const GpuScene& gpu)
+// sampledArea: the still frames' program (AREA_SAMPLED), for scenes with area lights only.
+Program directProgram(const core::Scene& scene, const GpuScene& gpu, bool sampledArea = false)
 {
     std::vector<Define> kinds = sceneDefines(scene, gpu);
+    const bool area = int(gpu.lights().size()) > gpu.punctualLightCount();
+    if (sampledArea && !area) return Program();
     if (gpu.punctualLightCount() > 0) kinds.push_back({"PUNCTUAL_LIGHTS", "1"});
-    if (int(gpu.lights().size()) > gpu.punctualLightCount()) kinds.push_back({"AREA_LIGHTS", "1"});
-    return Program::graphics("direct", "frame/fullscreen.vert", "frame/direct.frag", kinds);
+    if (area) kinds.push_back({"AREA_LIGHTS", "1"});
+    if (sampledArea) kinds.push_back({"AREA_SAMPLED", "1"});
+    return Program::graphics(sampledArea ? "direct.sampled" : "direct", "frame/fullscreen.vert", "frame/direct.frag",
+                             kinds);
 }
 
 SceneProgram gbufferProgram(const core::Scene& scene, const GpuScene& gpu, const FrameSettings& settings)
@@ -54,14 +63,17 @@ Frame::Frame(const core::Scene& scene, const FrameSettings& settings)
       settings_(settings),
       camera_(scene.camera),
       gpu_(scene, settings.textureSize),
-      shadows_(gpu_, settings.shadowMapSize),
+      shadows_(gpu_, settings.shadowMapSize, settings.shadowCascades),
       gbufferFbo_("gbuffer.fbo"),
       directFbo_("direct.fbo"),
       compositeFbo_("composite.fbo"),
       emptyVao_("fullscreen"),
       gbufferProgram_(gbufferProgram(scene, gpu_, settings)),
       directProgram_(directProgram(scene, gpu_)),
-      compositeProgram_(Program::graphics("composite", "frame/fullscreen.vert", "frame/composite.frag"))
+      directSampledProgram_(directProgram(scene, gpu_, true)),
+      compositeProgram_(Program::graphics("composite", "frame/fullscreen.vert", "frame/composite.frag")),
+      accumulateProgram_(Program::compute("accumulate", "frame/accumulate.comp")),
+      accumulateDirectProgram_(Program::compute("accumulate.direct", "frame/accumulate.comp", {{"ADD_INDIRECT", "1"}}))
 {
     shadows_.setPcf(settings.pcfLinear);
     allocateTargets();
@@ -101,6 +113,8 @@ void Frame::allocateTargets()
     directFbo_.checkComplete();
     compositeFbo_.attach(GL_COLOR_ATTACHMENT0, composite_);
     compositeFbo_.checkComplete();
+    accumulated_ = Texture();
+    accumulatedResult_ = false;
     clearIndirect();
 }
 
@@ -121,7 +135,10 @@ void Frame::setLights(const std::vector<core::Light>& lights)
     gpu_.setLights(lights);
     shadows_.update(gpu_);
     ++version_.lights;
-    if ((punctualBefore > 0) != (gpu_.punctualLightCount() > 0)) directProgram_ = directProgram(scene_, gpu_);
+    if ((punctualBefore > 0) != (gpu_.punctualLightCount() > 0)) {
+        directProgram_ = directProgram(scene_, gpu_);
+        directSampledProgram_ = directProgram(scene_, gpu_, true);
+    }
 }
 
 void Frame::resize(int width, int height)
@@ -136,6 +153,47 @@ void Frame::resize(int width, int height)
 void Frame::beginFrame()
 {
     ++frameIndex_;
+    accumulatedResult_ = false;
+}
+
+glm::mat4 Frame::projection() const
+{
+    const glm::mat4 p = camera_.projection(float(settings_.width) / float(settings_.height));
+    if (jitter_ == glm::vec2(0.0f)) return p;
+    // Shifting NDC by -2 j / size puts the point that was at pixel centre + j onto the pixel centre.
+    const glm::vec3 shift(-2.0f * jitter_.x / float(settings_.width), -2.0f * jitter_.y / float(settings_.height),
+                          0.0f);
+    return glm::translate(glm::mat4(1.0f), shift) * p;
+}
+
+void Frame::setStill(int index, glm::vec2 jitterPixels)
+{
+    stillFrame_ = index;
+    jitter_ = jitterPixels;
+}
+
+void Frame::accumulate(PassTimers& timers, bool progressive)
+{
+    if (stillFrame_ < 1) return;
+    if (!accumulated_) accumulated_ = Texture::create2D("accumulated", GL_RGBA32F, settings_.width, settings_.height);
+    PassCost cost;
+    cost.flops = 8;
+    cost.fetches = progressive ? 2 : 1;
+    cost.bytesRead = progressive ? 48 : 32;
+    cost.bytesWritten = progressive ? 32 : 16;
+    auto t = timers.scope("accumulate", cost);
+    Program& program = progressive ? accumulateDirectProgram_ : accumulateProgram_;
+    (progressive ? direct_ : result()).bind(UNIT_COMPOSITE_DIRECT);
+    accumulated_.bindImage(0, GL_READ_WRITE);
+    if (progressive) {
+        indirect_.bind(UNIT_COMPOSITE_INDIRECT);
+        composite_.bindImage(1, GL_WRITE_ONLY);
+        compositeUsed_ = true;
+    }
+    program.set("stillFrame", stillFrame_);
+    dispatchCompute(program, glm::ivec3(settings_.width, settings_.height, 1), glm::ivec3(8, 8, 1));
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
+    accumulatedResult_ = !progressive;
 }
 
 // What the frame's passes do per invocation (PassCost, timer.h), counted from their shaders. Bytes are
@@ -159,6 +217,8 @@ PassCost shadowCost(const GpuScene& scene, const ShadowMaps& shadows)
 
 void Frame::renderShadowMaps(PassTimers& timers)
 {
+    shadows_.fitTo(camera_, float(settings_.width) / float(settings_.height));
+    shadows_.setStill(stillFrame_);
     auto t = timers.scope("shadow", shadowCost(gpu_, shadows_));
     shadows_.render(gpu_);
 }
@@ -190,12 +250,12 @@ void Frame::renderGBuffer(PassTimers& timers)
     glClearNamedFramebufferfi(gbufferFbo_.id(), GL_DEPTH_STENCIL, 0, 1.0f, 0);
     gbufferProgram_.set("viewProj", projection() * view());
     gbufferProgram_.set("view", view());
-    // The eye-space ray through pixel centre c (gl_FragCoord.xy) is ((2 c / size - 1) / diag(P), -1): the
-    // same ray updateGBufferCamera gives in world space.
+    // The eye-space ray through pixel centre c (gl_FragCoord.xy) is ((2 c / size - 1 + P[2].xy) / diag(P), -1)
+    // (P[2].xy: the still frame's jitter): the same ray updateGBufferCamera gives in world space.
     const glm::mat4 p = projection();
     gbufferProgram_.set("eyeRay",
                         glm::vec4(2.0f / (float(settings_.width) * p[0][0]), 2.0f / (float(settings_.height) * p[1][1]),
-                                  -1.0f / p[0][0], -1.0f / p[1][1]));
+                                  (p[2][0] - 1.0f) / p[0][0], (p[2][1] - 1.0f) / p[1][1]));
     gpu_.materials().bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_MATERIALS);
     gpu_.baseColorTextures().bind(UNIT_BASE_COLOR);
     gbufferProgram_.draw(gpu_);
@@ -209,9 +269,11 @@ void Frame::updateGBufferCamera()
     const glm::vec3 right(v[0][0], v[1][0], v[2][0]), up(v[0][1], v[1][1], v[2][1]);
     const glm::vec3 forward = -glm::vec3(v[0][2], v[1][2], v[2][2]);
     const glm::vec3 x = right / p[0][0], y = up / p[1][1]; // half the image, one metre ahead
+    // NDC (u, v) is the eye direction forward + (u + P[2][0]) x + (v + P[2][1]) y: the jitter's offset
+    // (projection()) is in P[2][0] and P[2][1], zero without it.
     GBufferCamera c;
     c.origin = glm::vec4(camera_.position, 1.0f);
-    c.corner = glm::vec4(forward - x - y, 0.0f);
+    c.corner = glm::vec4(forward + (p[2][0] - 1.0f) * x + (p[2][1] - 1.0f) * y, 0.0f);
     c.axisX = glm::vec4(2.0f * x / float(settings_.width), 0.0f);
     c.axisY = glm::vec4(2.0f * y / float(settings_.height), 0.0f);
     c.present = glm::ivec4(specular_ ? 1 : 0, emission_ ? 1 : 0, 0, 0);
@@ -262,11 +324,18 @@ void Frame::renderDirect(PassTimers& timers)
     PassState::fullscreen(directFbo_, settings_.width, settings_.height).apply();
     bindGBuffer();
     bindSceneData();
-    directProgram_.set("cameraPosition", camera_.position);
-    directProgram_.set("punctualLightCount", gpu_.punctualLightCount());
-    directProgram_.set("lightCount", shadows_.lightCount());
-    shadows_.setPcfUniforms(directProgram_, settings_.pcfRadius);
-    directProgram_.use();
+    const bool sampled = shadows_.stillFrame() > 0 && directSampledProgram_;
+    Program& program = sampled ? directSampledProgram_ : directProgram_;
+    if (sampled) {
+        // Halton dimensions 6 and 7: the glossy lobe's points, independent of the jitter and the sample point.
+        const auto s = std::uint64_t(shadows_.stillFrame());
+        program.set("areaRotation", glm::vec2(float(core::halton(6, s)), float(core::halton(7, s))));
+    }
+    program.set("cameraPosition", camera_.position);
+    program.set("punctualLightCount", gpu_.punctualLightCount());
+    program.set("lightCount", shadows_.lightCount());
+    shadows_.setPcfUniforms(program, settings_.pcfRadius);
+    program.use();
     drawFullscreen();
 }
 

@@ -25,9 +25,11 @@ struct FrameSettings {
     int width = 512;
     int height = 512;
     int shadowMapSize = 1024;
-    int pcfRadius = 1;     // 0: one hard tap per pixel
-    bool pcfLinear = true; // hardware 2x2 bilinear comparison
-    int textureSize = 512; // base-colour textures are resampled to this size
+    int shadowCascades = 3; // a directional light's views fitted to the camera, beside its whole-scene view
+    int pcfRadius = 1;      // 0: one hard tap per pixel
+    bool pcfLinear = true;  // hardware 2x2 bilinear comparison
+    bool accumulate = true; // still frames jitter the pixel centre and are averaged (gl/renderer.h)
+    int textureSize = 512;  // base-colour textures are resampled to this size
     // Profiling only (bench/sponza-gbuffer.json): the G-buffer pass with a fragment shader that writes
     // constants, to tell fragment work from vertex work and triangle setup. The images are wrong.
     bool gbufferConstantFragment = false;
@@ -59,6 +61,19 @@ public:
     // direct + indirect into result(). withIndirect false (a technique that claims only direct light): no
     // pass at all, result() is the direct texture itself.
     void composite(PassTimers& timers, bool withIndirect = true);
+    // Still frames (gl/renderer.h decides when the view is still): frame `index` among the frames since
+    // the view last changed (0: the first, or the view moves) samples each pixel at its centre plus
+    // `jitterPixels` (each component in [-0.5, 0.5)): the G-buffer, so everything that reads it, and
+    // projection(). The frame's own stochastic parts (area-light sample points) take the index as their
+    // sample number.
+    void setStill(int index, glm::vec2 jitterPixels);
+    int stillFrame() const { return stillFrame_; }
+    glm::vec2 jitter() const { return jitter_; }
+    // After composite(), for still frame 1 and later: result() becomes the mean of the still frames'
+    // results ("accumulate" pass), so that a still view converges to box-filtered pixels. A progressive
+    // technique (its indirect light is already its own running mean) gets the mean of the direct light
+    // plus its latest indirect light. Still frame 0: nothing, result() is this frame's.
+    void accumulate(PassTimers& timers, bool progressive);
     void clearIndirect();
 
     // Binds the G-buffer (glsl/common/gbuffer.glsl): its textures at UNIT_G_*, a 1x1 black texture for a
@@ -83,7 +98,8 @@ public:
     const FrameSettings& settings() const { return settings_; }
     const core::Camera& camera() const { return camera_; }
     glm::mat4 view() const { return camera_.view(); }
-    glm::mat4 projection() const { return camera_.projection(float(settings_.width) / float(settings_.height)); }
+    // The camera's projection, offset by the still frame's sub-pixel jitter (setStill).
+    glm::mat4 projection() const;
     int width() const { return settings_.width; }
     int height() const { return settings_.height; }
     int frameIndex() const { return frameIndex_; }
@@ -95,7 +111,7 @@ public:
     const Texture& depth() const { return depth_; }
     const Texture& direct() const { return direct_; }
     Texture& indirect() { return indirect_; }
-    const Texture& result() const { return compositeUsed_ ? composite_ : direct_; }
+    const Texture& result() const { return accumulatedResult_ ? accumulated_ : compositeUsed_ ? composite_ : direct_; }
 
     // Reads an RGBA32F texture back as an RGB image, row 0 at the top.
     core::Image read(const Texture& texture) const;
@@ -116,14 +132,18 @@ private:
     GpuScene gpu_;
     ShadowMaps shadows_;
     Texture geometry_, diffuse_, specular_, emission_, depth_, direct_, indirect_, composite_;
-    Texture black_; // 1x1, bound for the targets the scene does not need
+    Texture black_;       // 1x1, bound for the targets the scene does not need
+    Texture accumulated_; // still frames' mean (accumulate()), allocated at the first still frame
     Buffer gbufferCamera_;
     Framebuffer gbufferFbo_, directFbo_, compositeFbo_;
     VertexArray emptyVao_;
     SceneProgram gbufferProgram_;
-    Program directProgram_, compositeProgram_;
+    Program directProgram_, directSampledProgram_, compositeProgram_, accumulateProgram_, accumulateDirectProgram_;
     int frameIndex_ = -1;
     bool compositeUsed_ = true;
+    bool accumulatedResult_ = false; // result() is accumulated_
+    int stillFrame_ = 0;
+    glm::vec2 jitter_{0.0f};
     FrameVersion version_;
     void allocateTargets();
     void updateGBufferCamera();

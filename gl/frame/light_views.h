@@ -1,10 +1,11 @@
-// The views a light is seen from, shared by every map rendered from the lights (shadow maps, reflective
-// shadow maps): a spot with a narrow enough cone gets one perspective view, a directional light one
+// The views a light is seen from: the one type of light view for every map rendered from the lights
+// (shadow maps, reflective shadow maps, an area light's still-frame shadow cubes): a spot with a narrow enough cone gets one perspective view, a directional light one
 // orthographic view fitted to the scene's bounds, anything else (a point light, a wider spot, the
 // emitting triangles of one mesh) six cube faces around its position (the mesh's centroid for area
 // lights). Views follow moving lights: rebuild them whenever the lights change.
 #pragma once
 
+#include <cmath>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -21,11 +22,29 @@ struct LightView {
     glm::vec3 direction{0.0f}; // view axis; for orthographic views the direction light travels
     bool orthographic = false;
     bool cubeFace = false;            // one of six 90-degree faces (cubeViews)
+    bool cascade = false;             // orthographic view fitted to a slice of the camera's frustum
     float fovRad = 0.0f;              // perspective field of view of the square view
     float far = 0.0f;                 // perspective far plane; 0 for orthographic views
     float orthoHalfExtent = 0.0f;     // orthographic: half the side of the square the view covers (m)
     int light = -1;                   // index into GpuScene::lights() (area: the first triangle of its mesh)
     int areaFirst = 0, areaCount = 0; // area emitter: its triangles are lights [areaFirst, areaFirst + areaCount)
+
+    // The side of one of size x size texels at the view's centre: at distance 1 for a perspective view
+    // (a cube face's 90 degrees included), in metres for an orthographic one (the larger side of a
+    // cascade's rectangle).
+    float texelSide(int size) const
+    {
+        return orthographic ? 2.0f * orthoHalfExtent / float(size) : 2.0f * std::tan(0.5f * fovRad) / float(size);
+    }
+};
+
+// The camera a directional light's shadow views are fitted to (cascaded shadow maps): where it looks from,
+// its field of view and aspect, and how many cascades. Without one (cascades 0), a directional light gets
+// the one view over the whole scene.
+struct ViewFit {
+    core::Camera camera;
+    float aspect = 1.0f;
+    int cascades = 0;
 };
 
 // What differs between the maps that share the builder.
@@ -37,6 +56,8 @@ struct LightViewOptions {
     // cone (Eq. 4's texel solid angle is the frustum's over size^2).
     float fovMargin = 1.0f;
     float maxFovRad = glm::radians(170.0f);
+    // Shadow maps: a directional light's cascades (ViewFit); the RSM keeps the whole scene in one view.
+    ViewFit fit;
 };
 
 struct LightViews {
@@ -46,13 +67,25 @@ struct LightViews {
     std::vector<glm::ivec2> lightViews;
 };
 
-// Views of every light; none for a scene without geometry (empty bounds).
+// Views of every light; none for a scene without geometry (empty bounds). A directional light with
+// options.fit.cascades > 0 gets that many orthographic views fitted, in light space, to consecutive depth
+// slices of the camera's frustum within the scene's bounds (near to far, each over every caster along the
+// light), then the view over the whole scene for what no cascade covers (points off screen).
 LightViews buildLightViews(const std::vector<LightSource>& lights, const core::Bounds& bounds,
                            const LightViewOptions& options = {});
 
 // Near and far planes that keep the whole scene in view of a light at `origin`; the near plane stays
 // small enough for a light 1 mm from a surface.
 void lightNearFar(const core::Bounds& b, const glm::vec3& origin, float& near, float& far);
+// The distances along the camera's view axis between which its frustum meets the box b ({0, 0} when it
+// misses it), and the light-space rectangle (xy of `lightView` applied) that frustum slice [d0, d1] within b
+// covers, as lo.xy, hi.xy; false when the slice misses the box.
+glm::vec2 viewDepthRange(const ViewFit& fit, const core::Bounds& b);
+bool sliceLightRect(const ViewFit& fit, float d0, float d1, const core::Bounds& b, const glm::mat4& lightView,
+                    glm::vec4& rect);
+// The practical split scheme (Zhang et al. 2006): distance i of n slices over [near, far], the mean of the
+// logarithmic and the uniform split.
+float cascadeSplit(float near, float far, int i, int n);
 // An up vector for a light looking along d (any direction not parallel to it).
 glm::vec3 lightUpVector(const glm::vec3& d);
 // The six cube-face views around `origin`, in glsl/common/scene.glsl's cubeFace() order.

@@ -56,11 +56,6 @@ void requireRsmSize(const std::string& technique, int size, bool powerOfTwo, int
                                     std::to_string(size));
 }
 
-float RsmPass::texelSide(const RsmView& v) const
-{
-    return v.orthographic ? std::sqrt(v.orthoTexelArea) : 2.0f * std::tan(0.5f * v.fovRad) / float(settings_.size);
-}
-
 double RsmPass::equalTexelSolidAngle(double fovRad, int size)
 {
     const double s = std::sin(0.5 * fovRad);
@@ -93,25 +88,8 @@ RsmPass::RsmPass(const RsmSettings& settings)
 
 void RsmPass::buildViews(const Frame& frame)
 {
-    views_.clear();
     // The spot's view covers exactly its cone: Eq. 4 shares the frustum's solid angle among the texels.
-    const LightViews lv = buildLightViews(frame.gpuScene().lights(), frame.gpuScene().bounds(), {.fovMargin = 1.0f});
-    const int size = settings_.size;
-    for (const LightView& l : lv.views) {
-        RsmView v;
-        v.view = l.view;
-        v.proj = l.proj;
-        v.origin = l.origin;
-        v.direction = l.direction;
-        v.orthographic = l.orthographic;
-        v.fovRad = l.fovRad;
-        if (l.orthographic)
-            v.orthoTexelArea = (2.0f * l.orthoHalfExtent / float(size)) * (2.0f * l.orthoHalfExtent / float(size));
-        v.light = l.light;
-        v.areaFirst = l.areaFirst;
-        v.areaCount = l.areaCount;
-        views_.push_back(v);
-    }
+    views_ = buildLightViews(frame.gpuScene().lights(), frame.gpuScene().bounds(), {.fovMargin = 1.0f}).views;
 }
 
 void RsmPass::allocate(int layers)
@@ -139,7 +117,7 @@ void RsmPass::updateSolidAngles()
 {
     if (!settings_.exactSolidAngle) return;
     std::vector<float> fovs;
-    for (const RsmView& v : views_) fovs.push_back(v.orthographic ? 0.0f : v.fovRad);
+    for (const LightView& v : views_) fovs.push_back(v.orthographic ? 0.0f : v.fovRad);
     if (fovs.empty() || fovs == solidAngleFovs_) return;
     const int size = settings_.size;
     if (!solidAngles_ || solidAngles_.layers() != int(fovs.size()))
@@ -175,7 +153,7 @@ void RsmPass::render(Frame& frame, PassTimers& timers)
         const int layers = std::max(1, viewCount());
         if (!position_ || position_.layers() != layers) allocate(layers);
         std::vector<GpuRsmView> gv;
-        for (const RsmView& v : views_)
+        for (const LightView& v : views_)
             gv.push_back({v.proj * v.view, glm::vec4(v.origin, v.orthographic ? 1.0f : 0.0f),
                           glm::vec4(v.direction, texelSide(v))});
         if (gv.empty()) gv.push_back({});
@@ -213,7 +191,7 @@ void RsmPass::renderViews(Frame& frame)
     const float empty[4] = {0, 0, 0, 0}, noDepth[4] = {1e30f, 0, 0, 0}, nMin[4] = {2, 2, 2, 0},
                 nMax[4] = {-2, -2, -2, 0};
     for (int i = 0; i < viewCount(); ++i) {
-        const RsmView& v = views_[i];
+        const LightView& v = views_[i];
         fbo_.attachLayer(GL_COLOR_ATTACHMENT0, position_, i);
         fbo_.attachLayer(GL_COLOR_ATTACHMENT1, normal_, i);
         fbo_.attachLayer(GL_COLOR_ATTACHMENT2, flux_, i);
@@ -247,7 +225,7 @@ void RsmPass::renderViews(Frame& frame)
         program_.set("viewOrigin", v.origin);
         program_.set("viewDirection", v.direction);
         program_.set("orthographic", v.orthographic ? 1 : 0);
-        program_.set("orthoTexelArea", v.orthoTexelArea);
+        program_.set("orthoTexelArea", orthoTexelArea(v));
         program_.set("equalSolidAngle", v.orthographic ? 0.0f : float(equalTexelSolidAngle(v.fovRad, size)));
         program_.set("viewLayer", i);
         program_.draw(frame.gpuScene());

@@ -17,6 +17,7 @@
 #include <glm/glm.hpp>
 
 #include "gl/frame/frame.h"
+#include "gl/frame/light_views.h"
 #include "gl/frame/scene_program.h"
 #include "gl/resource/buffer.h"
 #include "gl/resource/framebuffer.h"
@@ -43,18 +44,6 @@ RsmSettings rsmSettingsFrom(const ParamValues& values);
 // exceeds maxSize.
 void requireRsmSize(const std::string& technique, int size, bool powerOfTwo, int maxSize = 2048);
 
-struct RsmView {
-    glm::mat4 view{1.0f};
-    glm::mat4 proj{1.0f};
-    glm::vec3 origin{0.0f};    // light position (orthographic: the view's eye point)
-    glm::vec3 direction{0.0f}; // view axis; for orthographic views the direction light travels
-    bool orthographic = false;
-    float fovRad = 0.0f;              // perspective field of view (square views)
-    float orthoTexelArea = 0.0f;      // m^2 perpendicular to the light (orthographic only)
-    int light = -1;                   // index into the frame's lights (GpuScene::lights(), SSBO binding 1)
-    int areaFirst = 0, areaCount = 0; // area emitter: its triangles' light range
-};
-
 class RsmPass {
 public:
     explicit RsmPass(const RsmSettings& settings);
@@ -69,7 +58,7 @@ public:
     int size() const { return settings_.size; }
     int levels() const { return settings_.levels; }
     int viewCount() const { return int(views_.size()); }
-    const std::vector<RsmView>& views() const { return views_; }
+    const std::vector<LightView>& views() const { return views_; }
     // Atlas layers (width size * 3/2 when levels > 0, else size; height size; one layer per view).
     const Texture& position() const { return position_; }
     const Texture& normal() const { return normal_; }
@@ -79,7 +68,9 @@ public:
     const Texture& normalMax() const { return normalMax_; }   // allocated only when levels > 0
 
     // The side of a texel at the view's centre: at distance 1 (perspective) or in metres (orthographic).
-    float texelSide(const RsmView& v) const;
+    float texelSide(const LightView& v) const { return v.texelSide(settings_.size); }
+    // An orthographic view's texel area perpendicular to the light (m^2).
+    float orthoTexelArea(const LightView& v) const { return v.orthographic ? texelSide(v) * texelSide(v) : 0.0f; }
     // Eq. 4's solid angle of one texel of a square perspective view of field of view fov: the frustum's
     // solid angle 4 asin(sin^2(fov/2)) over size^2 texels (steradians).
     static double equalTexelSolidAngle(double fovRad, int size);
@@ -88,7 +79,7 @@ public:
 
 private:
     RsmSettings settings_;
-    std::vector<RsmView> views_;
+    std::vector<LightView> views_;
     Texture position_, normal_, flux_, depthRange_, normalMin_, normalMax_, depth_, solidAngles_;
     std::vector<float> solidAngleFovs_; // the field of view each layer of solidAngles_ was computed for
     Framebuffer fbo_;

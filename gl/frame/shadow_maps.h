@@ -2,6 +2,15 @@
 // a spot gets one perspective layer (a cube when its cone is wider than 120 degrees), a point light six cube-face layers, the area lights of one
 // emitting mesh one shared cube at its centroid, a directional light one orthographic layer fitted to
 // the scene. Also owns the light SSBOs of glsl/common/scene.glsl. Only what the lights need is allocated.
+//
+// Still frames (Frame::setStill, index >= 1) sample what one map cannot hold, so that their mean converges:
+//   - every view is shifted by a sub-texel Halton offset (the taps' positions on the surfaces change), so
+//     that one nearest tap per frame averages to the exact hard shadow of a point light, spot or the sun;
+//   - an area emitter's cube moves to a point sampled uniformly over the emitting mesh's area (Halton,
+//     stratified over the frames) and the triangle that holds it carries the mesh's area (Light's
+//     intensityCosInner.w, 0 on the others): glsl/common/lighting.glsl's directFromAreaSample is then the
+//     one-sample estimate L A cos cos / r^2 V of the emitter's direct light, whose mean over the frames is
+//     the path tracer's soft shadow. Frame 0 (and a moving view): the cube at the centroid, unshifted.
 #pragma once
 
 #include <vector>
@@ -18,36 +27,46 @@
 
 namespace bounce::gl {
 
-struct ShadowView {
-    glm::mat4 view{1.0f};
-    glm::mat4 proj{1.0f};
-    glm::vec3 origin{0.0f};
-    float far = 0.0f;        // 0 for orthographic
-    float texelWorld = 0.0f; // world size of a texel at distance 1 (perspective) or absolute (orthographic)
-};
-
 class ShadowMaps {
 public:
-    ShadowMaps(const GpuScene& scene, int size);
+    // cascades: a directional light's views fitted to the camera (fitTo), beside its whole-scene view.
+    ShadowMaps(const GpuScene& scene, int size, int cascades = 0);
+    // Fits a directional light's cascades to the camera (nothing to do without one, or when it has not
+    // moved).
+    void fitTo(const core::Camera& camera, float aspect);
     // Recomputes views and light buffers after lights moved (keeps the texture when the layer count holds).
     void update(const GpuScene& scene);
     void render(const GpuScene& scene);
+    // The views and lights of still frame `index` (see above); 0 restores the plain ones.
+    void setStill(int index);
+    int stillFrame() const { return still_; }
+    bool hasAreaLights() const { return !areaGroups_.empty(); }
     // SSBO bindings 1 (lights), 2 (shadow views), 3 (area polygons) and the depth array at unit 5.
     void bind() const;
     void setPcf(bool hardwareFilter);
     // The PCF uniforms of glsl/common/shadow.glsl on a program that includes it: the kernel radius, and
     // whether the taps are nearest (the shader gathers texels itself and weights them as the filter would).
+    // Still frames: one nearest tap, whatever the radius (see above).
     void setPcfUniforms(Program& program, int radius) const;
 
     int lightCount() const { return int(gpuLights_.size()); }
     const std::vector<GpuLight>& gpuLights() const { return gpuLights_; }
-    const std::vector<ShadowView>& views() const { return views_; }
+    // This frame's views (still frames: shifted, the area lights' cubes moved; a cascade is rendered in
+    // still frames only).
+    const std::vector<LightView>& views() const { return views_; }
     const Texture& depth() const { return depth_; }
     int size() const { return size_; }
 
 private:
     int size_;
-    std::vector<ShadowView> views_;
+    std::vector<LightView> views_;
+    LightViews lightViews_;              // the plain views (setStill shifts and moves copies of them)
+    std::vector<LightSource> sources_;   // the lights they were built for
+    std::vector<glm::ivec2> areaGroups_; // per emitting mesh: first light, triangle count
+    core::Bounds bounds_;
+    int still_ = 0;
+    ViewFit fit_;
+    bool fitted_ = false; // fit_.camera has been set
     std::vector<GpuLight> gpuLights_;
     Texture depth_;
     Framebuffer fbo_;
@@ -55,6 +74,7 @@ private:
     Buffer lightsBuffer_, viewsBuffer_, polygonsBuffer_;
     bool linear_ = true;
     void buildViews(const GpuScene& scene);
+    void upload(); // views_ and gpuLights_ for still_, into the SSBOs
 };
 
 } // namespace bounce::gl

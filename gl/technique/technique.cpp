@@ -231,6 +231,7 @@ const std::vector<PassDecl>& framePasses()
         {"gbuffer", "the G-buffer: eye depth and normal, diffuse, specular and emission where the scene has them", ""},
         {"direct", "emission and direct light with shadow maps", ""},
         {"composite", "direct + the technique's indirect light", "the technique adds indirect light"},
+        {"accumulate", "the mean of the still frames (jittered pixel centres)", "the view was still last frame"},
     };
     return p;
 }
@@ -240,8 +241,14 @@ const std::vector<ParamDecl>& frameParams()
     static const std::vector<ParamDecl> p = {
         {"shadow.size", ParamType::Int, 1024, 16, 8192, "shadow-map resolution per view (texels per side)"},
         {"shadow.pcf", ParamType::Int, 1, 0, 4, "PCF kernel radius in texels (0: one tap)"},
+        {"shadow.cascades", ParamType::Int, 3, 0, 6,
+         "a directional light's shadow views fitted to slices of the camera's frustum (cascaded shadow maps), "
+         "beside its view of the whole scene (0: that view only)"},
         {"shadow.linear", ParamType::Bool, 1, 0, 1, "hardware bilinear depth comparison (off: hard shadow edges)"},
         {"textures.size", ParamType::Int, 512, 1, 4096, "base-colour textures are resampled to this size"},
+        {"accumulate", ParamType::Bool, 1, 0, 1,
+         "while the view is still, sample each frame at another point inside the pixel and show the mean of "
+         "the frames (converges to box-filtered pixels; the area lights' shadows to soft ones)"},
         choiceParam("gbuffer.fragment", {"material", "constant"}, 0,
                     "profiling: constant writes the G-buffer without reading materials or textures (wrong images)"),
     };
@@ -255,8 +262,10 @@ FrameSettings frameSettingsFrom(const ParamValues& v, int width, int height)
     s.height = height;
     s.shadowMapSize = v.getInt("shadow.size");
     s.pcfRadius = v.getInt("shadow.pcf");
+    s.shadowCascades = v.getInt("shadow.cascades");
     s.pcfLinear = v.getBool("shadow.linear");
     s.textureSize = v.getInt("textures.size");
+    s.accumulate = v.getBool("accumulate");
     s.gbufferConstantFragment = v.getChoice(frameParams(), "gbuffer.fragment") == "constant";
     return s;
 }

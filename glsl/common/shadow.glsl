@@ -10,6 +10,12 @@
 layout(binding = UNIT_SHADOW_MAPS) uniform sampler2DArrayShadow shadowMaps;
 uniform int pcfRadius;
 uniform int pcfNearest; // 1: nearest taps (shadow.linear off); 0, the default: 2x2 bilinear comparisons
+// The receiver's offset along its normal, in texels at its distance (ShadowMaps::setPcfUniforms): 1.5 for
+// filtered taps, less in still frames, whose jittered nearest taps need no margin for a filter's footprint
+// and whose mean would keep the offset's shift of every contact shadow.
+uniform float shadowNormalOffset = 1.5;
+// 0: a directional light's cascades are not rendered this frame (moving), only its whole-scene view is read.
+uniform int shadowCascades = 1;
 
 // Percentage-closer filtering over (2r+1)^2 taps one texel apart around uv, each a 2x2 bilinear comparison
 // (or the nearest texel's), computed from (r+1)^2 textureGather calls instead of (2r+1)^2 filtered
@@ -49,21 +55,37 @@ float percentageCloser(vec2 uv, float layer, float ref)
     return sum / taps;
 }
 
+// Where p (normal n) falls in shadow layer `layer`: xy the map coordinates, z the reference depth, w 0 when
+// p is beyond the view (behind a perspective view's origin or past its far plane).
+vec4 shadowCoordinates(int layer, vec3 p, vec3 n)
+{
+    ShadowView v = shadowViews[layer];
+    // Normal offset by shadowNormalOffset texels at the receiver's distance, so that lit surfaces do not
+    // shadow themselves at grazing angles; the constant bias below covers the rest.
+    float dist = v.originFar.w > 0.0 ? length(p - v.originFar.xyz) : 1.0;
+    vec3 q = p + n * (shadowNormalOffset * v.texelWorld.x * dist);
+    vec4 c = v.viewProj * vec4(q, 1.0);
+    vec3 s = c.xyz / c.w * 0.5 + 0.5;
+    return vec4(s.xy, s.z - 2e-5, c.w <= 0.0 || s.z > 1.0 ? 0.0 : 1.0);
+}
+
 float shadowVisibility(Light l, vec3 p, vec3 n)
 {
     if (l.shadow.x < 0) return 1.0;
     int layer = l.shadow.x;
     if (l.shadow.y == 6) layer += cubeFace(p - l.positionType.xyz);
-    ShadowView v = shadowViews[layer];
-    // Normal offset by about one and a half texels at the receiver's distance, so that lit surfaces
-    // do not shadow themselves at grazing angles; the constant bias below covers the rest.
-    float dist = v.originFar.w > 0.0 ? length(p - v.originFar.xyz) : 1.0;
-    vec3 q = p + n * (1.5 * v.texelWorld.x * dist);
-    vec4 c = v.viewProj * vec4(q, 1.0);
-    vec3 s = c.xyz / c.w * 0.5 + 0.5;
-    if (c.w <= 0.0 || s.z > 1.0) return 1.0;
-    s.xy = clamp(s.xy, vec2(0.0), vec2(1.0));
-    return percentageCloser(s.xy, float(layer), s.z - 2e-5);
+    bool cascades = l.shadow.y > 1 && l.shadow.y != 6;
+    if (cascades && shadowCascades == 0) layer += l.shadow.y - 1;
+    vec4 s = shadowCoordinates(layer, p, n);
+    // A directional light's cascades (gl/frame/light_views.h), finest first, then its whole-scene view:
+    // the first whose map holds p with a filter's margin.
+    for (int k = 1; k < l.shadow.y && cascades && shadowCascades != 0; ++k) {
+        vec2 margin = vec2(float(pcfRadius + 1)) / vec2(textureSize(shadowMaps, 0).xy);
+        if (all(greaterThanEqual(s.xy, margin)) && all(lessThanEqual(s.xy, 1.0 - margin))) break;
+        s = shadowCoordinates(++layer, p, n);
+    }
+    if (s.w == 0.0) return 1.0;
+    return percentageCloser(clamp(s.xy, vec2(0.0), vec2(1.0)), float(layer), s.z);
 }
 
 #endif

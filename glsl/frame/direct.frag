@@ -1,12 +1,17 @@
 #version 450 core
 // Direct light as one full-screen pass: emission plus every light through the one BRDF, shadowed.
-// PUNCTUAL_LIGHTS, AREA_LIGHTS: defined when the scene has lights of that kind.
+// PUNCTUAL_LIGHTS, AREA_LIGHTS: defined when the scene has lights of that kind; AREA_SAMPLED (still
+// frames): the emitters' light from this frame's point on each emitting mesh (lighting.glsl,
+// directFromAreaSample) instead of the polygon form factor shadowed from the mesh's centroid.
 #include "common/gbuffer.glsl"
 #include "common/lighting.glsl"
 
 uniform vec3 cameraPosition;
 uniform int punctualLightCount; // lights [0, punctualLightCount): point, spot, directional
 uniform int lightCount;         // lights [punctualLightCount, lightCount): emitting triangles
+#ifdef AREA_SAMPLED
+uniform vec2 areaRotation;      // this frame's offset of the glossy lobe's points
+#endif
 
 in vec2 vUv;
 layout(location = 0) out vec4 outRadiance;
@@ -25,7 +30,12 @@ void main()
     for (int i = 0; i < punctualLightCount; ++i) radiance += directFromPunctual(lights[i], p, n, wo, b);
 #endif
 #ifdef AREA_LIGHTS
+#ifdef AREA_SAMPLED
+    for (int i = punctualLightCount; i < lightCount; ++i)
+        radiance += directFromAreaSample(lights[i], p, n, wo, b, areaRotation);
+#else
     for (int i = punctualLightCount; i < lightCount; ++i) radiance += directFromAreaTriangle(lights[i], p, n, wo, b);
+#endif
 #endif
     outRadiance = vec4(radiance, 1.0);
 }

@@ -750,7 +750,7 @@ TEST(Cli, ListJsonIsTheWholeRegistry)
         }
     }
     EXPECT_TRUE(sawRsm);
-    EXPECT_EQ(j["frame"]["passes"].size(), 4u);
+    EXPECT_EQ(j["frame"]["passes"].size(), 5u); // shadow, gbuffer, direct, composite, accumulate
 }
 
 // --reference puts the error against a reference in the record; one whose size does not divide the

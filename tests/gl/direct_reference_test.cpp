@@ -193,11 +193,26 @@ struct LightCase {
     int spp;                  // the reference's
     double relRmse;           // tolerance
     const char* whyTolerance; // what remains
+    double stillRelRmse;      // tolerance of the still frames' test (ConvergedStillFrames...)
 };
 
 core::Scene lightCaseScene(const std::string& name)
 {
     return name == "cornell-directional" ? test::cornellDirectional() : core::makeCornell(name);
+}
+
+ref::RenderResult lightCaseReference(const core::Scene& scene, int spp, double* seconds = nullptr)
+{
+    ref::RenderSettings s;
+    s.paths = ref::LightPaths::Direct;
+    s.width = s.height = kSmall;
+    s.spp = spp;
+    s.seed = 11;
+    s.progress = false;
+    const auto start = std::chrono::steady_clock::now();
+    ref::RenderResult r = ref::render(scene, scene.camera, s);
+    if (seconds) *seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return r;
 }
 
 core::Image glDirect(const core::Scene& scene, int supersample)
@@ -245,15 +260,8 @@ TEST_P(EveryLightKindTest, GlDirectMatchesPathTracerDirect)
 {
     const LightCase& c = GetParam();
     const core::Scene scene = lightCaseScene(c.name);
-    ref::RenderSettings s;
-    s.paths = ref::LightPaths::Direct;
-    s.width = s.height = kSmall;
-    s.spp = c.spp;
-    s.seed = 11;
-    s.progress = false;
-    const auto start = std::chrono::steady_clock::now();
-    const ref::RenderResult want = ref::render(scene, scene.camera, s);
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    double seconds = 0.0;
+    const ref::RenderResult want = lightCaseReference(scene, c.spp, &seconds);
     EXPECT_EQ(want.nonFiniteSamples, 0u);
     const std::vector<bool> judged = c.area ? withoutEmitters(want.image) : agreeingPixels(want);
     const auto count = std::count(judged.begin(), judged.end(), true);
@@ -269,19 +277,56 @@ TEST_P(EveryLightKindTest, GlDirectMatchesPathTracerDirect)
                 seconds);
 }
 
+// Issue 26: the frame's own direct light, as `bounce render --frames N` gives it (default shadow maps, PCF
+// and all: still frames switch to jittered single taps), over kStillFrames still frames, against the path
+// tracer on the whole image, edges included (only the visible emitter left out): jittered pixel centres
+// average to the path tracer's box-filtered pixels, jittered shadow maps to hard shadows, the area
+// lights' sample points to soft ones.
+constexpr int kStillFrames = 64;
+
+TEST_P(EveryLightKindTest, ConvergedStillFramesMatchPathTracerEdgesIncluded)
+{
+    const LightCase& c = GetParam();
+    const core::Scene scene = lightCaseScene(c.name);
+    const ref::RenderResult want = lightCaseReference(scene, c.spp);
+    gl::ParamValues frameValues(gl::frameParams());
+    frameValues.setValue("shadow.size", 512);
+    gl::Renderer r(scene, "direct", frameValues, gl::ParamValues(), kSmall, kSmall);
+    for (int i = 0; i <= kStillFrames; ++i) r.renderFrame(false);
+    ASSERT_EQ(r.stillFrames(), kStillFrames);
+    const std::vector<bool> judged = withoutEmitters(want.image);
+    const double error = testing::expectImagesClose(std::string("still-") + c.name, r.image(), want.image,
+                                                    testing::ImageMetric::relativeRmse(), c.stillRelRmse,
+                                                    "reference noise, the still frames' own", &judged);
+    gl::Renderer one(scene, "direct", frameValues, gl::ParamValues(), kSmall, kSmall);
+    one.renderFrame(false);
+    const double single =
+        testing::measureImages(one.image(), want.image, testing::ImageMetric::relativeRmse(), &judged);
+    std::printf("[ measured ] %s: relative RMSE %.4g after %d still frames, %.4g for one frame\n", c.name, error,
+                kStillFrames, single);
+    // Tolerances (stillRelRmse): the measured figure with a margin. Spot and slats stay high at 32x32: the
+    // coverage of a pixel that a shadow edge under the spot (25x the image mean) crosses is estimated from
+    // 64 jittered samples (measured 0.12 and 0.34; 256 frames: spot 0.042). What every case must show
+    // whatever the scene: the still frames remove most of one frame's error.
+    EXPECT_LT(error, 0.35 * single);
+}
+
 INSTANTIATE_TEST_SUITE_P(
     Direct, EveryLightKindTest,
-    ::testing::Values(LightCase{"cornell-spot", false, 256, 0.03, "reference noise, half-float G-buffer"},
-                      LightCase{"cornell-slats", false, 256, 0.03, "reference noise, half-float G-buffer"},
-                      LightCase{"cornell-point", false, 256, 0.08,
-                                "pixel centre against pixel mean: 1/r^2 on the ceiling just above the light is "
-                                "convex, its centres read up to 5% above the means (measured 0.058)"},
-                      LightCase{"cornell-point-ceiling", false, 256, 0.03, "reference noise, half-float G-buffer"},
-                      LightCase{"cornell-directional", false, 256, 0.03, "reference noise, half-float G-buffer"},
-                      LightCase{"cornell-area", true, 1024, 0.15, "reference noise, penumbrae, shadow-map texels"},
-                      LightCase{"cornell-glossy", true, 1024, 0.15,
-                                "as cornell-area, and the metal block's glossy lobe evaluated towards the "
-                                "emitter's centroid (lighting.glsl)"}),
+    ::testing::Values(
+        LightCase{"cornell-spot", false, 256, 0.03, "reference noise, half-float G-buffer", 0.18},
+        LightCase{"cornell-slats", false, 256, 0.03, "reference noise, half-float G-buffer", 0.5},
+        LightCase{"cornell-point", false, 256, 0.08,
+                  "pixel centre against pixel mean: 1/r^2 on the ceiling just above the light is "
+                  "convex, its centres read up to 5% above the means (measured 0.058)",
+                  0.05},
+        LightCase{"cornell-point-ceiling", false, 256, 0.03, "reference noise, half-float G-buffer", 0.07},
+        LightCase{"cornell-directional", false, 256, 0.03, "reference noise, half-float G-buffer", 0.09},
+        LightCase{"cornell-area", true, 1024, 0.15, "reference noise, penumbrae, shadow-map texels", 0.08},
+        LightCase{"cornell-glossy", true, 1024, 0.15,
+                  "as cornell-area, and the metal block's glossy lobe evaluated towards the "
+                  "emitter's centroid (lighting.glsl)",
+                  0.08}),
     [](const ::testing::TestParamInfo<LightCase>& info) {
         std::string n = info.param.name;
         for (char& ch : n)

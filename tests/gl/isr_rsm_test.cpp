@@ -395,7 +395,7 @@ TEST_F(IsrRsmTest, DirectionalLightFluxOnPlane)
     rsm.render(frame, timers);
     timers.endFrame(false);
     ASSERT_EQ(rsm.viewCount(), 1);
-    const gl::RsmView& v = rsm.views()[0];
+    const gl::LightView& v = rsm.views()[0];
     ASSERT_TRUE(v.orthographic);
     const glm::mat4 inv = glm::inverse(v.proj * v.view);
     int onPlane = 0;
@@ -406,7 +406,7 @@ TEST_F(IsrRsmTest, DirectionalLightFluxOnPlane)
             if (std::abs(w.x / w.w) < 1.0f && std::abs(w.z / w.w) < 1.0f) ++onPlane;
         }
     const glm::dvec3 total = rsmTotalFlux(rsm), rhoE = glm::dvec3(rho) * glm::dvec3(irradiance);
-    expectRelNear(total, rhoE * (double(onPlane) * v.orthoTexelArea), 1e-4, "texels on the plane x texel area");
+    expectRelNear(total, rhoE * (double(onPlane) * rsm.orthoTexelArea(v)), 1e-4, "texels on the plane x texel area");
     expectRelNear(total, rhoE * 4.0, 4e-2, "rho E A");
 }
 
