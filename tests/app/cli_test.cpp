@@ -294,6 +294,48 @@ TEST(Cli, CompareReportsFiguresAndRefusesDifferentSizes)
     EXPECT_FALSE(fs::exists(before)) << "a refused comparison wrote its record";
 }
 
+// --block compares block means (a checkerboard against its flat mean: every pixel off, every 2x2 block
+// exact), an image twice the reference's size is box-filtered to it first, and --mask-above leaves out the
+// blocks that hold or touch a bright pixel of the reference (the one wrong block sits beside it).
+TEST(Cli, CompareByBlocksWithTheEmitterMasked)
+{
+    const fs::path d = outDir("compare-blocks");
+    bounce::core::Image checker(8, 8), flat(8, 8), fine(16, 16);
+    for (int y = 0; y < 8; ++y)
+        for (int x = 0; x < 8; ++x) {
+            checker.set(x, y, glm::vec3((x + y) % 2 ? 1.0f : 0.0f));
+            flat.set(x, y, glm::vec3(0.5f));
+        }
+    for (int y = 0; y < 16; ++y)
+        for (int x = 0; x < 16; ++x) fine.set(x, y, glm::vec3(0.5f));
+    bounce::core::writeImage((d / "checker.exr").string(), checker);
+    bounce::core::writeImage((d / "flat.exr").string(), flat);
+    bounce::core::writeImage((d / "fine.exr").string(), fine);
+    const auto figure = [&](const std::string& args, const char* key) {
+        const fs::path json = d / "c.json";
+        const CliRun r = run("compare " + args + " --json " + json.string());
+        EXPECT_EQ(r.status, 0) << r.output;
+        return nlohmann::json::parse(std::ifstream(json))[key].get<double>();
+    };
+    const std::string checkerVsFlat = (d / "checker.exr").string() + " " + (d / "flat.exr").string();
+    EXPECT_NEAR(figure(checkerVsFlat, "relativeRmse"), 1.0, 1e-6);
+    EXPECT_NEAR(figure(checkerVsFlat + " --block 2", "relativeRmse"), 0.0, 1e-6);
+    EXPECT_NEAR(figure((d / "fine.exr").string() + " " + (d / "flat.exr").string(), "relativeRmse"), 0.0, 1e-6);
+    // A bright reference pixel at (0, 0) and a wrong one at (2, 0): with 2x2 blocks the wrong one's block
+    // touches the bright one's and is masked with it, then nothing else differs.
+    bounce::core::Image bright = flat, wrong = flat;
+    bright.set(0, 0, glm::vec3(20.0f));
+    wrong.set(0, 0, glm::vec3(20.0f));
+    wrong.set(2, 0, glm::vec3(3.0f));
+    bounce::core::writeImage((d / "bright.exr").string(), bright);
+    bounce::core::writeImage((d / "wrong.exr").string(), wrong);
+    const std::string wrongVsBright = (d / "wrong.exr").string() + " " + (d / "bright.exr").string();
+    EXPECT_GT(figure(wrongVsBright + " --block 2", "relativeRmse"), 0.1);
+    EXPECT_NEAR(figure(wrongVsBright + " --block 2 --mask-above 1", "relativeRmse"), 0.0, 1e-6);
+    EXPECT_EQ(figure(wrongVsBright + " --block 2 --mask-above 1", "maskedBlocks"), 4.0); // (0,0) and its 3 neighbours
+    EXPECT_EQ(run("compare " + checkerVsFlat + " --block 3").status, 2) << "3 does not divide 8";
+}
+
 // A CSV file as rows of name -> text.
 std::vector<std::map<std::string, std::string>> readCsv(const fs::path& file)
 {
