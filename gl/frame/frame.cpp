@@ -1,5 +1,7 @@
 #include "gl/frame/frame.h"
 
+#include <algorithm>
+
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "core/sampling.h"
@@ -28,17 +30,23 @@ std::vector<Define> sceneDefines(const core::Scene& scene, const GpuScene& gpu)
 // The direct-light program for the kinds of light the scene has: a loop over a kind the scene lacks
 // still costs a masked pass through its body on a SIMD rasteriser (llvmpipe), the polygon form factor
 // of the emitting triangles most of all (glsl/common/lighting.glsl).
-// sampledArea: the still frames' program (AREA_SAMPLED), for scenes with area lights only.
-Program directProgram(const core::Scene& scene, const GpuScene& gpu, bool sampledArea = false)
+// still: the still frames' program, where they differ from the moving frame's: area lights sampled on the
+// emitter (AREA_SAMPLED), a directional light's cascades read (SHADOW_CASCADES); none where neither is
+// in the scene. Moving: the area lights' PCSS when asked for.
+Program directProgram(const core::Scene& scene, const GpuScene& gpu, const FrameSettings& settings, bool still = false)
 {
     std::vector<Define> kinds = sceneDefines(scene, gpu);
     const bool area = int(gpu.lights().size()) > gpu.punctualLightCount();
-    if (sampledArea && !area) return Program();
+    const bool cascades =
+        settings.shadowCascades > 0 && std::any_of(gpu.lights().begin(), gpu.lights().end(),
+                                                   [](const LightSource& l) { return l.type == kLightDirectional; });
+    if (still && !area && !cascades) return Program();
     if (gpu.punctualLightCount() > 0) kinds.push_back({"PUNCTUAL_LIGHTS", "1"});
     if (area) kinds.push_back({"AREA_LIGHTS", "1"});
-    if (sampledArea) kinds.push_back({"AREA_SAMPLED", "1"});
-    return Program::graphics(sampledArea ? "direct.sampled" : "direct", "frame/fullscreen.vert", "frame/direct.frag",
-                             kinds);
+    if (still && area) kinds.push_back({"AREA_SAMPLED", "1"});
+    if (still && cascades) kinds.push_back({"SHADOW_CASCADES", "1"});
+    if (!still && area && settings.areaPcss) kinds.push_back({"SHADOW_PCSS", "1"});
+    return Program::graphics(still ? "direct.still" : "direct", "frame/fullscreen.vert", "frame/direct.frag", kinds);
 }
 
 SceneProgram gbufferProgram(const core::Scene& scene, const GpuScene& gpu, const FrameSettings& settings)
@@ -69,8 +77,8 @@ Frame::Frame(const core::Scene& scene, const FrameSettings& settings)
       compositeFbo_("composite.fbo"),
       emptyVao_("fullscreen"),
       gbufferProgram_(gbufferProgram(scene, gpu_, settings)),
-      directProgram_(directProgram(scene, gpu_)),
-      directSampledProgram_(directProgram(scene, gpu_, true)),
+      directProgram_(directProgram(scene, gpu_, settings)),
+      directStillProgram_(directProgram(scene, gpu_, settings, true)),
       compositeProgram_(Program::graphics("composite", "frame/fullscreen.vert", "frame/composite.frag")),
       accumulateProgram_(Program::compute("accumulate", "frame/accumulate.comp")),
       accumulateDirectProgram_(Program::compute("accumulate.direct", "frame/accumulate.comp", {{"ADD_INDIRECT", "1"}}))
@@ -131,13 +139,18 @@ void Frame::setCamera(const core::Camera& camera)
 
 void Frame::setLights(const std::vector<core::Light>& lights)
 {
+    const auto directional = [&] {
+        return std::any_of(gpu_.lights().begin(), gpu_.lights().end(),
+                           [](const LightSource& l) { return l.type == kLightDirectional; });
+    };
     const int punctualBefore = gpu_.punctualLightCount();
+    const bool directionalBefore = directional();
     gpu_.setLights(lights);
     shadows_.update(gpu_);
     ++version_.lights;
-    if ((punctualBefore > 0) != (gpu_.punctualLightCount() > 0)) {
-        directProgram_ = directProgram(scene_, gpu_);
-        directSampledProgram_ = directProgram(scene_, gpu_, true);
+    if ((punctualBefore > 0) != (gpu_.punctualLightCount() > 0) || directionalBefore != directional()) {
+        directProgram_ = directProgram(scene_, gpu_, settings_);
+        directStillProgram_ = directProgram(scene_, gpu_, settings_, true);
     }
 }
 
@@ -324,9 +337,9 @@ void Frame::renderDirect(PassTimers& timers)
     PassState::fullscreen(directFbo_, settings_.width, settings_.height).apply();
     bindGBuffer();
     bindSceneData();
-    const bool sampled = shadows_.stillFrame() > 0 && directSampledProgram_;
-    Program& program = sampled ? directSampledProgram_ : directProgram_;
-    if (sampled) {
+    const bool still = shadows_.stillFrame() > 0 && directStillProgram_;
+    Program& program = still ? directStillProgram_ : directProgram_;
+    if (still) {
         // Halton dimensions 6 and 7: the glossy lobe's points, independent of the jitter and the sample point.
         const auto s = std::uint64_t(shadows_.stillFrame());
         program.set("areaRotation", glm::vec2(float(core::halton(6, s)), float(core::halton(7, s))));

@@ -29,6 +29,7 @@ struct FrameSettings {
     int pcfRadius = 1;      // 0: one hard tap per pixel
     bool pcfLinear = true;  // hardware 2x2 bilinear comparison
     bool accumulate = true; // still frames jitter the pixel centre and are averaged (gl/renderer.h)
+    bool areaPcss = false;  // moving frames: area lights' penumbrae estimated by PCSS (else hard, centroid)
     int textureSize = 512;  // base-colour textures are resampled to this size
     // Profiling only (bench/sponza-gbuffer.json): the G-buffer pass with a fragment shader that writes
     // constants, to tell fragment work from vertex work and triangle setup. The images are wrong.
@@ -138,7 +139,7 @@ private:
     Framebuffer gbufferFbo_, directFbo_, compositeFbo_;
     VertexArray emptyVao_;
     SceneProgram gbufferProgram_;
-    Program directProgram_, directSampledProgram_, compositeProgram_, accumulateProgram_, accumulateDirectProgram_;
+    Program directProgram_, directStillProgram_, compositeProgram_, accumulateProgram_, accumulateDirectProgram_;
     int frameIndex_ = -1;
     bool compositeUsed_ = true;
     bool accumulatedResult_ = false; // result() is accumulated_

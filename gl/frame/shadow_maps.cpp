@@ -67,9 +67,12 @@ void ShadowMaps::buildViews(const GpuScene& scene)
 
 namespace {
 
-// Measured on cornell-spot at 256x256 (32 still frames, 1024^2 map, 4x4-block relative RMSE against the
-// path tracer's direct light): 4.6% at 1.5 texels, 3.3% at 0.5, 3.1% at 0.
-constexpr float kStillNormalOffset = 0.5f;
+// The receiver's normal offset in still frames (texels), measured at 256x256 after 64 still frames, 4x4-block
+// relative RMSE against the path tracer's direct light (cornell-spot / cornell-area / Sponza in the sun):
+// 1.5 texels 4.6% / - / -, 0.5: 3.0% / 3.0% / 4.8% (128 frames), 0.25: 2.8% / 3.0% / 3.9%, 0: 2.7% / 3.0% /
+// 3.8% with Sponza's mean 0.9% low (surfaces at a slant begin to shadow themselves). The polygon offset
+// (slope-scaled, ShadowMaps::render) does the rest.
+constexpr float kStillNormalOffset = 0.25f;
 
 float triangleArea(const glm::vec3* t)
 {
@@ -203,10 +206,6 @@ void ShadowMaps::setPcfUniforms(Program& program, int radius) const
     program.set("pcfRadius", still_ > 0 ? 0 : radius);
     program.set("pcfNearest", linear_ && still_ == 0 ? 0 : 1);
     program.set("shadowNormalOffset", still_ > 0 ? kStillNormalOffset : 1.5f);
-    // A directional light's cascades are rendered and read in still frames only: on llvmpipe three of them
-    // took Crytek Sponza's shadow pass at 1024x768 from 32 to 117 ms (vertex work and binning, once per
-    // view), where the frame while moving must not get slower. Moving frames read the whole-scene view.
-    program.set("shadowCascades", still_ > 0 ? 1 : 0);
 }
 
 void ShadowMaps::render(const GpuScene& scene)
@@ -221,7 +220,11 @@ void ShadowMaps::render(const GpuScene& scene)
         scene.baseColorTextures().bind(UNIT_BASE_COLOR);
     }
     for (std::size_t i = 0; i < views_.size(); ++i) {
-        if (views_[i].cascade && still_ == 0) continue; // see setPcfUniforms
+        // A directional light's cascades are rendered (and read: SHADOW_CASCADES, the still frames' direct
+        // pass) in still frames only: on llvmpipe three of them took Crytek Sponza's shadow pass at 1024x768
+        // from 32 to 117 ms (vertex work and binning, once per view), and the moving frame must not get
+        // slower. Moving frames, and every other pass, read the whole-scene view.
+        if (views_[i].cascade && still_ == 0) continue;
         fbo_.attachLayer(GL_DEPTH_ATTACHMENT, depth_, int(i));
         glNamedFramebufferDrawBuffer(fbo_.id(), GL_NONE);
         glClear(GL_DEPTH_BUFFER_BIT);
@@ -230,8 +233,25 @@ void ShadowMaps::render(const GpuScene& scene)
     }
 }
 
+void SamplerDeleter::operator()(unsigned id) const
+{
+    glDeleteSamplers(1, &id);
+}
+
 void ShadowMaps::bind() const
 {
+    if (!rawSampler_) {
+        unsigned id = 0;
+        glCreateSamplers(1, &id);
+        glSamplerParameteri(id, GL_TEXTURE_COMPARE_MODE, GL_NONE);
+        glSamplerParameteri(id, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        glSamplerParameteri(id, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        glSamplerParameteri(id, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+        glSamplerParameteri(id, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+        rawSampler_ = Handle<SamplerDeleter>(id);
+    }
+    depth_.bind(UNIT_SHADOW_DEPTHS);
+    glBindSampler(UNIT_SHADOW_DEPTHS, rawSampler_.id());
     lightsBuffer_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_LIGHTS);
     viewsBuffer_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_SHADOW_VIEWS);
     polygonsBuffer_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_LIGHT_POLYGONS);

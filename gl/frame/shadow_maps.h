@@ -22,10 +22,15 @@
 #include "gl/frame/scene_program.h"
 #include "gl/resource/buffer.h"
 #include "gl/resource/framebuffer.h"
+#include "gl/resource/handle.h"
 #include "gl/resource/program.h"
 #include "gl/resource/texture.h"
 
 namespace bounce::gl {
+
+struct SamplerDeleter {
+    void operator()(unsigned id) const;
+};
 
 class ShadowMaps {
 public:
@@ -41,7 +46,8 @@ public:
     void setStill(int index);
     int stillFrame() const { return still_; }
     bool hasAreaLights() const { return !areaGroups_.empty(); }
-    // SSBO bindings 1 (lights), 2 (shadow views), 3 (area polygons) and the depth array at unit 5.
+    // SSBO bindings 1 (lights), 2 (shadow views), 3 (area polygons) and the depth array at unit 5 (and at
+    // UNIT_SHADOW_DEPTHS without comparison, for glsl/common/shadow.glsl's SHADOW_PCSS).
     void bind() const;
     void setPcf(bool hardwareFilter);
     // The PCF uniforms of glsl/common/shadow.glsl on a program that includes it: the kernel radius, and
@@ -69,6 +75,7 @@ private:
     bool fitted_ = false; // fit_.camera has been set
     std::vector<GpuLight> gpuLights_;
     Texture depth_;
+    mutable Handle<SamplerDeleter> rawSampler_; // nearest, no comparison: the depths PCSS averages
     Framebuffer fbo_;
     SceneProgram program_;
     Buffer lightsBuffer_, viewsBuffer_, polygonsBuffer_;

@@ -246,6 +246,10 @@ const std::vector<ParamDecl>& frameParams()
          "beside its view of the whole scene (0: that view only)"},
         {"shadow.linear", ParamType::Bool, 1, 0, 1, "hardware bilinear depth comparison (off: hard shadow edges)"},
         {"textures.size", ParamType::Int, 512, 1, 4096, "base-colour textures are resampled to this size"},
+        choiceParam("shadow.area", {"hard", "pcss"}, 0,
+                    "area lights' shadows while the view moves: hard from the emitter's centroid, or penumbrae "
+                    "estimated by percentage-closer soft shadows (Fernando 2005); still frames sample the emitter "
+                    "either way"),
         {"accumulate", ParamType::Bool, 1, 0, 1,
          "while the view is still, sample each frame at another point inside the pixel and show the mean of "
          "the frames (converges to box-filtered pixels; the area lights' shadows to soft ones)"},
@@ -266,6 +270,7 @@ FrameSettings frameSettingsFrom(const ParamValues& v, int width, int height)
     s.pcfLinear = v.getBool("shadow.linear");
     s.textureSize = v.getInt("textures.size");
     s.accumulate = v.getBool("accumulate");
+    s.areaPcss = v.getChoice(frameParams(), "shadow.area") == "pcss";
     s.gbufferConstantFragment = v.getChoice(frameParams(), "gbuffer.fragment") == "constant";
     return s;
 }

@@ -42,6 +42,7 @@
 #define UNIT_UPSAMPLE_COARSE_INDIRECT 0 // frame/joint_upsample.frag (the demo's frame budget)
 #define UNIT_UPSAMPLE_COARSE_GEOMETRY 1 // the two frames' gGeometry (common/gbuffer.glsl)
 #define UNIT_UPSAMPLE_FULL_GEOMETRY 2
+#define UNIT_SHADOW_DEPTHS 32     // shadow.glsl (SHADOW_PCSS): the shadow maps' depths, no comparison
 
 // Uniform buffers (glBindBufferBase(GL_UNIFORM_BUFFER, slot)). Slot 0 and slots 2 and up belong to the
 // technique that binds them.

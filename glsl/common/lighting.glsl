@@ -76,7 +76,14 @@ vec3 directFromAreaTriangle(Light l, vec3 p, vec3 n, vec3 wo, BrdfParams b)
     if (dot(p - a, emitterNormal) <= 0.0) return vec3(0.0); // behind the one-sided emitter
     vec3 wi = normalize((a + bb + c) / 3.0 - p);
     vec3 irradiance = l.intensityCosInner.rgb * kPi * polygonFormFactor(p, n, a, bb, c);
+#ifdef SHADOW_PCSS
+    // The side of the square this triangle is half of: the emitter's width PCSS assumes.
+    if (max(irradiance.r, max(irradiance.g, irradiance.b)) <= 0.0) return vec3(0.0);
+    float width = sqrt(length(cross(bb - a, c - a)));
+    return brdfEval(b, n, wo, wi) * irradiance * pcssVisibility(l, p, n, width);
+#else
     return shadedIrradiance(l, p, n, wo, b, wi, irradiance);
+#endif
 }
 
 // Still frames (gl/frame/shadow_maps.h): one emitting triangle's outgoing radiance towards wo from this

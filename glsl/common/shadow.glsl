@@ -14,8 +14,6 @@ uniform int pcfNearest; // 1: nearest taps (shadow.linear off); 0, the default: 
 // filtered taps, less in still frames, whose jittered nearest taps need no margin for a filter's footprint
 // and whose mean would keep the offset's shift of every contact shadow.
 uniform float shadowNormalOffset = 1.5;
-// 0: a directional light's cascades are not rendered this frame (moving), only its whole-scene view is read.
-uniform int shadowCascades = 1;
 
 // Percentage-closer filtering over (2r+1)^2 taps one texel apart around uv, each a 2x2 bilinear comparison
 // (or the nearest texel's), computed from (r+1)^2 textureGather calls instead of (2r+1)^2 filtered
@@ -69,23 +67,135 @@ vec4 shadowCoordinates(int layer, vec3 p, vec3 n)
     return vec4(s.xy, s.z - 2e-5, c.w <= 0.0 || s.z > 1.0 ? 0.0 : 1.0);
 }
 
+#ifdef SHADOW_PCSS
+// Percentage-closer soft shadows (Fernando 2005) for an emitter of side `lightWidth` whose shadow cube sits
+// at its centroid: the moving frame's estimate of a penumbra (still frames sample the emitter instead).
+// The blockers' mean distance from a 4x4 search over the map where the emitter's extent, seen from p,
+// reaches; the penumbra's width w (d_receiver - d_blocker) / d_blocker; PCF over 5x5 comparisons that
+// span it. A cube face's uv spans 2 d at distance d along its axis.
+layout(binding = UNIT_SHADOW_DEPTHS) uniform sampler2DArray shadowDepths;
+
+float shadowLinearDepth(float windowDepth, float far)
+{
+    float near = max(far * 1e-4, 1e-5); // gl/frame/light_views.cpp: lightNearFar
+    return 2.0 * near * far / (far + near - (2.0 * windowDepth - 1.0) * (far - near));
+}
+
+float shadowWindowDepth(float linearDepth, float far)
+{
+    float near = max(far * 1e-4, 1e-5);
+    return 0.5 * ((far + near) / (far - near) - 2.0 * far * near / ((far - near) * linearDepth)) + 0.5;
+}
+
+// The world direction of cube face `face`'s ray through uv, of unit length along the face's axis
+// (glsl/common/scene.glsl's cubeFace() order, gl/frame/light_views.cpp's cubeViews and glm::lookAt).
+vec3 cubeFaceRay(int face, vec2 uv)
+{
+    const vec3 axes[6] = vec3[6](vec3(1, 0, 0), vec3(-1, 0, 0), vec3(0, 1, 0), vec3(0, -1, 0), vec3(0, 0, 1),
+                                 vec3(0, 0, -1));
+    const vec3 ups[6] = vec3[6](vec3(0, -1, 0), vec3(0, -1, 0), vec3(0, 0, 1), vec3(0, 0, -1), vec3(0, -1, 0),
+                                vec3(0, -1, 0));
+    vec3 f = axes[face];
+    vec3 r = normalize(cross(f, ups[face]));
+    vec3 u = cross(r, f);
+    vec2 ndc = uv * 2.0 - 1.0;
+    return f + ndc.x * r + ndc.y * u;
+}
+
+// The depth along the face's axis at which `ray` meets the plane through p with normal n: what a tap
+// compares against, so that a receiver at a slant does not shadow itself.
+float receiverPlaneDepth(vec3 ray, vec3 origin, vec3 p, vec3 n, float fallback)
+{
+    float dn = dot(n, ray);
+    float t = abs(dn) > 1e-6 ? dot(n, p - origin) / dn : -1.0;
+    return t > 0.0 ? t : fallback;
+}
+
+float pcssVisibility(Light l, vec3 p, vec3 n, float lightWidth)
+{
+    if (l.shadow.x < 0) return 1.0;
+    int face = cubeFace(p - l.positionType.xyz);
+    int layer = l.shadow.x + face;
+    vec4 s = shadowCoordinates(layer, p, n);
+    if (s.w == 0.0) return 1.0;
+    vec3 origin = shadowViews[layer].originFar.xyz;
+    float far = shadowViews[layer].originFar.w;
+    float receiver = shadowLinearDepth(s.z, far);
+    float texel = 1.0 / float(textureSize(shadowMaps, 0).x);
+    const float bias = 1.0 - 2e-3; // relative: the map's depth quantisation and the plane's fit
+    // Taps whose rays leave the one-sided emitter backwards (into the ceiling it hangs from) carry no light
+    // and see that surface at once: they are left out of both the search and the filter.
+    vec3 emitterNormal = l.directionCosOuter.xyz;
+    // Blockers between a quarter of the way and p: their offsets from p's line reach w (d - t) / (4 t d).
+    float search = clamp(0.75 * lightWidth / receiver, texel, 0.25);
+    float blockers = 0.0, count = 0.0;
+    for (int j = 0; j < 4; ++j)
+        for (int i = 0; i < 4; ++i) {
+            vec2 uv = clamp(s.xy + (vec2(i, j) / 1.5 - 1.0) * search, vec2(0.0), vec2(1.0));
+            vec3 ray = cubeFaceRay(face, uv);
+            if (dot(ray, emitterNormal) <= 0.0) continue;
+            float d = shadowLinearDepth(texture(shadowDepths, vec3(uv, float(layer))).r, far);
+            if (d < receiverPlaneDepth(ray, origin, p, n, receiver) * bias) {
+                blockers += d;
+                count += 1.0;
+            }
+        }
+    if (count == 0.0) return 1.0;
+    float blocker = blockers / count;
+    float radius = max(lightWidth * (receiver - blocker) / blocker / (4.0 * receiver), texel);
+    float sum = 0.0, taps = 0.0;
+    for (int j = -2; j <= 2; ++j)
+        for (int i = -2; i <= 2; ++i) {
+            vec2 uv = clamp(s.xy + vec2(i, j) * (radius / 2.0), vec2(0.0), vec2(1.0));
+            vec3 ray = cubeFaceRay(face, uv);
+            if (dot(ray, emitterNormal) <= 0.0) continue;
+            float ref = shadowWindowDepth(receiverPlaneDepth(ray, origin, p, n, receiver) * bias, far);
+            sum += texture(shadowMaps, vec4(uv, float(layer), ref));
+            taps += 1.0;
+        }
+    return taps > 0.0 ? sum / taps : 1.0;
+}
+#endif
+
+// Visibility of p from shadow layer `layer`, filtered as pcfRadius and pcfNearest say.
+float percentageCloserAt(int layer, vec3 p, vec3 n)
+{
+    ShadowView v = shadowViews[layer];
+    // Normal offset by shadowNormalOffset texels at the receiver's distance, so that lit surfaces do not
+    // shadow themselves at grazing angles; the constant bias below covers the rest.
+    float dist = v.originFar.w > 0.0 ? length(p - v.originFar.xyz) : 1.0;
+    vec3 q = p + n * (shadowNormalOffset * v.texelWorld.x * dist);
+    vec4 c = v.viewProj * vec4(q, 1.0);
+    vec3 s = c.xyz / c.w * 0.5 + 0.5;
+    if (c.w <= 0.0 || s.z > 1.0) return 1.0;
+    s.xy = clamp(s.xy, vec2(0.0), vec2(1.0));
+    return percentageCloser(s.xy, float(layer), s.z - 2e-5);
+}
+
 float shadowVisibility(Light l, vec3 p, vec3 n)
 {
     if (l.shadow.x < 0) return 1.0;
+    // One call of the filter whatever the light (a SIMD rasteriser such as llvmpipe runs every call site a
+    // lane needs: two of them made cornell-spot's direct pass 20% slower).
     int layer = l.shadow.x;
-    if (l.shadow.y == 6) layer += cubeFace(p - l.positionType.xyz);
-    bool cascades = l.shadow.y > 1 && l.shadow.y != 6;
-    if (cascades && shadowCascades == 0) layer += l.shadow.y - 1;
-    vec4 s = shadowCoordinates(layer, p, n);
-    // A directional light's cascades (gl/frame/light_views.h), finest first, then its whole-scene view:
-    // the first whose map holds p with a filter's margin.
-    for (int k = 1; k < l.shadow.y && cascades && shadowCascades != 0; ++k) {
+    if (l.shadow.y == 6) {
+        layer += cubeFace(p - l.positionType.xyz);
+    } else {
+#ifdef SHADOW_CASCADES
+        // A directional light's cascades (gl/frame/light_views.h), finest first, then its whole-scene view:
+        // the first whose map holds p with a filter's margin. Compiled into the still frames' direct pass
+        // only (gl/frame/frame.cpp), the frames that render the cascades.
         vec2 margin = vec2(float(pcfRadius + 1)) / vec2(textureSize(shadowMaps, 0).xy);
-        if (all(greaterThanEqual(s.xy, margin)) && all(lessThanEqual(s.xy, 1.0 - margin))) break;
-        s = shadowCoordinates(++layer, p, n);
+        for (int k = 1; k < l.shadow.y; ++k, ++layer) {
+            vec4 s = shadowCoordinates(layer, p, n);
+            if (all(greaterThanEqual(s.xy, margin)) && all(lessThanEqual(s.xy, 1.0 - margin))) break;
+        }
+#else
+        // A spot's one view, or a directional light's view of the whole scene after its cascades.
+        layer += l.shadow.y - 1;
+#endif
     }
-    if (s.w == 0.0) return 1.0;
-    return percentageCloser(clamp(s.xy, vec2(0.0), vec2(1.0)), float(layer), s.z);
+    return percentageCloserAt(layer, p, n);
 }
 
 #endif
