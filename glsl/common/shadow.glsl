@@ -160,16 +160,9 @@ float pcssVisibility(Light l, vec3 p, vec3 n, float lightWidth)
 // Visibility of p from shadow layer `layer`, filtered as pcfRadius and pcfNearest say.
 float percentageCloserAt(int layer, vec3 p, vec3 n)
 {
-    ShadowView v = shadowViews[layer];
-    // Normal offset by shadowNormalOffset texels at the receiver's distance, so that lit surfaces do not
-    // shadow themselves at grazing angles; the constant bias below covers the rest.
-    float dist = v.originFar.w > 0.0 ? length(p - v.originFar.xyz) : 1.0;
-    vec3 q = p + n * (shadowNormalOffset * v.texelWorld.x * dist);
-    vec4 c = v.viewProj * vec4(q, 1.0);
-    vec3 s = c.xyz / c.w * 0.5 + 0.5;
-    if (c.w <= 0.0 || s.z > 1.0) return 1.0;
-    s.xy = clamp(s.xy, vec2(0.0), vec2(1.0));
-    return percentageCloser(s.xy, float(layer), s.z - 2e-5);
+    vec4 s = shadowCoordinates(layer, p, n);
+    if (s.w == 0.0) return 1.0;
+    return percentageCloser(clamp(s.xy, vec2(0.0), vec2(1.0)), float(layer), s.z);
 }
 
 float shadowVisibility(Light l, vec3 p, vec3 n)
