@@ -4,8 +4,8 @@
 // depth range; a directional light gets its cascades, then its view of the whole scene. CPU only.
 #include <random>
 
-#include <gtest/gtest.h>
 #include <glm/gtc/matrix_transform.hpp>
+#include <gtest/gtest.h>
 
 #include "gl/frame/light_views.h"
 
@@ -50,8 +50,8 @@ TEST(LightViews, CascadeRectanglesHoldWhatTheirSlicesSee)
     const glm::vec3 sunDir = glm::normalize(glm::vec3(0.3f, -1.0f, 0.2f));
     const glm::mat4 lightView = glm::lookAt(box.centre() - 10.0f * sunDir, box.centre(), gl::lightUpVector(sunDir));
     // From outside the box looking in, and from inside it at a corner (the near plane inside the box).
-    for (const gl::ViewFit& f : {fitFrom({-4.0f, 1.5f, 3.0f}, {1.0f, 1.0f, -0.5f}, 3),
-                                 fitFrom({-0.9f, 0.2f, -1.9f}, {3.0f, 1.0f, 1.0f}, 3)}) {
+    for (const gl::ViewFit& f :
+         {fitFrom({-4.0f, 1.5f, 3.0f}, {1.0f, 1.0f, -0.5f}, 3), fitFrom({-0.9f, 0.2f, -1.9f}, {3.0f, 1.0f, 1.0f}, 3)}) {
         const glm::vec2 depths = gl::viewDepthRange(f, box);
         ASSERT_GT(depths.y, depths.x);
         EXPECT_GE(depths.x, f.camera.znear);
