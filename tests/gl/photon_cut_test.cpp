@@ -14,6 +14,7 @@
 #include "core/cornell.h"
 #include "gl/frame/frame.h"
 #include "gl/frame/ray_caster.h"
+#include "gl/gl.h"
 #include "gl/technique/photon/illumination_cut.h"
 #include "gl/technique/photon/photon_tracer.h"
 #include "gl/technique/photon/photon_tree.h"
@@ -51,7 +52,8 @@ Built buildFrom(const gl::Buffer& photons, std::uint32_t count, int leafPhotons,
     return b;
 }
 
-Built buildScene(const core::Scene& scene, int photons, const gl::IlluminationCutSettings& cutSettings)
+Built buildScene(const core::Scene& scene, int photons, const gl::IlluminationCutSettings& cutSettings,
+                 int leafPhotons = 16)
 {
     gl::Frame frame(scene, photontest::smallFrame(8, 8));
     gl::RayCaster caster(scene);
@@ -61,23 +63,19 @@ Built buildScene(const core::Scene& scene, int photons, const gl::IlluminationCu
     gl::PhotonTracer tracer(ts);
     gl::PassTimers timers;
     tracer.trace(frame, caster, counters, timers);
-    Built b =
-        buildFrom(tracer.photons(), tracer.storedCount(), 16, cutSettings, counters, tracer.sceneSize() / 4096.0f);
+    Built b = buildFrom(tracer.photons(), tracer.storedCount(), leafPhotons, cutSettings, counters,
+                        tracer.sceneSize() / 4096.0f);
     b.photons = tracer.downloadPhotons();
     return b;
 }
 
 std::uint32_t flagsOf(const gl::GpuCutNode& c)
 {
-    std::uint32_t f;
-    std::memcpy(&f, &c.influenceLo.w, 4);
-    return f;
+    return std::uint32_t(c.influenceLo.w);
 }
 std::uint32_t generationOf(const gl::GpuCutNode& c)
 {
-    std::uint32_t g;
-    std::memcpy(&g, &c.influenceHi.w, 4);
-    return g;
+    return std::uint32_t(c.influenceHi.w);
 }
 
 // Every node's count is its heap range's size and its power its photons' sum; the root holds them all.
@@ -238,7 +236,7 @@ TEST_F(PhotonCutTest, OnePhotonNodesStayFinite)
     gl::Buffer buffer = gl::Buffer::fromVector("test.photons", photons);
     gl::Buffer counters("photon.counters", gl::kCounterSlots * 4);
     gl::IlluminationCutSettings s;
-    s.densityPhotons = 2.0f;
+    s.densityPhotons = 2;
     Built b = buildFrom(buffer, 5, 1, s, counters, 1e-4f);
     b.photons = photons;
     EXPECT_EQ(b.depth, 3);
@@ -252,6 +250,109 @@ TEST_F(PhotonCutTest, OnePhotonNodesStayFinite)
         const glm::vec4 e = b.cut[i].irradiance;
         EXPECT_TRUE(std::isfinite(e.x) && e.x >= 0.0f) << "E_p of cut node " << i;
     }
+}
+
+// The irradiance the refined cut gives (Eqs. 4 and 5 over its cached E_p, as the gather reads it) at
+// surface points, against a brute-force density estimate over every photon on the CPU: the k nearest
+// photons facing the point, their power over pi R_k^2 (Jensen 2001), independent of the tree. The points
+// are every 37th photon (on a surface, where light arrives). Measured on cornell-spot with 32k photon
+// paths (35,615 stored): relative RMSE 0.29 with the defaults (a cut of 10,292 nodes), 0.21 with the
+// threshold at 0.3 (24,316 nodes), 0.06 for the cut at the leaves (31,945 nodes).
+TEST_F(PhotonCutTest, CutIrradianceMatchesBruteForceDensity)
+{
+    const core::Scene scene = core::makeCornell("cornell-spot");
+    gl::Frame frame(scene, photontest::smallFrame(8, 8));
+    gl::RayCaster caster(scene);
+    gl::Buffer counters("photon.counters", gl::kCounterSlots * 4);
+    gl::PhotonTracerSettings ts;
+    ts.photons = 32768;
+    gl::PhotonTracer tracer(ts);
+    gl::PassTimers timers;
+    tracer.trace(frame, caster, counters, timers);
+    gl::PhotonTree tree(1);
+    tree.build(tracer.photons(), tracer.storedCount(), tracer.sceneSize() / 4096.0f, timers);
+    const std::vector<gl::GpuPhoton> photons = tracer.downloadPhotons();
+    ASSERT_GT(photons.size(), 20000u);
+
+    struct Query {
+        glm::vec4 position, normal;
+    };
+    std::vector<Query> queries;
+    for (std::size_t p = 0; p < photons.size(); p += 37)
+        queries.push_back({glm::vec4(glm::vec3(photons[p].positionPath), 1.0f), photons[p].normal});
+    const int k = 32;
+    auto luminance = [](glm::vec3 c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; };
+    std::vector<double> reference;
+    std::vector<std::pair<float, float>> near; // (squared distance, luminous power)
+    for (const Query& q : queries) {
+        near.clear();
+        for (const gl::GpuPhoton& ph : photons) {
+            if (glm::dot(glm::vec3(ph.normal), glm::vec3(q.normal)) <= 0.1f) continue;
+            const glm::vec3 d = glm::vec3(ph.positionPath) - glm::vec3(q.position);
+            near.push_back({glm::dot(d, d), float(luminance(glm::vec3(ph.powerIndex)))});
+        }
+        std::nth_element(near.begin(), near.begin() + (k - 1), near.end());
+        double power = 0.0;
+        for (int j = 0; j < k; ++j) power += near[j].second;
+        reference.push_back(power / (3.14159265358979 * double(near[k - 1].first)));
+    }
+
+    gl::Buffer in = gl::Buffer::fromVector("test.cut.queries", queries);
+    gl::Buffer out("test.cut.results", queries.size() * sizeof(glm::vec4));
+    gl::Program lookup = gl::Program::compute("test.cutIrradiance", "test/cut_irradiance.comp");
+    struct Case {
+        const char* name;
+        int eminLevel;
+        float threshold;
+    };
+    // The defaults; a lower threshold (a larger cut); a cut at the leaves, where every node is one or two
+    // photons and Eq. 4 reads back its own E_p, the k-nearest estimate at that photon: the GPU's search
+    // against the brute force, with little interpolation in between.
+    const Case cases[] = {{"defaults", 12, 1.2f}, {"threshold 0.3", 12, 0.3f}, {"at the leaves", 30, 1.2f}};
+    std::vector<double> errors;
+    for (const Case& c : cases) {
+        gl::IlluminationCutSettings s;
+        s.eminLevel = c.eminLevel;
+        s.threshold = c.threshold;
+        gl::IlluminationCut cut;
+        cut.build(tree, tracer.photons(), s, counters, timers);
+        cut.bind();
+        tree.bind(lookup);
+        in.bindBase(GL_SHADER_STORAGE_BUFFER, 0);
+        out.bindBase(GL_SHADER_STORAGE_BUFFER, 1);
+        lookup.set("queryCount", unsigned(queries.size()));
+        lookup.use();
+        glDispatchCompute(GLuint((queries.size() + 63) / 64), 1, 1);
+        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+        const std::vector<glm::vec4> got = out.download<glm::vec4>();
+        double squared = 0.0, sumCut = 0.0, sumReference = 0.0;
+        int uncovered = 0;
+        for (std::size_t i = 0; i < queries.size(); ++i) {
+            const double e = luminance(glm::vec3(got[i]));
+            squared += (e - reference[i]) * (e - reference[i]);
+            sumCut += e;
+            sumReference += reference[i];
+            uncovered += got[i].w < 1.0f;
+        }
+        const double n = double(queries.size());
+        const double relRmse = std::sqrt(squared / n) / (sumReference / n);
+        const double meanRatio = sumCut / sumReference;
+        std::printf("[ measured ] %s: cut %u nodes (coarse %u), %zu points: relative RMSE %.4f, mean ratio %.4f, %d "
+                    "points no kernel reaches\n",
+                    c.name, cut.size(), cut.coarseSize(), queries.size(), relRmse, meanRatio, uncovered);
+        EXPECT_LE(uncovered, 1) << c.name;
+        errors.push_back(relRmse);
+        if (c.eminLevel == 30) {
+            EXPECT_LT(relRmse, 0.1) << c.name;
+            EXPECT_NEAR(meanRatio, 1.0, 0.03) << c.name;
+        } else {
+            // Eq. 4's kernels reach as far as their node's box: nodes of dim regions, which are large, reach
+            // into bright ones and pull the mean down (measured: 14% at the defaults).
+            EXPECT_LT(relRmse, 0.4) << c.name;
+            EXPECT_NEAR(meanRatio, 0.9, 0.1) << c.name;
+        }
+    }
+    EXPECT_LT(errors[1], errors[0]) << "a lower threshold refines the cut, and its error falls";
 }
 
 } // namespace

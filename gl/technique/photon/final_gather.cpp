@@ -1,6 +1,7 @@
 #include "gl/technique/photon/final_gather.h"
 
 #include <algorithm>
+#include <string>
 #include <vector>
 
 #include "gl/frame/bindings.h"
@@ -20,7 +21,10 @@ std::vector<Define> gatherDefines(const Frame& frame, const FinalGatherSettings&
     const GpuScene& scene = frame.gpuScene();
     if (scene.punctualLightCount() > 0) d.push_back({"PUNCTUAL_LIGHTS", "1"});
     if (int(scene.lights().size()) > scene.punctualLightCount()) d.push_back({"AREA_LIGHTS", "1"});
-    if (s.fullPhotonMap) d.push_back({"DENSITY_PHOTONS", "1"});
+    if (s.fullPhotonMap) {
+        d.push_back({"DENSITY_PHOTONS", "1"});
+        d.push_back({"NEAREST_K", std::to_string(s.densityPhotons)});
+    }
     return d;
 }
 
@@ -54,7 +58,6 @@ void FinalGather::gather(const Frame& frame, const RayCaster& caster, const Phot
     program_.set("lightCount", frame.shadowMaps().lightCount());
     // One shadow-map tap per hit: hundreds of rays average a sample's light, PCF would only cost.
     frame.shadowMaps().setPcfUniforms(program_, 0);
-    program_.set("densityPhotons", settings_.densityPhotons);
     program_.set("clusterCount", clusters.count());
     program_.set("gatherRays", unsigned(std::max(settings_.rays, 1)));
     program_.set("rayEpsilon", 1e-5f * sceneSize);

@@ -17,9 +17,9 @@
 namespace bounce::gl {
 
 struct FinalGatherSettings {
-    int rays = 256;               // per sample (the paper: 250-500)
-    bool fullPhotonMap = false;   // density estimation in every photon instead of the cut (Fig. 6's reference)
-    float densityPhotons = 32.0f; // k, for fullPhotonMap
+    int rays = 256;             // per sample (the paper: 250-500)
+    bool fullPhotonMap = false; // density estimation in every photon instead of the cut (Fig. 6's reference)
+    int densityPhotons = 32;    // k, for fullPhotonMap
     std::uint32_t seed = 1;
 };
 

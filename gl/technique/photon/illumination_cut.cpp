@@ -1,6 +1,8 @@
 #include "gl/technique/photon/illumination_cut.h"
 
+#include <algorithm>
 #include <cstring>
+#include <string>
 
 #include "gl/gl.h"
 #include "gl/resource/dispatch.h"
@@ -15,7 +17,6 @@ IlluminationCut::IlluminationCut()
       mark_(Program::compute("photon.cutMark", "technique/photon/cut_mark.comp")),
       flags_(Program::compute("photon.cutFlags", "technique/photon/cut_flags.comp")),
       listProgram_(Program::compute("photon.cutList", "technique/photon/cut_list.comp")),
-      refine_(Program::compute("photon.cutRefine", "technique/photon/cut_refine.comp")),
       influence_(Program::compute("photon.cutInfluence", "technique/photon/cut_influence.comp"))
 {}
 
@@ -66,6 +67,8 @@ void IlluminationCut::build(const PhotonTree& tree, const Buffer& photons, const
 
     bind();
     tree.bind(select_);
+    const int firstLevel = std::clamp(s.eminLevel, 0, std::max(tree.depth() - 1, 0));
+    select_.set("lastLevel", std::min(firstLevel + 1, tree.depth()));
     for (int level = tree.depth(); level >= 0; --level) {
         select_.set("level", level);
         dispatchCompute(select_, {1 << level, 1, 1}, {64, 1, 1});
@@ -76,8 +79,14 @@ void IlluminationCut::build(const PhotonTree& tree, const Buffer& photons, const
     dispatchCompute(mark_, {int(nodeCount_), 1, 1}, {64, 1, 1});
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 
+    if (!refine_ || refineK_ != s.densityPhotons) {
+        refine_ = Program::compute("photon.cutRefine", "technique/photon/cut_refine.comp",
+                                   {{"NEAREST_K", std::to_string(s.densityPhotons)}});
+        refineK_ = s.densityPhotons;
+    }
     for (int iteration = 0; iteration <= s.iterations; ++iteration) {
         size_ = compact(tree, counters);
+        if (iteration == 0) coarseSize_ = size_;
         const bool split = iteration < s.iterations;
         const std::uint32_t zero = 0;
         counters.update(kCounterCutSplits * 4, 4, &zero);
@@ -89,7 +98,6 @@ void IlluminationCut::build(const PhotonTree& tree, const Buffer& photons, const
             counters.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_PHOTON_COUNTERS);
             tree.bind(refine_);
             refine_.set("cutSize", size_);
-            refine_.set("densityPhotons", s.densityPhotons);
             refine_.set("threshold", s.threshold);
             refine_.set("split", split ? 1 : 0);
             refine_.set("iteration", unsigned(iteration + 1));

@@ -2,12 +2,12 @@
 // in the final gather. Per frame, on the GPU:
 //   1. E_min = the mean of Eq. 3's E~_p over the nodes of levels `eminLevel` and the one below (the paper:
 //      12-13) (cut_emin.comp);
-//   2. nodes with E~_p > E_min are selected, bottom-up (cut_select.comp), and the selection is made a valid
-//      cut: the deepest selected nodes stay, and every region with nothing selected is covered by its
-//      topmost node (cut_mark.comp);
+//   2. nodes no deeper than those two levels with E~_p > E_min are selected, bottom-up (cut_select.comp,
+//      which says why no deeper), and the selection is made a valid cut: the deepest selected nodes stay,
+//      and every region with nothing selected is covered by its topmost node (cut_mark.comp);
 //   3. `iterations` refinement passes (the paper: 3-5): each cut node gets its accurate irradiance E_p by
-//      nearest-photon density estimation at its centre and is replaced by its children where that estimate
-//      and E~_p differ by more than `threshold` (1.2 x) (cut_refine.comp); a last pass evaluates the
+//      density estimation from its k nearest photons at its centre and is replaced by its children where
+//      |E_p - E~_p| > `threshold` x E~_p (the paper: 1.2) (cut_refine.comp); a last pass evaluates the
 //      nodes the last split made;
 //   4. E_p stays cached per cut node, and each node above the cut learns the box its cut descendants'
 //      kernels reach (cut_influence.comp), so the gather can walk the tree down to the cut.
@@ -30,8 +30,8 @@ namespace bounce::gl {
 // std430 mirror of CutNode in illumination_cut.glsl.
 struct GpuCutNode {
     glm::vec4 irradiance;   // w: 1 once E_p is computed
-    glm::vec4 influenceLo;  // w: flag bits
-    glm::vec4 influenceHi;  // w: generation bits
+    glm::vec4 influenceLo;  // w: flags, as a float's value
+    glm::vec4 influenceHi;  // w: generation, as a float's value
     glm::vec4 centreRadius; // w: r_p
     glm::vec4 normalRatio;  // w: refinement ratio
     glm::vec4 fallbackLo, fallbackHi;
@@ -41,10 +41,10 @@ static_assert(sizeof(GpuCutNode) == 128);
 inline constexpr std::uint32_t kCutSelected = 1, kCutAnyBelow = 2, kCutIn = 4, kCutPassed = 8;
 
 struct IlluminationCutSettings {
-    int eminLevel = 12;          // E_min from this level and the next (clamped to the tree)
-    int iterations = 4;          // refinement passes that may split
-    float threshold = 1.2f;      // a node passes when its two estimates differ by at most this ratio
-    float densityPhotons = 32.f; // k of the nearest-photon estimate
+    int eminLevel = 12;      // E_min from this level and the next (clamped to the tree)
+    int iterations = 4;      // refinement passes that may split
+    float threshold = 1.2f;  // a node passes when |E_p - E~_p| <= threshold x E~_p
+    int densityPhotons = 32; // k of the nearest-photon estimate
 };
 
 class IlluminationCut {
@@ -58,6 +58,7 @@ public:
     void bind() const;
 
     std::uint32_t size() const { return size_; }
+    std::uint32_t coarseSize() const { return coarseSize_; } // before refinement
     float eMin() const { return eMin_; }
     const std::vector<std::uint32_t>& splitsPerIteration() const { return splits_; }
     const Buffer& nodes() const { return nodes_; }
@@ -69,7 +70,8 @@ private:
     Program emin_, select_, mark_, flags_, listProgram_, refine_, influence_;
     GpuScan scan_;
     Buffer nodes_, list_, marks_;
-    std::uint32_t size_ = 0, nodeCount_ = 0;
+    int refineK_ = 0; // the k refine_ was compiled for
+    std::uint32_t size_ = 0, coarseSize_ = 0, nodeCount_ = 0;
     float eMin_ = 0.0f;
     std::vector<std::uint32_t> splits_;
 

@@ -18,7 +18,7 @@ namespace {
 
 struct PhotonSettings {
     PhotonTracerSettings tracer;
-    int leafPhotons = 32;
+    int leafPhotons = 1;
     IlluminationCutSettings cut;
     ShadingClusterSettings clusters;
     FinalGatherSettings gather;
@@ -65,7 +65,9 @@ public:
             {"photons.capacity", double(tracer_.capacity())},
             {"tree.depth", double(tree_.depth())},
             {"cut.eMin", double(cut_.eMin())},
+            {"cut.coarseSize", double(cut_.coarseSize())},
             {"cut.size", double(cut_.size())},
+            {"cut.splits", splitCount()},
             {"clusters", double(clusters_.nonEmpty())},
             {"clusters.seeds", double(clusters_.seedsPlaced())},
             {"clusters.reused", double(clusters_.survivors())},
@@ -76,6 +78,13 @@ public:
     }
 
 private:
+    double splitCount() const
+    {
+        double n = 0.0;
+        for (std::uint32_t s : cut_.splitsPerIteration()) n += s;
+        return n;
+    }
+
     PhotonSettings settings_;
     RayCaster caster_;
     Buffer counters_;
@@ -113,13 +122,14 @@ TechniqueInfo photonTechniqueInfo()
         {"photons", ParamType::Int, 65536, 0, 16777216, "photon paths emitted per frame (split among lights by power)"},
         {"maxBounces", ParamType::Int, 16, 1, 64, "surfaces one photon path may reach"},
         {"russianRoulette", ParamType::Bool, 1, 0, 1, "end photon paths by Russian roulette (0: only at maxBounces)"},
-        {"leafPhotons", ParamType::Int, 32, 1, 1024, "photons per leaf of the photon tree, at most"},
+        {"leafPhotons", ParamType::Int, 1, 1, 1024,
+         "photons per leaf of the photon tree, at most (the paper's kd-tree: 1)"},
         {"cutLevel", ParamType::Int, 12, 0, 24,
          "E_min is the mean Eq. 3 estimate of this level of the photon tree and the next (the paper: 12-13)"},
         {"cutIterations", ParamType::Int, 4, 0, 8, "refinement iterations of the illumination cut (the paper: 3-5)"},
-        {"cutThreshold", ParamType::Float, 1.2, 1.0, 100.0,
-         "a cut node is refined when its estimates differ by more than this ratio (the paper: 1.2)"},
-        {"densityPhotons", ParamType::Int, 32, 1, 1024, "k of the nearest-photon density estimates"},
+        {"cutThreshold", ParamType::Float, 1.2, 0.0, 100.0,
+         "a cut node is refined when |E_p - E~_p| > this x E~_p (the paper: Delta E = 1.2 E~_p)"},
+        {"densityPhotons", ParamType::Int, 32, 1, 48, "k of the k-nearest-photon density estimates"},
         {"clusters", ParamType::Int, 1600, 1, 1048576, "shading clusters K (the paper: 1000-6000)"},
         {"alpha", ParamType::Float, 0.3, 0.0, 100.0,
          "Eq. 2's weight of position against normal, per scene size (the paper: 0.1-0.5)"},
@@ -144,7 +154,7 @@ TechniqueInfo photonTechniqueInfo()
         s.cut.eminLevel = v.getInt("cutLevel");
         s.cut.iterations = v.getInt("cutIterations");
         s.cut.threshold = float(v.get("cutThreshold"));
-        s.cut.densityPhotons = float(v.getInt("densityPhotons"));
+        s.cut.densityPhotons = v.getInt("densityPhotons");
         s.clusters.clusters = v.getInt("clusters");
         s.clusters.alpha = float(v.get("alpha"));
         s.clusters.iterations = v.getInt("kmeansIterations");
@@ -152,7 +162,7 @@ TechniqueInfo photonTechniqueInfo()
         s.clusters.everyPixel = v.getChoice(photonTechniqueInfo().params, "gatherAt") == "pixels";
         s.gather.rays = v.getInt("gatherRays");
         s.gather.fullPhotonMap = v.getChoice(photonTechniqueInfo().params, "density") == "photons";
-        s.gather.densityPhotons = float(v.getInt("densityPhotons"));
+        s.gather.densityPhotons = v.getInt("densityPhotons");
         s.interpolationError = float(v.get("interpolationError"));
         return std::make_unique<Photon>(frame, s);
     };

@@ -1,10 +1,10 @@
 #version 450 core
 // One refinement iteration of the illumination cut (section 3.3), one invocation per cut node: a node
-// entering the cut gets its accurate irradiance E_p, the standard density estimate from about k nearest
-// photons at its centre, and the same estimate weighted as Eq. 3 weighs photons (by w_i . n_p), which
-// is compared with E~_p. When they differ by more than the threshold (the paper: 1.2 x) and splitting
-// is allowed, the node leaves the cut and its non-empty children enter it. Each invocation writes only
-// its node and its children: no two touch the same node.
+// entering the cut gets its accurate irradiance E_p, the standard density estimate from its k nearest
+// photons at its centre (density.glsl), and the same estimate weighted as Eq. 3 weighs photons (by
+// w_i . n_p), which is compared with E~_p. When |E_p - E~_p| > threshold x E~_p (the paper: Delta E =
+// 1.2 E~_p) and splitting is allowed, the node leaves the cut and its non-empty children enter it. Each
+// invocation writes only its node and its children: no two touch the same node.
 #include "technique/photon/density.glsl"
 
 layout(local_size_x = 64) in;
@@ -13,10 +13,9 @@ layout(std430, binding = SSBO_PHOTON_CUT_LIST) readonly buffer CutList { uint cu
 layout(std430, binding = SSBO_PHOTON_COUNTERS) buffer Counters { uint counters[]; };
 
 uniform uint cutSize;
-uniform float densityPhotons; // k
-uniform float threshold;      // Delta E as a ratio: 1.2
-uniform int split;            // 0: the last pass, which only evaluates
-uniform uint iteration;       // the generation children get
+uniform float threshold; // Delta E over E~_p: 1.2
+uniform int split;       // 0: the last pass, which only evaluates
+uniform uint iteration;  // the generation children get
 
 void main()
 {
@@ -27,16 +26,17 @@ void main()
     uint f = cutFlags(i);
     if (cutNodes[i].irradiance.w == 0.0) {
         vec3 x = nodeCentre(node), n = nodeNormal(node);
+        // The search starts at half the radius that holds k of the node's photons at its mean density.
         float radius;
-        DensitySums s = nearestPhotons(x, n, node, densityPhotons, radius);
+        DensitySums s = nearestPhotons(x, n, 0.5 * node.hi.w * sqrt(float(NEAREST_K) / (kPi * max(node.lo.w, 1.0))),
+                                       radius);
         float area = kPi * radius * radius;
         float accurate = s.cosWeighted / area;
         float approx = node.power.w;
-        float ratio = (accurate > 0.0 && approx > 0.0) ? max(accurate / approx, approx / accurate)
-                                                       : (accurate == approx ? 1.0 : 3.0e38);
+        float difference = abs(accurate - approx);
         cutNodes[i].irradiance = vec4(s.power / area, 1.0);
-        cutNodes[i].normalRatio.w = ratio;
-        if (ratio <= threshold) f |= kCutPassed;
+        cutNodes[i].normalRatio.w = approx > 0.0 ? difference / approx : (difference == 0.0 ? 0.0 : 3.0e38);
+        if (difference <= threshold * approx) f |= kCutPassed;
         setCutFlags(i, f);
     }
     if (split == 0 || (f & kCutPassed) != 0u || nodeIsLeaf(i)) return;
@@ -45,6 +45,6 @@ void main()
     for (uint child = 2u * i; child <= 2u * i + 1u; ++child) {
         if (photonNodes[child].lo.w <= 0.0) continue;
         setCutFlags(child, cutFlags(child) | kCutIn);
-        cutNodes[child].influenceHi.w = uintBitsToFloat(iteration);
+        cutNodes[child].influenceHi.w = float(iteration);
     }
 }

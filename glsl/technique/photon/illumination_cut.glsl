@@ -8,24 +8,27 @@
 
 struct CutNode {
     vec4 irradiance;   // rgb E_p (W/m^2), the standard density estimate at the node's centre; w: 1 once computed
-    vec4 influenceLo;  // xyz: the box within which this node's or its cut descendants' kernels (Eq. 5) are non-zero; w: flag bits
-    vec4 influenceHi;  // xyz; w: the refinement iteration in which the node entered the cut (uint bits)
+    vec4 influenceLo;  // xyz: the box within which this node's or its cut descendants' kernels (Eq. 5) are non-zero; w: flags (their value)
+    vec4 influenceHi;  // xyz; w: the refinement iteration in which the node entered the cut
     vec4 centreRadius; // xyz the node's centre (mean photon position), w: r_p
-    vec4 normalRatio;  // xyz n_p, w: the nearest-photon estimate over E~_p (the 1.2x test)
+    vec4 normalRatio;  // xyz n_p, w: |E_p - E~_p| / E~_p, both weighted as Eq. 3 (the refinement test)
     vec4 fallbackLo;   // xyz, w unused: as influence*, for the fallback kernels of twice the radius
     vec4 fallbackHi;
     vec4 incoming;     // xyz the node's photons' mean incoming direction (luminous power weighted), w unused
 };
 
-const uint kCutSelected = 1u;   // E~_p > E_min
+const uint kCutSelected = 1u;   // E~_p > E_min, at a level no deeper than E_min's
 const uint kCutAnyBelow = 2u;   // a selected node lies strictly under this one
 const uint kCutIn = 4u;         // in the cut
-const uint kCutPassed = 8u;     // its estimates agree within the threshold
+const uint kCutPassed = 8u;     // |E_p - E~_p| <= threshold x E~_p
 
 layout(std430, binding = SSBO_PHOTON_CUT) buffer CutNodes { CutNode cutNodes[]; };
 
-uint cutFlags(uint i) { return floatBitsToUint(cutNodes[i].influenceLo.w); }
-void setCutFlags(uint i, uint f) { cutNodes[i].influenceLo.w = uintBitsToFloat(f); }
+// Flags and generations are small integers held as float values, not as float bits: as bits they would
+// be denormals, which a driver that flushes denormals to zero (llvmpipe's vector code, many GPUs) may
+// turn into 0 on the way through a register.
+uint cutFlags(uint i) { return uint(cutNodes[i].influenceLo.w); }
+void setCutFlags(uint i, uint f) { cutNodes[i].influenceLo.w = float(f); }
 bool cutSubtreeSelected(uint f) { return (f & (kCutSelected | kCutAnyBelow)) != 0u; }
 
 // The next node after i's subtree in depth-first order over the heap (0: the walk is over).
@@ -35,10 +38,10 @@ uint skipSubtree(uint i)
     return i == 0u ? 0u : i + 1u;
 }
 
-float boxDistance(vec3 p, vec3 lo, vec3 hi)
+float boxDistance2(vec3 p, vec3 lo, vec3 hi)
 {
     vec3 d = max(max(lo - p, p - hi), vec3(0.0));
-    return length(d);
+    return dot(d, d);
 }
 
 #endif

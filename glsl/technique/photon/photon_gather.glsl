@@ -9,71 +9,13 @@
 #define SCENE_GEOMETRY
 #include "common/lighting.glsl"
 #include "common/raycast.glsl"
+#include "technique/photon/cut_lookup.glsl"
 #include "technique/photon/density.glsl"
 
 layout(binding = UNIT_BASE_COLOR) uniform sampler2DArray baseColorTextures;
 
 uniform int punctualLightCount; // lights [0, punctualLightCount): point, spot, directional
 uniform int lightCount;         // lights [punctualLightCount, lightCount): emitting triangles
-uniform float densityPhotons;
-
-struct CutLookup {
-    vec3 irradiance;
-    vec3 incoming;  // the weighted mean direction the irradiance comes from
-    int coverage;   // 2: the kernels of Eq. 5 reach y; 1: only the fallback's (twice as wide); 0: none
-};
-
-// Eq. 4 and 5 over the cut nodes whose kernel reaches y, found by walking the photon tree from the root
-// and skipping subtrees whose influence box (cut_influence.comp) does not hold y: the subtree above the
-// cut serves as the kd-tree of the cut. `scale` widens the kernels (1: Eq. 5; 2: the fallback).
-vec4 cutKernelSum(vec3 y, vec3 ny, float scale, out vec3 incoming)
-{
-    vec3 e = vec3(0.0);
-    float weights = 0.0;
-    incoming = vec3(0.0);
-    bool wide = scale > 1.0;
-    uint i = 1u;
-    while (i != 0u) {
-        vec3 lo = wide ? cutNodes[i].fallbackLo.xyz : cutNodes[i].influenceLo.xyz;
-        vec3 hi = wide ? cutNodes[i].fallbackHi.xyz : cutNodes[i].influenceHi.xyz;
-        if (any(lessThan(y, lo)) || any(greaterThan(y, hi))) {
-            i = skipSubtree(i);
-        } else if ((cutFlags(i) & kCutIn) != 0u) {
-            vec4 cr = cutNodes[i].centreRadius;
-            float r = length(cr.xyz - y) / (scale * cr.w);
-            float w = r < 1.0 ? (1.0 - r * r) * max(0.0, dot(cutNodes[i].normalRatio.xyz, ny)) : 0.0;
-            if (w > 0.0) {
-                weights += w;
-                e += w * cutNodes[i].irradiance.rgb;
-                incoming += w * cutNodes[i].incoming.xyz;
-            }
-            i = skipSubtree(i);
-        } else if (nodeIsLeaf(i)) {
-            i = skipSubtree(i);
-        } else {
-            i = 2u * i;
-        }
-    }
-    return vec4(e, weights);
-}
-
-// The cut's irradiance at y (normal ny): Eq. 4's normalised weights; where no kernel reaches y (a gap
-// between cut nodes), the kernels at twice their radius (a fallback of ours: the paper does not say);
-// where none of those reach, nothing.
-CutLookup cutIrradiance(vec3 y, vec3 ny)
-{
-    vec3 incoming;
-    vec4 s = cutKernelSum(y, ny, 1.0, incoming);
-    int coverage = 2;
-    if (!(s.w > 0.0)) {
-        s = cutKernelSum(y, ny, 2.0, incoming);
-        coverage = s.w > 0.0 ? 1 : 0;
-    }
-    CutLookup l = CutLookup(s.w > 0.0 ? s.rgb / s.w : vec3(0.0), ny, coverage);
-    float len = length(incoming);
-    if (len > 0.0) l.incoming = incoming / len;
-    return l;
-}
 
 // Radiance leaving the hit of a ray from `origin` along `dir` back towards the origin: direct light
 // (shadow maps) plus photon-map indirect light; emission is left out (the frame's direct light has it).
@@ -113,7 +55,8 @@ vec3 gatherRadiance(vec3 origin, vec3 dir, Hit hit, out int coverage)
 #endif
 #ifdef DENSITY_PHOTONS
     float radius;
-    DensitySums s = nearestPhotons(y, n, photonNodes[1], densityPhotons, radius);
+    PhotonNode root = photonNodes[1];
+    DensitySums s = nearestPhotons(y, n, 0.5 * root.hi.w * sqrt(float(NEAREST_K) / (kPi * max(root.lo.w, 1.0))), radius);
     vec3 irradiance = s.power / (kPi * radius * radius);
     vec3 wi = n;
 #else
