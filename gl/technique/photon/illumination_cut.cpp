@@ -31,7 +31,7 @@ std::uint32_t IlluminationCut::compact(const PhotonTree& tree, Buffer& counters)
     marks_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_PHOTON_SCAN);
     tree.bind(flags_);
     flags_.set("nodeCount", nodeCount_);
-    dispatchCompute(flags_, {int(nodeCount_), 1, 1}, {64, 1, 1});
+    dispatchLinear(flags_, nodeCount_);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     scan_.run(marks_, nodeCount_, counters, kCounterCutSize);
     bind();
@@ -39,7 +39,7 @@ std::uint32_t IlluminationCut::compact(const PhotonTree& tree, Buffer& counters)
     list_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_PHOTON_CUT_LIST);
     tree.bind(listProgram_);
     listProgram_.set("nodeCount", nodeCount_);
-    dispatchCompute(listProgram_, {int(nodeCount_), 1, 1}, {64, 1, 1});
+    dispatchLinear(listProgram_, nodeCount_);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
     std::uint32_t size = 0;
     counters.download(kCounterCutSize * 4, 4, &size);
@@ -71,12 +71,12 @@ void IlluminationCut::build(const PhotonTree& tree, const Buffer& photons, const
     select_.set("lastLevel", std::min(firstLevel + 1, tree.depth()));
     for (int level = tree.depth(); level >= 0; --level) {
         select_.set("level", level);
-        dispatchCompute(select_, {1 << level, 1, 1}, {64, 1, 1});
+        dispatchLinear(select_, 1u << level);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     }
     tree.bind(mark_);
     mark_.set("nodeCount", nodeCount_);
-    dispatchCompute(mark_, {int(nodeCount_), 1, 1}, {64, 1, 1});
+    dispatchLinear(mark_, nodeCount_);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 
     if (!refine_ || refineK_ != s.densityPhotons) {
@@ -118,7 +118,7 @@ void IlluminationCut::build(const PhotonTree& tree, const Buffer& photons, const
     tree.bind(influence_);
     for (int level = tree.depth(); level >= 0; --level) {
         influence_.set("level", level);
-        dispatchCompute(influence_, {1 << level, 1, 1}, {64, 1, 1});
+        dispatchLinear(influence_, 1u << level);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     }
 }

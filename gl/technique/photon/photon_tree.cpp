@@ -9,6 +9,13 @@
 
 namespace bounce::gl {
 
+void dispatchLinear(const Program& program, std::uint32_t count)
+{
+    constexpr std::uint32_t row = 1u << 21; // kLinearRow
+    const std::uint32_t rows = (count + row - 1) / row;
+    dispatchCompute(program, {int(std::min(count, row)), int(std::max(rows, 1u)), 1}, {64, 1, 1});
+}
+
 PhotonTree::PhotonTree(int leafPhotons)
     : leafPhotons_(std::max(leafPhotons, 1)),
       leaves_(Program::compute("photon.treeLeaves", "technique/photon/tree_leaves.comp")),
@@ -42,12 +49,12 @@ void PhotonTree::build(const Buffer& photons, std::uint32_t count, float minRadi
     if (!nodes_ || nodes_.bytes() < bytes) nodes_ = Buffer("photon.treeNodes", bytes);
     photons.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_PHOTONS);
     bind(leaves_);
-    dispatchCompute(leaves_, {1 << depth_, 1, 1}, {64, 1, 1});
+    dispatchLinear(leaves_, 1u << depth_);
     bind(reduce_);
     for (int level = depth_ - 1; level >= 0; --level) {
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
         reduce_.set("level", level);
-        dispatchCompute(reduce_, {1 << level, 1, 1}, {64, 1, 1});
+        dispatchLinear(reduce_, 1u << level);
     }
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }

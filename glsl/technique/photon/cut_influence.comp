@@ -5,6 +5,7 @@
 // every subtree whose box does not hold the point: the subtree above the cut is the kd-tree of the cut's
 // nodes (section 3.3).
 #include "technique/photon/illumination_cut.glsl"
+#include "technique/photon/linear_dispatch.glsl"
 
 layout(local_size_x = 64) in;
 
@@ -12,7 +13,7 @@ uniform int level;
 
 void main()
 {
-    uint k = gl_GlobalInvocationID.x;
+    uint k = linearInvocation();
     if (k >= (1u << uint(level))) return;
     uint i = (1u << uint(level)) + k;
     vec3 lo = vec3(3.0e38), hi = vec3(-3.0e38), fallbackLo = lo, fallbackHi = hi;

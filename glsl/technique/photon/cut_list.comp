@@ -2,6 +2,7 @@
 // The cut's compaction, step 2: every cut node writes its index at its scanned position: the cut list,
 // in heap order (the same list in every run).
 #include "technique/photon/illumination_cut.glsl"
+#include "technique/photon/linear_dispatch.glsl"
 
 layout(local_size_x = 64) in;
 
@@ -12,7 +13,7 @@ uniform uint nodeCount;
 
 void main()
 {
-    uint i = gl_GlobalInvocationID.x;
+    uint i = linearInvocation();
     if (i == 0u || i >= nodeCount) return;
     if ((cutFlags(i) & kCutIn) != 0u) cutList[positions[i]] = i;
 }

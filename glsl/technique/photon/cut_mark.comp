@@ -5,6 +5,7 @@
 // has a selection under it (it is the top of a region nothing covers), or when it is the root. Every
 // root-to-leaf path then meets exactly one cut node. Empty nodes cover nothing and are left out.
 #include "technique/photon/illumination_cut.glsl"
+#include "technique/photon/linear_dispatch.glsl"
 
 layout(local_size_x = 64) in;
 
@@ -12,7 +13,7 @@ uniform uint nodeCount; // 2^(depth + 1)
 
 void main()
 {
-    uint i = gl_GlobalInvocationID.x;
+    uint i = linearInvocation();
     if (i == 0u || i >= nodeCount) return;
     uint f = cutFlags(i);
     bool keep = (f & kCutSelected) != 0u && (f & kCutAnyBelow) == 0u;

@@ -12,6 +12,7 @@
 // 4K-8K": the coarse cut lies at and above those levels, brighter regions reaching them and dimmer ones
 // staying above, and only the refinement goes deeper.
 #include "technique/photon/illumination_cut.glsl"
+#include "technique/photon/linear_dispatch.glsl"
 
 layout(local_size_x = 64) in;
 
@@ -22,7 +23,7 @@ uniform int lastLevel; // the deeper of E_min's two levels
 
 void main()
 {
-    uint k = gl_GlobalInvocationID.x;
+    uint k = linearInvocation();
     if (k >= (1u << uint(level))) return;
     uint i = (1u << uint(level)) + k;
     PhotonNode n = photonNodes[i];

@@ -1,6 +1,7 @@
 #version 450 core
 // The photon tree's leaves: one invocation per leaf sums its photons (photon_tree.glsl).
 #include "technique/photon/photon_tree.glsl"
+#include "technique/photon/linear_dispatch.glsl"
 
 layout(local_size_x = 64) in;
 
@@ -8,7 +9,7 @@ layout(std430, binding = SSBO_PHOTONS) readonly buffer Photons { Photon photons[
 
 void main()
 {
-    uint k = gl_GlobalInvocationID.x;
+    uint k = linearInvocation();
     uint leaves = 1u << uint(treeDepth);
     if (k >= leaves) return;
     uint i = leaves + k;

@@ -1,6 +1,7 @@
 #version 450 core
 // One level of the photon tree from the level below: every sum is its children's (photon_tree.glsl).
 #include "technique/photon/photon_tree.glsl"
+#include "technique/photon/linear_dispatch.glsl"
 
 layout(local_size_x = 64) in;
 
@@ -8,7 +9,7 @@ uniform int level;
 
 void main()
 {
-    uint k = gl_GlobalInvocationID.x;
+    uint k = linearInvocation();
     if (k >= (1u << uint(level))) return;
     uint i = (1u << uint(level)) + k;
     PhotonNode a = photonNodes[2u * i], b = photonNodes[2u * i + 1u];
