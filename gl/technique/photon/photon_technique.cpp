@@ -129,7 +129,7 @@ TechniqueInfo photonTechniqueInfo()
         {"cutIterations", ParamType::Int, 4, 0, 8, "refinement iterations of the illumination cut (the paper: 3-5)"},
         {"cutThreshold", ParamType::Float, 1.2, 0.0, 100.0,
          "a cut node is refined when |E_p - E~_p| > this x E~_p (the paper: Delta E = 1.2 E~_p)"},
-        {"densityPhotons", ParamType::Int, 32, 1, 48, "k of the k-nearest-photon density estimates"},
+        {"densityPhotons", ParamType::Int, 32, 1, 256, "k of the k-nearest-photon density estimates"},
         {"clusters", ParamType::Int, 1600, 1, 1048576, "shading clusters K (the paper: 1000-6000)"},
         {"alpha", ParamType::Float, 0.3, 0.0, 100.0,
          "Eq. 2's weight of position against normal, per scene size (the paper: 0.1-0.5)"},

@@ -3,12 +3,17 @@
 // distributed rays about the sample's normal (a Hammersley set, rotated per cluster), each hit's radiance
 // (photon_gather.glsl). E = pi / N sum L_j (cosine sampling); R_j = N / sum 1 / t_j, the harmonic mean
 // distance of the hits (section 3.4; misses count 1/t = 0). Each invocation sums its rays in order, then
-// the group reduces the 64 sums in a fixed order: no float atomics, the same result in every run.
+// the group reduces its sums in a fixed order: no float atomics, the same result in every run.
 #include "technique/photon/photon_gather.glsl"
 #include "technique/photon/scatter.glsl"
 #include "technique/photon/shading_clusters.glsl"
 
-layout(local_size_x = 64) in;
+// 256 invocations, one ray each at the paper's 250-500 rays: llvmpipe ends every loop of an invocation
+// once the invocation's loops together have run 65,535 iterations (gallivm's loop limiter, shared by all
+// loops of a shader), and four rays' BVH and tree walks per invocation came close enough to it that
+// some walks ended early (gather hits too dark).
+#define GATHER_GROUP 256
+layout(local_size_x = GATHER_GROUP) in;
 
 layout(std430, binding = SSBO_PHOTON_COUNTERS) buffer Counters { uint counters[]; };
 
@@ -19,10 +24,10 @@ uniform float minDistance; // R_j's bounds, scene units
 uniform float maxDistance;
 uniform uint seed;
 
-shared vec3 radianceSums[64];
-shared float inverseDistanceSums[64];
-shared uint fallbackHits[64];
-shared uint uncoveredHits[64];
+shared vec3 radianceSums[GATHER_GROUP];
+shared float inverseDistanceSums[GATHER_GROUP];
+shared uint fallbackHits[GATHER_GROUP];
+shared uint uncoveredHits[GATHER_GROUP];
 
 void main()
 {
@@ -37,7 +42,7 @@ void main()
         vec3 x = c.samplePoint.xyz, n = c.sampleNormal.xyz;
         uint h = pcgHash(k ^ pcgHash(seed));
         vec2 shift = vec2(float(h >> 8), float(pcgHash(h) >> 8)) * (1.0 / 16777216.0);
-        for (uint j = t; j < gatherRays; j += 64u) {
+        for (uint j = t; j < gatherRays; j += uint(GATHER_GROUP)) {
             vec2 u = fract(vec2((float(j) + 0.5) / float(gatherRays), radicalInverse2(j)) + shift);
             vec3 dir = cosineDirection(n, u);
             Hit hit;
@@ -54,7 +59,7 @@ void main()
     fallbackHits[t] = fallback;
     uncoveredHits[t] = uncovered;
     barrier();
-    for (uint d = 32u; d > 0u; d >>= 1) {
+    for (uint d = uint(GATHER_GROUP) / 2u; d > 0u; d >>= 1) {
         if (t < d) {
             radianceSums[t] += radianceSums[t + d];
             inverseDistanceSums[t] += inverseDistanceSums[t + d];
