@@ -256,9 +256,9 @@ TEST_F(PhotonCutTest, OnePhotonNodesStayFinite)
 // surface points, against a brute-force density estimate over every photon on the CPU: the k nearest
 // photons facing the point, their power over pi R_k^2 (Jensen 2001), independent of the tree. The points
 // are every 37th photon (on a surface, where light arrives). Measured on cornell-spot with 32k photon
-// paths (35,615 stored): relative RMSE 0.204 and mean 0.961 x with the defaults (a cut of 10,295 nodes),
-// 0.183 and 0.949 x with the threshold at 0.3 (24,317 nodes), 0.059 and 1.003 x for the cut at the
-// leaves (31,945 nodes).
+// paths (35,615 stored): relative RMSE 0.181 and mean 0.993 x with the defaults (a cut of 8,919 nodes),
+// 0.159 and 0.986 x with the threshold at 0.3 (22,616 nodes), 0.040 and 1.003 x for the cut at the
+// leaves (31,603 nodes).
 TEST_F(PhotonCutTest, CutIrradianceMatchesBruteForceDensity)
 {
     const core::Scene scene = core::makeCornell("cornell-spot");
@@ -350,7 +350,7 @@ TEST_F(PhotonCutTest, CutIrradianceMatchesBruteForceDensity)
             EXPECT_NEAR(meanRatio, 1.0, 0.03) << c.name;
         } else {
             // Eq. 4's kernels reach as far as their node's box: nodes of dim regions, which are large, reach
-            // into bright ones and pull the mean down (measured: 4% at the defaults).
+            // into bright ones and pull the mean down (measured: 1% at the defaults).
             EXPECT_LT(relRmse, 0.3) << c.name;
             EXPECT_NEAR(meanRatio, 1.0, 0.08) << c.name;
         }

@@ -1,7 +1,7 @@
 // Photon tracing of the photon family (gl/technique/photon/photon_tracer.h) against closed forms: the
 // power that leaves each kind of light (cornell-box.md's numbers), the furnace box's stored power
 // rho / (1 - rho) times the emitted power, Russian roulette keeping the expected power, the photon map's
-// order (Morton codes ascending) and its determinism.
+// order (Hilbert indices ascending, and the curve's own property) and its determinism.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -12,6 +12,8 @@
 #include "core/cornell.h"
 #include "gl/frame/frame.h"
 #include "gl/frame/ray_caster.h"
+#include "gl/gl.h"
+#include "gl/resource/program.h"
 #include "gl/technique/photon/photon_tracer.h"
 #include "tests/gl/gl_test_fixture.h"
 #include "tests/gl/photon_test_scenes.h"
@@ -111,9 +113,52 @@ TEST_F(PhotonTracingTest, FurnaceBoxStoresRhoOverOneMinusRho)
     EXPECT_NEAR(rr.stored.x, all.stored.x / series * want, 0.05 * rr.stored.x);
 }
 
+// hilbert30 (glsl/technique/photon/photon.glsl) of `points` over the box [lo, lo + extent).
+std::vector<std::uint32_t> hilbertKeys(const std::vector<glm::vec4>& points, glm::vec3 lo, glm::vec3 extent)
+{
+    gl::Buffer in = gl::Buffer::fromVector("test.hilbert.points", points);
+    gl::Buffer out("test.hilbert.keys", points.size() * 4);
+    gl::Program program = gl::Program::compute("test.hilbertKeys", "test/hilbert_keys.comp");
+    in.bindBase(GL_SHADER_STORAGE_BUFFER, 0);
+    out.bindBase(GL_SHADER_STORAGE_BUFFER, 1);
+    program.set("pointCount", unsigned(points.size()));
+    program.set("boundsLo", lo);
+    program.set("boundsExtent", extent);
+    program.use();
+    glDispatchCompute(GLuint((points.size() + 63) / 64), 1, 1);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    return out.download<std::uint32_t>();
+}
+
+// The Hilbert curve's defining property, checked without a second implementation of it: the cells of
+// the 64^3 corner block of the 1024^3 grid (a cube of the curve's fifth level) get 64^3 consecutive
+// indices, and cells with consecutive indices share a face.
+TEST_F(PhotonTracingTest, HilbertOrderWalksFromFaceToFace)
+{
+    const int n = 64;
+    std::vector<glm::vec4> centres;
+    for (int z = 0; z < n; ++z)
+        for (int y = 0; y < n; ++y)
+            for (int x = 0; x < n; ++x) centres.emplace_back(x + 0.5f, y + 0.5f, z + 0.5f, 0.0f);
+    const std::vector<std::uint32_t> keys = hilbertKeys(centres, glm::vec3(0.0f), glm::vec3(1024.0f));
+    std::vector<std::pair<std::uint32_t, int>> order;
+    for (std::size_t i = 0; i < keys.size(); ++i) order.push_back({keys[i], int(i)});
+    std::sort(order.begin(), order.end());
+    EXPECT_EQ(order.back().first - order.front().first, std::uint32_t(n * n * n - 1)) << "one range of the curve";
+    int gaps = 0, jumps = 0;
+    for (std::size_t i = 1; i < order.size(); ++i) {
+        gaps += order[i].first != order[i - 1].first + 1;
+        const glm::ivec3 a(centres[order[i - 1].second]), b(centres[order[i].second]);
+        const glm::ivec3 d = glm::abs(a - b);
+        jumps += d.x + d.y + d.z != 1;
+    }
+    EXPECT_EQ(gaps, 0);
+    EXPECT_EQ(jumps, 0) << "consecutive cells that do not share a face";
+}
+
 // Paths traced twice give the same photons bit for bit (appended in any order, placed in path order,
-// then sorted stably), in ascending Morton order.
-TEST_F(PhotonTracingTest, PhotonMapIsDeterministicAndInMortonOrder)
+// then sorted stably), in ascending Hilbert order over the tracer's bounds.
+TEST_F(PhotonTracingTest, PhotonMapIsDeterministicAndInHilbertOrder)
 {
     gl::PhotonTracerSettings s;
     s.photons = 8192;
@@ -122,26 +167,14 @@ TEST_F(PhotonTracingTest, PhotonMapIsDeterministicAndInMortonOrder)
     ASSERT_GT(a.photons.size(), 1000u);
     ASSERT_EQ(a.photons.size(), b.photons.size());
     EXPECT_EQ(std::memcmp(a.photons.data(), b.photons.data(), a.photons.size() * sizeof(gl::GpuPhoton)), 0);
-    // Morton order over the tracer's bounds, recomputed here.
     const core::Bounds bounds = scene.bounds();
     const float size = glm::length(bounds.extent());
     const glm::vec3 lo = bounds.lo - 1e-3f * size, extent = bounds.extent() + 2e-3f * size;
-    const auto expand = [](std::uint32_t v) {
-        v = (v * 0x00010001u) & 0xFF0000FFu;
-        v = (v * 0x00000101u) & 0x0F00F00Fu;
-        v = (v * 0x00000011u) & 0xC30C30C3u;
-        v = (v * 0x00000005u) & 0x49249249u;
-        return v;
-    };
-    std::uint32_t previous = 0;
+    std::vector<glm::vec4> positions;
+    for (const gl::GpuPhoton& p : a.photons) positions.push_back(glm::vec4(glm::vec3(p.positionPath), 1.0f));
+    const std::vector<std::uint32_t> keys = hilbertKeys(positions, lo, extent);
     int outOfOrder = 0;
-    for (const gl::GpuPhoton& p : a.photons) {
-        const glm::vec3 q = glm::clamp((glm::vec3(p.positionPath) - lo) / extent, 0.0f, 0.99999994f);
-        const glm::uvec3 c(q * 1024.0f);
-        const std::uint32_t code = expand(c.x) * 4u + expand(c.y) * 2u + expand(c.z);
-        outOfOrder += code < previous;
-        previous = code;
-    }
+    for (std::size_t i = 1; i < keys.size(); ++i) outOfOrder += keys[i] < keys[i - 1];
     EXPECT_EQ(outOfOrder, 0);
 }
 

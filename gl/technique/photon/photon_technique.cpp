@@ -110,7 +110,7 @@ TechniqueInfo photonTechniqueInfo()
     info.passes = {
         {"photon-trace", "photons from every light through the BVH, Russian roulette, stored from the second surface",
          ""},
-        {"photon-sort", "photons put in path order and sorted by Morton code", ""},
+        {"photon-sort", "photons put in path order and sorted by Hilbert index", ""},
         {"photon-tree", "the linear hierarchy over the sorted photons with Eq. 3 per node", ""},
         {"cut", "E_min, the valid cut, its refinement and the irradiance cached per cut node", ""},
         {"kmeans", "quadtree seeding and k-means shading clusters with their samples", ""},

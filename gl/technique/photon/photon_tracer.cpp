@@ -180,7 +180,7 @@ void PhotonTracer::trace(const Frame& frame, const RayCaster& caster, Buffer& co
     permute_.set("count", stored_);
     dispatchCompute(permute_, {int(stored_), 1, 1}, {64, 1, 1});
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    std::swap(staging_, sorted_); // sorted_ now holds the photons in Morton order
+    std::swap(staging_, sorted_); // sorted_ now holds the photons in Hilbert order
 }
 
 glm::dvec3 PhotonTracer::emittedTotal() const

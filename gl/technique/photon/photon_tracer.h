@@ -1,7 +1,7 @@
 // Photon tracing (Wang et al. 2009, section 3.1, "Building Photon Maps"; Jensen 2001): photons from every
 // light of the frame (point, spot, directional, emitting triangles), traced through the frame's BVH with
 // Russian roulette, stored from the second surface on (direct light is the frame's, from shadow maps),
-// put in path order (deterministic), then sorted by Morton code: the input of the photon tree.
+// put in path order (deterministic), then sorted by Hilbert index: the input of the photon tree.
 // glsl/technique/photon/photon_trace.comp says what happens at a surface.
 #pragma once
 
@@ -68,14 +68,14 @@ class PhotonTracer {
 public:
     explicit PhotonTracer(const PhotonTracerSettings& settings);
 
-    // Traces this frame's photons; afterwards photons() holds storedCount() photons in Morton order.
+    // Traces this frame's photons; afterwards photons() holds storedCount() photons in Hilbert order.
     // counters: the family's counters buffer (kCounterSlots uints).
     void trace(const Frame& frame, const RayCaster& caster, Buffer& counters, PassTimers& timers);
 
     const Buffer& photons() const { return sorted_; }
     std::uint32_t storedCount() const { return stored_; }
     const std::vector<PhotonEmitter>& emitters() const { return emitters_; }
-    // Morton codes are taken over this box (the scene's bounds, a little larger).
+    // Hilbert indices are taken over this box (the scene's bounds, a little larger).
     glm::vec3 boundsLo() const { return lo_; }
     glm::vec3 boundsExtent() const { return extent_; }
     float sceneSize() const { return size_; }

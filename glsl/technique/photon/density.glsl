@@ -26,7 +26,7 @@ struct DensitySums {
 // lie within the bound, by twice the radius (at last by none), so the photons found are exactly the k
 // nearest whatever `start` is, and every walk covers a ball of about k photons. Bounds matter: llvmpipe
 // ends every loop of an invocation, without a word, once its loops together have run 65,535 iterations
-// (gallivm's loop limiter), and an unbounded walk, which fills its heap with far photons first (Morton
+// (gallivm's loop limiter), and an unbounded walk, which fills its heap with far photons first (curve
 // order), can take that many. Fewer than k photons in the whole map: all of
 // them. radius: the k-th's distance (at least treeMinRadius, so that photons on top of x give a finite
 // estimate).

@@ -72,6 +72,36 @@ uint morton30(vec3 p, vec3 lo, vec3 extent)
     return expandBits10(c.x) * 4u + expandBits10(c.y) * 2u + expandBits10(c.z);
 }
 
+// 30-bit index along the 3D Hilbert curve of a point in the box [lo, lo + extent) (10 bits per axis;
+// Skilling 2004, "Programming the Hilbert curve": the axes to the transposed index, then interleaved).
+// Consecutive cells of the Hilbert curve are neighbours, those of the Morton curve are not: a range of
+// the Hilbert order is one connected patch, so the photon tree's nodes, ranges of equal counts, get
+// compact boxes (Eq. 3's r_p).
+uint hilbert30(vec3 p, vec3 lo, vec3 extent)
+{
+    vec3 q = clamp((p - lo) / max(extent, vec3(1e-30)), vec3(0.0), vec3(0.99999994));
+    uvec3 x = uvec3(q * 1024.0);
+    for (uint bit = 512u; bit > 1u; bit >>= 1) {
+        uint low = bit - 1u;
+        for (int i = 0; i < 3; ++i) {
+            if ((x[i] & bit) != 0u) {
+                x.x ^= low;
+            } else {
+                uint t = (x.x ^ x[i]) & low;
+                x.x ^= t;
+                x[i] ^= t;
+            }
+        }
+    }
+    x.y ^= x.x;
+    x.z ^= x.y;
+    uint t = 0u;
+    for (uint bit = 512u; bit > 1u; bit >>= 1)
+        if ((x.z & bit) != 0u) t ^= bit - 1u;
+    x ^= uvec3(t);
+    return expandBits10(x.x) * 4u + expandBits10(x.y) * 2u + expandBits10(x.z);
+}
+
 float photonLuminance(vec3 c)
 {
     return dot(c, vec3(0.2126, 0.7152, 0.0722));

@@ -1,8 +1,8 @@
 #version 450 core
 // Puts the traced photons in path order (each path's photons in the order it stored them) from the
-// exclusive prefix sum of the per-path counts, and writes each one's Morton code over the scene's bounds
+// exclusive prefix sum of the per-path counts, and writes each one's Hilbert index over the scene's bounds
 // with its index: the keys and values the radix sort orders the photon tree by (section 3.1, Zhou et al.
-// 2008 build their kd-tree over the same points; we sort by Morton code and build a linear hierarchy).
+// 2008 build their kd-tree over the same points; we sort by Hilbert index and build a linear hierarchy).
 #include "technique/photon/photon.glsl"
 
 layout(local_size_x = 64) in;
@@ -24,6 +24,6 @@ void main()
     Photon ph = staging[i];
     uint dst = pathOffsets[floatBitsToUint(ph.positionPath.w)] + floatBitsToUint(ph.powerIndex.w);
     photons[dst] = ph;
-    keys[dst] = morton30(ph.positionPath.xyz, boundsLo, boundsExtent);
+    keys[dst] = hilbert30(ph.positionPath.xyz, boundsLo, boundsExtent);
     values[dst] = dst;
 }
