@@ -178,6 +178,36 @@ TEST_F(PhotonTracingTest, PhotonMapIsDeterministicAndInHilbertOrder)
     EXPECT_EQ(outOfOrder, 0);
 }
 
+// A sun that shines into the Cornell box through its open front, at a slant: photons from the whole square
+// across the scene (the slower, independent path: most of them meet the outside of the one-sided walls
+// and are absorbed; together they carry E times the square's area) and photons from the cells of the
+// projection map store the same power, within the noise of the fewer photons that enter, while the
+// projection map stores several times as many.
+TEST_F(PhotonTracingTest, ProjectionMapSendsThePhotonsWhereTheSceneIs)
+{
+    core::Scene scene = core::makeCornell("cornell-spot");
+    core::Light sun;
+    sun.type = core::LightType::Directional;
+    sun.direction = glm::normalize(glm::vec3(0.2f, -0.6f, 1.0f));
+    sun.intensity = glm::vec3(1.0f, 0.8f, 0.6f);
+    scene.lights = {sun};
+    gl::PhotonTracerSettings s;
+    s.photons = 65536;
+    s.projectionMap = false;
+    const Traced square = trace(scene, s);
+    s.projectionMap = true;
+    const Traced map = trace(scene, s);
+    std::printf("[ measured ] sun through the open front: %zu photons stored from the square, %zu from the "
+                "projection map; stored power (%.5f, %.5f, %.5f) and (%.5f, %.5f, %.5f) W\n",
+                square.photons.size(), map.photons.size(), square.stored.x, square.stored.y, square.stored.z,
+                map.stored.x, map.stored.y, map.stored.z);
+    EXPECT_GT(map.photons.size(), 3 * square.photons.size());
+    expectRgbNear(map.stored, square.stored, 0.04);
+    // The square's photons carry E times its area, (2 R)^2 with R the scene's bounding radius (x 1.01).
+    const double side = 1.01 * glm::length(scene.bounds().extent());
+    expectRgbNear(square.emitted, glm::dvec3(sun.intensity) * side * side, 1e-4);
+}
+
 // Photons that reach the light (here: the back of the one-sided emitter, and its front) are absorbed:
 // none lies on the emitting quad's plane between its corners.
 TEST_F(PhotonTracingTest, NoPhotonIsStoredOnTheEmitter)

@@ -63,6 +63,7 @@ public:
             {"photons.emitted", double(settings_.tracer.photons)},
             {"photons.stored", double(tracer_.storedCount())},
             {"photons.capacity", double(tracer_.capacity())},
+            {"photons.projectionCoverage", projectionCoverage()},
             {"tree.depth", double(tree_.depth())},
             {"cut.eMin", double(cut_.eMin())},
             {"cut.coarseSize", double(cut_.coarseSize())},
@@ -78,6 +79,17 @@ public:
     }
 
 private:
+    // The share of the directional lights' projection maps whose cells send photons (0 without one).
+    double projectionCoverage() const
+    {
+        double marked = 0.0, all = 0.0;
+        for (const ProjectionMap& m : tracer_.projectionMaps()) {
+            marked += double(m.cells.size());
+            all += double(m.gridSize) * m.gridSize;
+        }
+        return all > 0.0 ? marked / all : 0.0;
+    }
+
     double splitCount() const
     {
         double n = 0.0;
@@ -122,6 +134,9 @@ TechniqueInfo photonTechniqueInfo()
         {"photons", ParamType::Int, 65536, 0, 16777216, "photon paths emitted per frame (split among lights by power)"},
         {"maxBounces", ParamType::Int, 16, 1, 64, "surfaces one photon path may reach"},
         {"russianRoulette", ParamType::Bool, 1, 0, 1, "end photon paths by Russian roulette (0: only at maxBounces)"},
+        {"projectionMap", ParamType::Bool, 1, 0, 1,
+         "a directional light's photons leave only from where its projection map meets the scene (0: across the "
+         "whole scene)"},
         {"leafPhotons", ParamType::Int, 1, 1, 1024,
          "photons per leaf of the photon tree, at most (the paper's kd-tree: 1)"},
         {"cutLevel", ParamType::Int, 12, 0, 24,
@@ -150,6 +165,7 @@ TechniqueInfo photonTechniqueInfo()
         s.tracer.photons = v.getInt("photons");
         s.tracer.maxBounces = v.getInt("maxBounces");
         s.tracer.russianRoulette = v.getBool("russianRoulette");
+        s.tracer.projectionMap = v.getBool("projectionMap");
         s.leafPhotons = v.getInt("leafPhotons");
         s.cut.eminLevel = v.getInt("cutLevel");
         s.cut.iterations = v.getInt("cutIterations");

@@ -20,7 +20,7 @@ double luminance(const glm::vec3& c)
 
 } // namespace
 
-glm::vec3 emittedPower(const LightSource& light, float directionalRadius)
+glm::vec3 emittedPower(const LightSource& light, float directionalArea)
 {
     constexpr double pi = 3.14159265358979323846;
     switch (light.type) {
@@ -31,7 +31,7 @@ glm::vec3 emittedPower(const LightSource& light, float directionalRadius)
         const double co = light.cosOuter, ci = std::max(light.cosInner, light.cosOuter);
         return float(2.0 * pi * ((1.0 - ci) + (ci - co) / 3.0)) * light.intensity;
     }
-    case kLightDirectional: return float(pi * double(directionalRadius) * directionalRadius) * light.intensity;
+    case kLightDirectional: return directionalArea * light.intensity;
     default: {
         const glm::vec3 c = glm::cross(light.triangle[1] - light.triangle[0], light.triangle[2] - light.triangle[0]);
         return float(pi * 0.5 * double(glm::length(c))) * light.intensity;
@@ -43,7 +43,8 @@ PhotonTracer::PhotonTracer(const PhotonTracerSettings& settings)
     : settings_(settings),
       trace_(Program::compute("photon.trace", "technique/photon/photon_trace.comp")),
       place_(Program::compute("photon.place", "technique/photon/photon_place.comp")),
-      permute_(Program::compute("photon.permute", "technique/photon/photon_permute.comp"))
+      permute_(Program::compute("photon.permute", "technique/photon/photon_permute.comp")),
+      project_(Program::compute("photon.project", "technique/photon/photon_project.comp"))
 {
     const std::size_t n = std::size_t(std::max(settings_.photons, 1));
     pathCounts_ = Buffer("photon.pathCounts", n * 4);
@@ -64,7 +65,54 @@ void PhotonTracer::allocate(int capacity)
     valuesTmp_ = Buffer("photon.sortValuesTmp", c * 4);
 }
 
-void PhotonTracer::buildEmitters(const Frame& frame)
+ProjectionMap PhotonTracer::project(const Frame& frame, const RayCaster& caster, glm::vec3 direction, float radius)
+{
+    // 64^2 cells of 4^2 probes: a cell is 1/32 of the scene's bounding sphere across, and the marks are
+    // widened by a cell so that an edge the probes pass between still sends photons.
+    constexpr int kGrid = 64;
+    constexpr unsigned kProbes = 4;
+    const core::Bounds& b = frame.gpuScene().bounds();
+    const glm::vec3 centre = b.empty() ? glm::vec3(0.0f) : b.centre();
+    ProjectionMap map;
+    map.direction = direction;
+    map.gridSize = kGrid;
+    map.cellSide = 2.0f * radius / float(kGrid);
+    const glm::vec3 helper = std::abs(direction.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
+    map.axisU = glm::normalize(glm::cross(direction, helper));
+    map.axisV = glm::cross(direction, map.axisU);
+    map.corner = centre - direction * (2.0f * radius) - radius * (map.axisU + map.axisV);
+    std::vector<std::uint32_t> marks(kGrid * kGrid, 1u);
+    if (settings_.projectionMap) {
+        Buffer buffer("photon.projectionMarks", marks.size() * 4);
+        frame.bindSceneData();
+        caster.bind();
+        buffer.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_PHOTON_CELLS);
+        project_.set("corner", map.corner);
+        project_.set("axisU", map.axisU);
+        project_.set("axisV", map.axisV);
+        project_.set("direction", direction);
+        project_.set("cellSide", map.cellSide);
+        project_.set("gridSize", unsigned(kGrid));
+        project_.set("probesPerSide", kProbes);
+        dispatchCompute(project_, {kGrid * kGrid, 1, 1}, {64, 1, 1});
+        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+        marks = buffer.download<std::uint32_t>();
+        marks.resize(kGrid * kGrid);
+    }
+    for (int y = 0; y < kGrid; ++y)
+        for (int x = 0; x < kGrid; ++x) {
+            bool near = false;
+            for (int dy = -1; dy <= 1 && !near; ++dy)
+                for (int dx = -1; dx <= 1 && !near; ++dx) {
+                    const int u = x + dx, v = y + dy;
+                    near = u >= 0 && v >= 0 && u < kGrid && v < kGrid && marks[std::size_t(v * kGrid + u)] != 0;
+                }
+            if (near) map.cells.push_back(std::uint32_t(y * kGrid + x));
+        }
+    return map;
+}
+
+void PhotonTracer::buildEmitters(const Frame& frame, const RayCaster& caster)
 {
     const core::Bounds& b = frame.gpuScene().bounds();
     const glm::vec3 extent = b.empty() ? glm::vec3(1.0f) : b.extent();
@@ -74,10 +122,27 @@ void PhotonTracer::buildEmitters(const Frame& frame)
     const float radius = 0.5f * size_ * 1.01f;
 
     const std::vector<LightSource>& lights = frame.gpuScene().lights();
+    // Projection maps of the directional lights, kept while the light and the scene's bounds hold.
+    std::vector<ProjectionMap> maps;
+    for (const LightSource& l : lights) {
+        if (l.type != kLightDirectional) continue;
+        auto same = std::find_if(projections_.begin(), projections_.end(), [&](const ProjectionMap& m) {
+            return m.direction == l.direction && m.cellSide == 2.0f * radius / float(m.gridSize);
+        });
+        maps.push_back(same != projections_.end() ? *same : project(frame, caster, l.direction, radius));
+    }
+    projections_ = maps;
+    std::vector<std::uint32_t> cells;
     std::vector<glm::vec3> power;
     std::vector<double> weight;
+    std::size_t directional = 0;
     for (const LightSource& l : lights) {
-        power.push_back(emittedPower(l, radius));
+        float area = 0.0f;
+        if (l.type == kLightDirectional) {
+            const ProjectionMap& m = projections_[directional++];
+            area = float(m.cells.size()) * m.cellSide * m.cellSide;
+        }
+        power.push_back(emittedPower(l, area));
         weight.push_back(std::max(0.0, luminance(power.back())));
     }
     // Photons in proportion to luminous power, by largest remainder (so that they sum to the count).
@@ -98,17 +163,21 @@ void PhotonTracer::buildEmitters(const Frame& frame)
     }
     emitters_.clear();
     std::uint32_t first = 0;
+    directional = 0;
     for (std::size_t i = 0; i < lights.size(); ++i) {
-        if (count[i] == 0) continue; // a light of no power, or fewer photons than lights
         const LightSource& l = lights[i];
+        const ProjectionMap* map = l.type == kLightDirectional ? &projections_[directional++] : nullptr;
+        if (count[i] == 0) continue; // a light of no power, or fewer photons than lights
         PhotonEmitter e{};
         e.positionType = glm::vec4(l.position, float(l.type));
         e.directionCos = glm::vec4(l.direction, l.cosOuter);
         e.powerCosInner = glm::vec4(power[i] / float(count[i]), l.cosInner);
-        if (l.type == kLightDirectional) {
-            const glm::vec3 centre = b.empty() ? glm::vec3(0.0f) : b.centre();
-            e.positionType = glm::vec4(centre - l.direction * (2.0f * radius), float(l.type));
-            e.v0 = glm::vec4(0.0f, 0.0f, 0.0f, radius);
+        if (map) {
+            e.positionType = glm::vec4(map->corner, float(l.type));
+            e.v0 = glm::vec4(map->axisU, map->cellSide);
+            e.v1 = glm::vec4(map->axisV, float(map->gridSize));
+            e.v2 = glm::vec4(float(map->cells.size()), float(cells.size()), 0.0f, 0.0f);
+            cells.insert(cells.end(), map->cells.begin(), map->cells.end());
         }
         if (l.type == kLightArea) {
             e.v0 = glm::vec4(l.triangle[0], 0.0f);
@@ -121,6 +190,8 @@ void PhotonTracer::buildEmitters(const Frame& frame)
     }
     if (emitters_.empty()) emitters_.push_back(PhotonEmitter{}); // an SSBO may not be empty
     emitterBuffer_ = Buffer::fromVector("photon.emitters", emitters_);
+    if (cells.empty()) cells.push_back(0); // an SSBO may not be empty
+    cells_ = Buffer::fromVector("photon.projectionCells", cells);
     if (first == 0) emitters_.clear();
 }
 
@@ -129,13 +200,14 @@ void PhotonTracer::trace(const Frame& frame, const RayCaster& caster, Buffer& co
     const auto paths = std::uint32_t(std::max(settings_.photons, 0));
     {
         auto t = timers.scope("photon-trace");
-        buildEmitters(frame);
+        buildEmitters(frame, caster);
         for (;;) {
             const std::uint32_t zero[3] = {0, 0, 0};
             counters.update(0, sizeof zero, zero);
             frame.bindSceneData();
             caster.bind();
             emitterBuffer_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_PHOTON_EMITTERS);
+            cells_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_PHOTON_CELLS);
             counters.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_PHOTON_COUNTERS);
             staging_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_PHOTON_STAGING);
             pathCounts_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_PHOTON_PATHS);
@@ -201,8 +273,8 @@ std::vector<GpuPhoton> PhotonTracer::downloadPhotons() const
 
 std::size_t PhotonTracer::bytes() const
 {
-    return emitterBuffer_.bytes() + staging_.bytes() + sorted_.bytes() + pathCounts_.bytes() + emitted_.bytes() +
-           keys_.bytes() + values_.bytes() + keysTmp_.bytes() + valuesTmp_.bytes() + sort_.bytes();
+    return emitterBuffer_.bytes() + cells_.bytes() + staging_.bytes() + sorted_.bytes() + pathCounts_.bytes() +
+           emitted_.bytes() + keys_.bytes() + values_.bytes() + keysTmp_.bytes() + valuesTmp_.bytes() + sort_.bytes();
 }
 
 } // namespace bounce::gl

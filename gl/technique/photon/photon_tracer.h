@@ -53,15 +53,27 @@ enum PhotonCounter : std::uint32_t {
 };
 
 // The power a light emits (W, RGB): point 4 pi I, spot I times the solid integral of its falloff
-// (2 pi (1 - cos outer) for a hard cone), directional E times the area of the disk photons leave from
-// (radius: the scene's bounding sphere), an emitting triangle pi L A.
-glm::vec3 emittedPower(const LightSource& light, float directionalRadius);
+// (2 pi (1 - cos outer) for a hard cone), directional E times the area photons leave from (the marked
+// cells of its projection map), an emitting triangle pi L A.
+glm::vec3 emittedPower(const LightSource& light, float directionalArea);
 
 struct PhotonTracerSettings {
     int photons = 65536; // emitted paths
     int maxBounces = 16; // surfaces one path may reach
     bool russianRoulette = true;
     std::uint32_t seed = 1; // the same in every frame: a moving light moves the same photons
+    // Directional lights: photons leave from the cells of a projection map where the light meets the
+    // scene (photon_project.comp), or from the whole square across the scene (false).
+    bool projectionMap = true;
+};
+
+// A directional light's projection map: the square photons may leave from (across the light, behind the
+// scene, as wide as the scene's bounding sphere) in gridSize^2 cells, and the cells they leave from.
+struct ProjectionMap {
+    glm::vec3 direction{0.0f}, corner{0.0f}, axisU{0.0f}, axisV{0.0f};
+    float cellSide = 0.0f;
+    int gridSize = 0;
+    std::vector<std::uint32_t> cells; // marked, widened by one cell; all of them without a projection map
 };
 
 class PhotonTracer {
@@ -81,6 +93,8 @@ public:
     float sceneSize() const { return size_; }
     int capacity() const { return capacity_; }
     int grownTimes() const { return grown_; }
+    // The projection maps of this frame's directional lights, in light order.
+    const std::vector<ProjectionMap>& projectionMaps() const { return projections_; }
 
     // For tests: the power each path left its light with (summed in double), and the photons.
     glm::dvec3 emittedTotal() const;
@@ -89,17 +103,20 @@ public:
 
 private:
     PhotonTracerSettings settings_;
-    Program trace_, place_, permute_;
+    Program trace_, place_, permute_, project_;
     GpuScan scan_;
     RadixSort sort_;
     Buffer emitterBuffer_, staging_, sorted_, pathCounts_, emitted_, keys_, values_, keysTmp_, valuesTmp_;
     std::vector<PhotonEmitter> emitters_;
+    std::vector<ProjectionMap> projections_;
+    Buffer cells_;
     std::uint32_t stored_ = 0;
     int capacity_ = 0, grown_ = 0;
     glm::vec3 lo_{0.0f}, extent_{1.0f};
     float size_ = 1.0f;
 
-    void buildEmitters(const Frame& frame);
+    void buildEmitters(const Frame& frame, const RayCaster& caster);
+    ProjectionMap project(const Frame& frame, const RayCaster& caster, glm::vec3 direction, float radius);
     void allocate(int capacity);
 };
 

@@ -19,16 +19,17 @@
 layout(local_size_x = 64) in;
 
 struct PhotonEmitter {
-    vec4 positionType;   // xyz position (point, spot), disk centre (directional); w: kLight* kind
+    vec4 positionType;   // xyz position (point, spot), the projection map's corner (directional); w: kLight* kind
     vec4 directionCos;   // xyz the direction light travels (spot, directional) or the emitter normal (area); w: cos outer
     vec4 powerCosInner;  // rgb W per photon (before a spot's falloff); w: cos inner
-    vec4 v0;             // area: corner 0; directional: w = disk radius
-    vec4 v1;             // area: corner 1
-    vec4 v2;             // area: corner 2
+    vec4 v0;             // area: corner 0; directional: xyz the map's first axis, w its cell side
+    vec4 v1;             // area: corner 1; directional: xyz the second axis, w the grid size
+    vec4 v2;             // area: corner 2; directional: x its marked cells, y the first of them in `cells`
     uvec4 range;         // x: first path index, y: path count
 };
 
 layout(std430, binding = SSBO_PHOTON_EMITTERS) readonly buffer Emitters { PhotonEmitter emitters[]; };
+layout(std430, binding = SSBO_PHOTON_CELLS) readonly buffer Cells { uint cells[]; };
 layout(std430, binding = SSBO_PHOTON_COUNTERS) buffer Counters { uint counters[]; };
 layout(std430, binding = SSBO_PHOTON_STAGING) writeonly buffer Staging { Photon staging[]; };
 layout(std430, binding = SSBO_PHOTON_PATHS) writeonly buffer PathCounts { uint pathCounts[]; };
@@ -75,11 +76,14 @@ void emit(PhotonEmitter e, uint j, uint n, out vec3 origin, out vec3 dir, out ve
         Light l = Light(vec4(0.0), e.directionCos, vec4(0.0, 0.0, 0.0, e.powerCosInner.w), ivec4(0));
         power *= spotWeight(l, z);
     } else if (kind == kLightDirectional) {
-        // A disk across the light, wider than the scene, behind it.
-        vec3 t, b;
-        basisAround(e.directionCos.xyz, t, b);
-        float r = e.v0.w * sqrt(u.x), phi = 2.0 * kPi * u.y;
-        origin += r * (cos(phi) * t + sin(phi) * b);
+        // Uniform over the marked cells of the light's projection map (photon_project.comp): the
+        // stratified coordinate picks the cell and the place across it, the radical inverse the place
+        // along it.
+        float marked = e.v2.x, s = u.x * marked;
+        uint i = min(uint(s), uint(marked) - 1u), grid = uint(e.v1.w);
+        uint cell = cells[uint(e.v2.y) + i];
+        vec2 f = (vec2(cell % grid, cell / grid) + vec2(s - float(i), u.y)) * e.v0.w;
+        origin += f.x * e.v0.xyz + f.y * e.v1.xyz;
         dir = e.directionCos.xyz;
     } else {
         // One-sided emitting triangle: uniform point, cosine-weighted direction about its normal.
