@@ -86,7 +86,7 @@ ProjectionMap PhotonTracer::project(const Frame& frame, const RayCaster& caster,
         Buffer buffer("photon.projectionMarks", marks.size() * 4);
         frame.bindSceneData();
         caster.bind();
-        buffer.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_PHOTON_CELLS);
+        buffer.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_PHOTON_SCAN);
         project_.set("corner", map.corner);
         project_.set("axisU", map.axisU);
         project_.set("axisV", map.axisV);
@@ -192,6 +192,7 @@ void PhotonTracer::buildEmitters(const Frame& frame, const RayCaster& caster)
     emitterBuffer_ = Buffer::fromVector("photon.emitters", emitters_);
     if (cells.empty()) cells.push_back(0); // an SSBO may not be empty
     cells_ = Buffer::fromVector("photon.projectionCells", cells);
+    cellTexels_ = Texture::createBufferView("photon.projectionCells", GL_R32UI, cells_);
     if (first == 0) emitters_.clear();
 }
 
@@ -207,7 +208,7 @@ void PhotonTracer::trace(const Frame& frame, const RayCaster& caster, Buffer& co
             frame.bindSceneData();
             caster.bind();
             emitterBuffer_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_PHOTON_EMITTERS);
-            cells_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_PHOTON_CELLS);
+            cellTexels_.bind(UNIT_PHOTON_CELLS);
             counters.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_PHOTON_COUNTERS);
             staging_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_PHOTON_STAGING);
             pathCounts_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_PHOTON_PATHS);

@@ -14,6 +14,7 @@
 #include "gl/frame/ray_caster.h"
 #include "gl/resource/buffer.h"
 #include "gl/resource/program.h"
+#include "gl/resource/texture.h"
 #include "gl/resource/timer.h"
 #include "gl/technique/photon/gpu_sort.h"
 
@@ -110,6 +111,7 @@ private:
     std::vector<PhotonEmitter> emitters_;
     std::vector<ProjectionMap> projections_;
     Buffer cells_;
+    Texture cellTexels_; // cells_ as R32UI texels at UNIT_PHOTON_CELLS
     std::uint32_t stored_ = 0;
     int capacity_ = 0, grown_ = 0;
     glm::vec3 lo_{0.0f}, extent_{1.0f};

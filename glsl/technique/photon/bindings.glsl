@@ -17,8 +17,6 @@
 #define SSBO_SORT_KEYS 22            // radix_*.comp: keys and values in, then out (ping-pong)
 #define SSBO_SORT_VALUES 23
 #define SSBO_SORT_KEYS_OUT 24
-#define SSBO_PHOTON_CELLS 24         // photon_project.comp, photon_trace.comp: a directional light's projection-map
-                                     // cells (the slot of SSBO_SORT_KEYS_OUT, free while photons are traced)
 #define SSBO_SORT_VALUES_OUT 25
 #define SSBO_SORT_COUNTS 26          // radix_*.comp: digit counts per run, scanned into offsets
 #define SSBO_CLUSTER_QUADTREE 27     // shading_clusters.glsl: the screen-space quadtree's nodes
@@ -26,5 +24,6 @@
 #define SSBO_CLUSTER_OF_PIXEL 29     // shading_clusters.glsl: each shading point's cluster
 #define SSBO_POINT_TREE 30           // point_tree.glsl: a tree over points (cluster centres, samples)
 #define SSBO_CLUSTER_SEEDS 31        // shading_clusters.glsl: seeds per quadtree node, then seed pixels
+#define UNIT_PHOTON_CELLS 21         // photon_trace.comp: the directional lights' projection-map cells (R32UI texels)
 
 #endif

@@ -24,12 +24,12 @@ struct PhotonEmitter {
     vec4 powerCosInner;  // rgb W per photon (before a spot's falloff); w: cos inner
     vec4 v0;             // area: corner 0; directional: xyz the map's first axis, w its cell side
     vec4 v1;             // area: corner 1; directional: xyz the second axis, w the grid size
-    vec4 v2;             // area: corner 2; directional: x its marked cells, y the first of them in `cells`
+    vec4 v2;             // area: corner 2; directional: x its marked cells, y the first of them in projectionCells
     uvec4 range;         // x: first path index, y: path count
 };
 
 layout(std430, binding = SSBO_PHOTON_EMITTERS) readonly buffer Emitters { PhotonEmitter emitters[]; };
-layout(std430, binding = SSBO_PHOTON_CELLS) readonly buffer Cells { uint cells[]; };
+layout(binding = UNIT_PHOTON_CELLS) uniform usamplerBuffer projectionCells;
 layout(std430, binding = SSBO_PHOTON_COUNTERS) buffer Counters { uint counters[]; };
 layout(std430, binding = SSBO_PHOTON_STAGING) writeonly buffer Staging { Photon staging[]; };
 layout(std430, binding = SSBO_PHOTON_PATHS) writeonly buffer PathCounts { uint pathCounts[]; };
@@ -81,7 +81,7 @@ void emit(PhotonEmitter e, uint j, uint n, out vec3 origin, out vec3 dir, out ve
         // along it.
         float marked = e.v2.x, s = u.x * marked;
         uint i = min(uint(s), uint(marked) - 1u), grid = uint(e.v1.w);
-        uint cell = cells[uint(e.v2.y) + i];
+        uint cell = texelFetch(projectionCells, int(uint(e.v2.y) + i)).r;
         vec2 f = (vec2(cell % grid, cell / grid) + vec2(s - float(i), u.y)) * e.v0.w;
         origin += f.x * e.v0.xyz + f.y * e.v1.xyz;
         dir = e.directionCos.xyz;
