@@ -41,7 +41,6 @@ glm::vec3 emittedPower(const LightSource& light, float directionalArea)
 
 PhotonTracer::PhotonTracer(const PhotonTracerSettings& settings)
     : settings_(settings),
-      trace_(Program::compute("photon.trace", "technique/photon/photon_trace.comp")),
       place_(Program::compute("photon.place", "technique/photon/photon_place.comp")),
       permute_(Program::compute("photon.permute", "technique/photon/photon_permute.comp")),
       project_(Program::compute("photon.project", "technique/photon/photon_project.comp"))
@@ -202,6 +201,13 @@ void PhotonTracer::trace(const Frame& frame, const RayCaster& caster, Buffer& co
     {
         auto t = timers.scope("photon-trace");
         buildEmitters(frame, caster);
+        const bool directional = !projections_.empty();
+        if (!trace_ || traceDirectional_ != directional) {
+            std::vector<Define> defines;
+            if (directional) defines.push_back({"DIRECTIONAL_LIGHTS", "1"});
+            trace_ = Program::compute("photon.trace", "technique/photon/photon_trace.comp", defines);
+            traceDirectional_ = directional;
+        }
         for (;;) {
             const std::uint32_t zero[3] = {0, 0, 0};
             counters.update(0, sizeof zero, zero);

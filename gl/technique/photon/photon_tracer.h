@@ -105,6 +105,7 @@ public:
 private:
     PhotonTracerSettings settings_;
     Program trace_, place_, permute_, project_;
+    bool traceDirectional_ = false; // trace_ was compiled with DIRECTIONAL_LIGHTS
     GpuScan scan_;
     RadixSort sort_;
     Buffer emitterBuffer_, staging_, sorted_, pathCounts_, emitted_, keys_, values_, keysTmp_, valuesTmp_;
