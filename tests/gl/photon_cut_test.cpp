@@ -131,6 +131,23 @@ void expectValidCut(const Built& b)
     for (int c = 0; c < 3; ++c) EXPECT_NEAR(power[c], b.nodes[1].power[c], 1e-5 * b.nodes[1].power[c] + 1e-12);
 }
 
+// The k-nearest density estimate at x by brute force over every photon (Jensen 2001): the k photons
+// nearest to x whose normals face n (n . n_i > 0.1, as density.glsl), their power over pi R_k^2, in W/m^2.
+glm::dvec3 bruteForceIrradiance(const std::vector<gl::GpuPhoton>& photons, glm::vec3 x, glm::vec3 n, int k)
+{
+    std::vector<std::pair<float, std::size_t>> near; // (squared distance, photon)
+    for (std::size_t p = 0; p < photons.size(); ++p) {
+        if (glm::dot(glm::vec3(photons[p].normal), n) <= 0.1f) continue;
+        const glm::vec3 d = glm::vec3(photons[p].positionPath) - x;
+        near.push_back({glm::dot(d, d), p});
+    }
+    if (near.size() < std::size_t(k)) return glm::dvec3(0.0);
+    std::nth_element(near.begin(), near.begin() + (k - 1), near.end());
+    glm::dvec3 power(0.0);
+    for (int j = 0; j < k; ++j) power += glm::dvec3(glm::vec3(photons[near[std::size_t(j)].second].powerIndex));
+    return power / (3.14159265358979 * double(near[std::size_t(k - 1)].first));
+}
+
 class PhotonCutTest : public GlTest {};
 
 TEST_F(PhotonCutTest, TreeNodesHoldTheirPhotons)
@@ -284,19 +301,9 @@ TEST_F(PhotonCutTest, CutIrradianceMatchesBruteForceDensity)
     const int k = 32;
     auto luminance = [](glm::vec3 c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; };
     std::vector<double> reference;
-    std::vector<std::pair<float, float>> near; // (squared distance, luminous power)
-    for (const Query& q : queries) {
-        near.clear();
-        for (const gl::GpuPhoton& ph : photons) {
-            if (glm::dot(glm::vec3(ph.normal), glm::vec3(q.normal)) <= 0.1f) continue;
-            const glm::vec3 d = glm::vec3(ph.positionPath) - glm::vec3(q.position);
-            near.push_back({glm::dot(d, d), float(luminance(glm::vec3(ph.powerIndex)))});
-        }
-        std::nth_element(near.begin(), near.begin() + (k - 1), near.end());
-        double power = 0.0;
-        for (int j = 0; j < k; ++j) power += near[j].second;
-        reference.push_back(power / (3.14159265358979 * double(near[k - 1].first)));
-    }
+    for (const Query& q : queries)
+        reference.push_back(
+            luminance(glm::vec3(bruteForceIrradiance(photons, glm::vec3(q.position), glm::vec3(q.normal), k))));
 
     gl::Buffer in = gl::Buffer::fromVector("test.cut.queries", queries);
     gl::Buffer out("test.cut.results", queries.size() * sizeof(glm::vec4));
@@ -371,21 +378,10 @@ TEST_F(PhotonCutTest, CachedIrradianceIsTheKNearestEstimate)
     const int k = s.densityPhotons;
     int wrong = 0;
     double worst = 0.0;
-    std::vector<std::pair<float, int>> near;
     for (std::uint32_t i : b.list) {
         const glm::vec3 x = glm::vec3(b.nodes[i].position) / b.nodes[i].lo.w;
         const glm::vec3 n = glm::normalize(glm::vec3(b.nodes[i].normal));
-        near.clear();
-        for (std::size_t p = 0; p < b.photons.size(); ++p) {
-            if (glm::dot(glm::vec3(b.photons[p].normal), n) <= 0.1f) continue;
-            const glm::vec3 d = glm::vec3(b.photons[p].positionPath) - x;
-            near.push_back({glm::dot(d, d), int(p)});
-        }
-        ASSERT_GE(near.size(), std::size_t(k));
-        std::nth_element(near.begin(), near.begin() + (k - 1), near.end());
-        glm::dvec3 power(0.0);
-        for (int j = 0; j < k; ++j) power += glm::dvec3(glm::vec3(b.photons[std::size_t(near[j].second)].powerIndex));
-        const double want = power.y / (3.14159265358979 * double(near[k - 1].first));
+        const double want = bruteForceIrradiance(b.photons, x, n, k).y;
         const double got = b.cut[i].irradiance.y;
         const double error = std::abs(got - want) / std::max(want, 1e-30);
         worst = std::max(worst, error);
