@@ -37,9 +37,7 @@ Program directProgram(const core::Scene& scene, const GpuScene& gpu, const Frame
 {
     std::vector<Define> kinds = sceneDefines(scene, gpu);
     const bool area = int(gpu.lights().size()) > gpu.punctualLightCount();
-    const bool cascades =
-        settings.shadowCascades > 0 && std::any_of(gpu.lights().begin(), gpu.lights().end(),
-                                                   [](const LightSource& l) { return l.type == kLightDirectional; });
+    const bool cascades = settings.shadowCascades > 0 && hasLightOfType(gpu.lights(), kLightDirectional);
     if (still && !area && !cascades) return Program();
     if (gpu.punctualLightCount() > 0) kinds.push_back({"PUNCTUAL_LIGHTS", "1"});
     if (area) kinds.push_back({"AREA_LIGHTS", "1"});
@@ -139,10 +137,7 @@ void Frame::setCamera(const core::Camera& camera)
 
 void Frame::setLights(const std::vector<core::Light>& lights)
 {
-    const auto directional = [&] {
-        return std::any_of(gpu_.lights().begin(), gpu_.lights().end(),
-                           [](const LightSource& l) { return l.type == kLightDirectional; });
-    };
+    const auto directional = [&] { return hasLightOfType(gpu_.lights(), kLightDirectional); };
     const int punctualBefore = gpu_.punctualLightCount();
     const bool directionalBefore = directional();
     gpu_.setLights(lights);

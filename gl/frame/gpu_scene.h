@@ -66,6 +66,14 @@ struct LightSource {
     int group = -1;        // area triangles of one mesh share a shadow cube: the mesh index
 };
 
+// Whether one of `lights` is of kind `type` (kLight*): what the passes specialise their shaders on.
+inline bool hasLightOfType(const std::vector<LightSource>& lights, int type)
+{
+    for (const LightSource& l : lights)
+        if (l.type == type) return true;
+    return false;
+}
+
 class GpuScene {
 public:
     // Area triangles beyond this many are ignored with a warning (their emission is still seen).

@@ -33,8 +33,7 @@ ShadowMaps::ShadowMaps(const GpuScene& scene, int size, int cascades)
 void ShadowMaps::fitTo(const core::Camera& camera, float aspect)
 {
     if (fit_.cascades == 0) return;
-    const bool directional =
-        std::any_of(sources_.begin(), sources_.end(), [](const LightSource& s) { return s.type == kLightDirectional; });
+    const bool directional = hasLightOfType(sources_, kLightDirectional);
     const core::Camera& c = fit_.camera;
     const bool same = fitted_ && c.position == camera.position && c.forward == camera.forward && c.up == camera.up &&
                       c.yfovRad == camera.yfovRad && c.znear == camera.znear && fit_.aspect == aspect;
