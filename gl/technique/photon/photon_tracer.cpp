@@ -66,7 +66,7 @@ void PhotonTracer::allocate(int capacity)
 
 ProjectionMap PhotonTracer::project(const Frame& frame, const RayCaster& caster, glm::vec3 direction, float radius)
 {
-    // 64^2 cells of 4^2 probes: a cell is 1/32 of the scene's bounding sphere across, and the marks are
+    // 64^2 cells of 4^2 probes: a cell is 1/32 of the scene's bounding radius across, and the marks are
     // widened by a cell so that an edge the probes pass between still sends photons.
     constexpr int kGrid = 64;
     constexpr unsigned kProbes = 4;
