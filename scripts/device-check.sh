@@ -11,9 +11,13 @@
 # libEGL_nvidia.so.0 and its glvnd vendor file). On a machine that builds Bounce itself it uses build/.
 # Without a GPU it runs the same steps on Mesa's llvmpipe (--quick: small sizes, for trying the script).
 #
-# Usage: scripts/device-check.sh [--out DIR] [--steps tests,probe,bench] [--quick] [--budget SECONDS]
+# Usage: scripts/device-check.sh [--out DIR] [--steps tests,probe,bench] [--bench CONFIGS] [--quick]
+#                                [--budget SECONDS]
 #   --out     the report folder                                        [out/device-check]
 #   --steps   which steps, comma-separated                             [tests,probe,bench]
+#   --bench   bench configs, comma-separated, run in this order; e.g. with bench/device-sweeps.json
+#             added, the parameters that trade speed for error
+#                                          [bench/device-1024x768.json,bench/device.json]
 #   --quick   the benchmarks at 64x64 and 64x48 on the Cornell variants, 1 warm-up and 2 timed frames,
 #             and only the context, frame and conformance tests (llvmpipe: a few minutes)
 #   --budget  seconds the whole script may take; each step gets its share and is cut off (the report
@@ -27,10 +31,12 @@ out=out/device-check
 steps=tests,probe,bench
 quick=0
 budget=450
+benches=bench/device-1024x768.json,bench/device.json # the targets' size first
 while [ $# -gt 0 ]; do
     case "$1" in
         --out) out=${2:?--out needs a folder}; shift 2 ;;
         --steps) steps=${2:?--steps needs a list}; shift 2 ;;
+        --bench) benches=${2:?--bench needs configs}; shift 2 ;;
         --quick) quick=1; shift ;;
         --budget) budget=${2:?--budget needs seconds}; shift 2 ;;
         -h | --help)
@@ -51,6 +57,10 @@ for s in ${steps//,/ }; do
     esac
 done
 case "$budget" in '' | *[!0-9]*) echo "device-check: --budget takes whole seconds" >&2; exit 2 ;; esac
+IFS=, read -r -a configs <<<"$benches"
+for c in "${configs[@]}"; do
+    [ -f "$c" ] || { echo "device-check: no bench config '$c'" >&2; exit 2; }
+done
 has() { [[ ",$steps," == *",$1,"* ]]; }
 start=$(date +%s)
 left() { echo $((budget - ($(date +%s) - start))); }
@@ -158,9 +168,9 @@ fi
 
 # ---- benchmarks -------------------------------------------------------------------------------------------
 if has bench; then
-    configs=(bench/device-1024x768.json bench/device.json) # the targets' size first
     if [ "$quick" = 1 ]; then
         # The same runs, small: for trying the script on llvmpipe. Its references are computed here.
+        small=()
         for c in "${configs[@]}"; do
             python3 - "$c" "$out/logs/$(basename "$c")" <<'EOF'
 import json, sys
@@ -173,8 +183,9 @@ for r in c["runs"]:
     if r["technique"] == "rsm" and r.get("set", {}).get("vpls") == 4096: r["set"]["vpls"] = 1024
 json.dump(c, open(sys.argv[2], "w"), indent=1)
 EOF
+            small+=("$out/logs/$(basename "$c")")
         done
-        configs=("$out/logs/device-1024x768.json" "$out/logs/device.json")
+        configs=("${small[@]}")
     fi
     n=${#configs[@]}
     for c in "${configs[@]}"; do

@@ -100,7 +100,7 @@ def verdicts(rows):
         if t == "grb":
             per_frame = float(r["directionsPerFrame"] or 4)
             value, target, unit = per_frame * 1000.0 / r["totalMs"], GRB_DIRECTIONS_PER_SECOND, "directions/s"
-        elif t in FPS_TARGETS and (t != "rsm" or r["settings"] == "vpls=256"):
+        elif t in FPS_TARGETS and (t != "rsm" or "vpls=256" in str(r["settings"]).split()):
             value, target, unit = r["fps"], FPS_TARGETS[t], "fps"
         else:
             continue
