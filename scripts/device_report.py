@@ -21,6 +21,7 @@ FPS_TARGETS = {"direct": 60, "rsm": 60, "multires-gather": 60, "isr": 60, "hisr"
                "microrender": 10, "pointproj": 10, "photon": 10}
 GRB_DIRECTIONS_PER_SECOND = 20
 TARGET_SIZE = "1024x768"
+TARGET_BENCH = "device-1024x768"
 
 
 def load(path):
@@ -94,7 +95,9 @@ def runs(folder):
 def verdicts(rows):
     out = []
     for r in rows:
-        if r["size"] != TARGET_SIZE or not str(r["scene"]).startswith("cornell") or not r["totalMs"]:
+        # The targets are the defaults': the sweeps of other configs (bench/device-sweeps.json) are not.
+        if (r["size"] != TARGET_SIZE or r["bench"] != TARGET_BENCH or not str(r["scene"]).startswith("cornell")
+                or not r["totalMs"]):
             continue
         t = r["technique"]
         if t == "grb":
@@ -130,8 +133,12 @@ def main():
     v = verdicts(rows)
     bad_images = [r for r in rows if r["nonFiniteValues"]]
     ran_tests = any(s["passed"] or s["failed"] for s in t.values())
-    ok = bool(hello) and all(not s["failed"] and not s["missingShards"] for s in t.values()) and not bad_images
-    report = {"ok": ok, "machine": machine, "renderer": hello.get("renderer"), "platform": hello.get("platform"),
+    failed_benches = []
+    if os.path.exists(os.path.join(folder, "logs", "bench-failed.txt")):
+        failed_benches = [l.strip() for l in open(os.path.join(folder, "logs", "bench-failed.txt")) if l.strip()]
+    ok = (bool(hello) and all(not s["failed"] and not s["missingShards"] for s in t.values()) and not bad_images
+          and not failed_benches)
+    report = {"ok": ok, "failedBenches": failed_benches, "machine": machine, "renderer": hello.get("renderer"), "platform": hello.get("platform"),
               "glVersion": hello.get("glVersion"), "tests": t, "probe": probe, "runs": rows, "targets": v}
     with open(os.path.join(folder, "report.json"), "w") as f:
         json.dump(report, f, indent=1)
@@ -179,6 +186,8 @@ def main():
     for r in bad_images:
         md.append("- NaN/Inf: %s %s on %s at %s wrote %d bad values" % (
             r["technique"], r["settings"], r["scene"], r["size"], r["nonFiniteValues"]))
+    for b in failed_benches:
+        md.append("- bench failed: %s" % b)
     md.append("Verdict: %s%s" % ("ok" if ok else "NOT ok", "" if ran_tests else " (tests not run)"))
     with open(os.path.join(folder, "report.md"), "w") as f:
         f.write("\n".join(md) + "\n")
