@@ -108,6 +108,79 @@ TEST_F(PhotonClustersTest, ExactlyKSeedsAndAPartition)
     expectPartition(c);
 }
 
+// The seeding quadtree's eps_q (section 3.2: Eq. 2's error of a node's members to their mean, summed) against
+// a CPU sum in double over the read-back G-buffer, node by node at every level, on a viewport that is not a
+// power of two (nodes cut by its edges) and large enough that the top levels' nodes (more than 16 pixels
+// a side) are summed by a work group each and the lower ones by one invocation each. The means come from
+// the GPU's summed positions and normals, checked first against the CPU's sums.
+TEST_F(PhotonClustersTest, QuadtreeErrorsAreEq2SummedOverEachNode)
+{
+    const core::Scene scene = core::makeCornell("cornell-spot");
+    constexpr int w = 150, h = 70;
+    gl::Frame frame(scene, photontest::smallFrame(w, h));
+    gl::PassTimers timers;
+    frame.beginFrame();
+    frame.renderGBuffer(timers);
+    gl::Buffer counters("photon.counters", gl::kCounterSlots * 4);
+    gl::ShadingClusterSettings s;
+    s.clusters = 64;
+    gl::ShadingClusters clusters(s);
+    clusters.cluster(frame, glm::length(scene.bounds().extent()), counters, timers);
+    const std::vector<gl::GpuQuadNode> nodes = clusters.downloadQuadtree();
+    const int size = clusters.quadSize(), levels = clusters.quadLevels();
+    ASSERT_EQ(size, 256);
+    const std::vector<float> p = frame.readPositions(), n = frame.readNormals();
+    const double alpha = clusters.alphaPerMetre();
+
+    std::size_t offset = 0;
+    int compared = 0, wrongSums = 0, wrongErrors = 0;
+    double largest = 0.0;
+    for (int level = 0; level <= levels; ++level) {
+        const int side = size >> level, span = 1 << level;
+        for (int qy = 0; qy < side; ++qy)
+            for (int qx = 0; qx < side; ++qx) {
+                const gl::GpuQuadNode& node = nodes.at(offset + std::size_t(qy) * side + qx);
+                glm::dvec3 sumP(0.0), sumN(0.0);
+                int members = 0;
+                for (int y = qy * span; y < std::min((qy + 1) * span, h); ++y)
+                    for (int x = qx * span; x < std::min((qx + 1) * span, w); ++x) {
+                        const std::size_t i = (std::size_t(y) * w + x) * 4;
+                        if (p[i + 3] == 0.0f) continue;
+                        sumP += glm::dvec3(p[i], p[i + 1], p[i + 2]);
+                        sumN += glm::dvec3(n[i], n[i + 1], n[i + 2]);
+                        ++members;
+                    }
+                wrongSums += node.position.w != float(members) ||
+                             glm::length(glm::dvec3(node.position) - sumP) > 1e-4 * (1.0 + glm::length(sumP));
+                if (level == 0 || members < 2) continue;
+                // The node's centre as shading_clusters.glsl takes it: the mean position and mean normal.
+                const glm::dvec3 mean = glm::dvec3(node.position) / double(node.position.w);
+                const glm::dvec3 sn(node.normal); // meanNormal: cancelled normals give the zero normal
+                const glm::dvec3 nk = glm::length(sn) > 1e-3 * double(members) ? glm::normalize(sn) : glm::dvec3(0.0);
+                double eps = 0.0;
+                for (int y = qy * span; y < std::min((qy + 1) * span, h); ++y)
+                    for (int x = qx * span; x < std::min((qx + 1) * span, w); ++x) {
+                        const std::size_t i = (std::size_t(y) * w + x) * 4;
+                        if (p[i + 3] == 0.0f) continue;
+                        const glm::dvec3 xi(p[i], p[i + 1], p[i + 2]), ni(n[i], n[i + 1], n[i + 2]);
+                        const double normalTerm = glm::dot(nk, nk) > 0.5
+                                                      ? glm::length(ni - nk)
+                                                      : std::sqrt(std::max(0.0, 2.0 - 2.0 * glm::dot(ni, nk)));
+                        eps += alpha * glm::length(xi - mean) + normalTerm;
+                    }
+                const double err = std::abs(double(node.normal.w) - eps) / std::max(eps, 1e-3);
+                largest = std::max(largest, err);
+                wrongErrors += err > 1e-3;
+                ++compared;
+            }
+        offset += std::size_t(side) * side;
+    }
+    std::printf("[ measured ] %d nodes' eps_q against the CPU: largest relative difference %.3g\n", compared, largest);
+    EXPECT_EQ(wrongSums, 0) << "nodes whose members or summed positions differ from the CPU's";
+    EXPECT_EQ(wrongErrors, 0) << "nodes whose eps_q is off the CPU's sum by more than 1e-3";
+    EXPECT_GT(compared, 1000);
+}
+
 // Fewer shading points than K (a 3 x 5 viewport): one seed per point, every cluster has its point.
 TEST_F(PhotonClustersTest, FewerPointsThanKGiveOneSeedEach)
 {

@@ -12,10 +12,14 @@ namespace bounce::gl {
 
 namespace {
 
-Program compute(const char* name, const char* file)
+Program compute(const char* name, const char* file, const std::vector<Define>& defines = {})
 {
-    return Program::compute(std::string("photon.") + name, std::string("technique/photon/") + file);
+    return Program::compute(std::string("photon.") + name, std::string("technique/photon/") + file, defines);
 }
+
+// quad_error.comp: nodes of more pixels than this per side take one work group of kQuadGroup invocations
+// each, smaller ones one invocation each.
+constexpr int kQuadGroupSpan = 16, kQuadGroup = 256;
 
 } // namespace
 
@@ -24,6 +28,7 @@ ShadingClusters::ShadingClusters(const ShadingClusterSettings& settings)
       quadLeaves_(compute("quadLeaves", "quad_leaves.comp")),
       quadReduce_(compute("quadReduce", "quad_reduce.comp")),
       quadError_(compute("quadError", "quad_error.comp")),
+      quadErrorGroup_(compute("quadErrorGroup", "quad_error.comp", {{"QUAD_GROUP", std::to_string(kQuadGroup)}})),
       seedDistribute_(compute("seedDistribute", "seed_distribute.comp")),
       seedWrite_(compute("seedWrite", "seed_write.comp")),
       pointKeys_(compute("pointKeys", "point_keys.comp")),
@@ -91,7 +96,7 @@ void ShadingClusters::buildQuadtree(bool onlyUnclassified)
 {
     quad_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_CLUSTER_QUADTREE);
     clusterOfPixel_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_CLUSTER_OF_PIXEL);
-    for (Program* p : {&quadLeaves_, &quadReduce_, &quadError_}) {
+    for (Program* p : {&quadLeaves_, &quadReduce_, &quadError_, &quadErrorGroup_}) {
         setCommon(*p);
         p->set("onlyUnclassified", onlyUnclassified ? 1 : 0);
     }
@@ -103,8 +108,14 @@ void ShadingClusters::buildQuadtree(bool onlyUnclassified)
     }
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     for (int level = 1; level <= quadLevels_; ++level) {
-        quadError_.set("level", level);
-        dispatchCompute(quadError_, {quadSize_ >> level, quadSize_ >> level, 1}, {8, 8, 1});
+        const int side = quadSize_ >> level;
+        if ((1 << level) > kQuadGroupSpan) {
+            quadErrorGroup_.set("level", level);
+            dispatchCompute(quadErrorGroup_, {side * kQuadGroup, side, 1}, {kQuadGroup, 1, 1});
+        } else {
+            quadError_.set("level", level);
+            dispatchCompute(quadError_, {side, side, 1}, {8, 8, 1});
+        }
     }
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }

@@ -41,6 +41,11 @@ static_assert(sizeof(GpuCluster) == 96);
 struct GpuPointNode {
     glm::vec4 lo, hi;
 };
+// std430 mirror of QuadNode in shading_clusters.glsl: a node of the seeding quadtree.
+struct GpuQuadNode {
+    glm::vec4 position; // xyz summed member positions, w: members
+    glm::vec4 normal;   // xyz summed member normals, w: eps_q
+};
 inline constexpr std::uint32_t kNoCluster = 0xFFFFFFFFu, kUnclassified = 0xFFFFFFFEu;
 
 struct ShadingClusterSettings {
@@ -82,12 +87,17 @@ public:
 
     std::vector<GpuCluster> download() const;
     std::vector<std::uint32_t> downloadClusterOfPixel() const;
+    // The last seeding quadtree: level 0 (quadSize() x quadSize() pixels) first, each level's nodes row by
+    // row, quadLevels() levels above the pixels.
+    std::vector<GpuQuadNode> downloadQuadtree() const { return quad_.download<GpuQuadNode>(); }
+    int quadSize() const { return quadSize_; }
+    int quadLevels() const { return quadLevels_; }
     std::size_t bytes() const;
 
 private:
     ShadingClusterSettings settings_;
-    Program quadLeaves_, quadReduce_, quadError_, seedDistribute_, seedWrite_, pointKeys_, pointLeaves_, pointReduce_,
-        assign_, segments_, update_, sample_, marks_, survivorsProgram_, perPixel_;
+    Program quadLeaves_, quadReduce_, quadError_, quadErrorGroup_, seedDistribute_, seedWrite_, pointKeys_,
+        pointLeaves_, pointReduce_, assign_, segments_, update_, sample_, marks_, survivorsProgram_, perPixel_;
     GpuScan scan_;
     RadixSort sort_;
     Buffer quad_, seedsBuffer_, clusterOfPixel_, clusters_, spare_, keys_, values_, keysTmp_, valuesTmp_, pointTree_,
