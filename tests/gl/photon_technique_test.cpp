@@ -108,13 +108,15 @@ std::vector<bool> notEmitters(const core::Image& emission)
 
 class PhotonTechniqueTest : public GlTest {};
 
-// Interpolation alone: every sample carries the same irradiance: every shading point reads exactly it
+// Interpolation alone, in both of the pass's forms (a full-screen triangle, a compute pass: the same
+// arithmetic): every sample carries the same irradiance: every shading point reads exactly it
 // (E_own + sum w (E_j - E_own) / sum w); then every sample a different one: each sample's own pixel reads
-// exactly its sample's value (w singular there).
+// exactly its sample's value (w singular there), and the two forms give the same image.
 TEST_F(PhotonTechniqueTest, InterpolationReproducesAConstantFieldExactly)
 {
     const core::Scene scene = core::makeCornell("cornell-spot");
-    gl::Frame frame(scene, photontest::smallFrame(40, 30));
+    constexpr int w = 41, h = 30; // odd: the compute form's partial work groups
+    gl::Frame frame(scene, photontest::smallFrame(w, h));
     gl::PassTimers timers;
     frame.beginFrame();
     frame.renderGBuffer(timers);
@@ -123,39 +125,49 @@ TEST_F(PhotonTechniqueTest, InterpolationReproducesAConstantFieldExactly)
     s.clusters = 60;
     gl::ShadingClusters clusters(s);
     clusters.cluster(frame, glm::length(scene.bounds().extent()), counters, timers);
-    std::vector<gl::GpuCluster> c = clusters.download();
-    const glm::vec3 constant(0.3f, 0.7f, 1.9f);
-    for (gl::GpuCluster& k : c) k.irradiance = glm::vec4(constant, 0.25f);
-    clusters.clusters().update(0, c.size() * sizeof(gl::GpuCluster), c.data());
-    clusters.buildPointTree(true, counters);
-    gl::Interpolation interpolation;
-    interpolation.run(frame, clusters, 10.0f, false, timers, true);
-    const core::Image e = frame.read(frame.indirect());
+    const std::vector<gl::GpuCluster> original = clusters.download();
     const std::vector<float> pos = frame.readPositions();
-    int off = 0, valid = 0;
-    for (int y = 0; y < 30; ++y)
-        for (int x = 0; x < 40; ++x) {
-            if (pos[(std::size_t(29 - y) * 40 + x) * 4 + 3] == 0.0f) continue;
-            ++valid;
-            off += e.at(x, y) != constant;
-        }
-    EXPECT_GT(valid, 600);
-    EXPECT_EQ(off, 0) << "shading points whose interpolated constant is not the constant";
+    core::Image fields[2];
+    for (bool asCompute : {false, true}) {
+        SCOPED_TRACE(asCompute ? "compute" : "fragments");
+        std::vector<gl::GpuCluster> c = original;
+        const glm::vec3 constant(0.3f, 0.7f, 1.9f);
+        for (gl::GpuCluster& k : c) k.irradiance = glm::vec4(constant, 0.25f);
+        clusters.clusters().update(0, c.size() * sizeof(gl::GpuCluster), c.data());
+        clusters.buildPointTree(true, counters);
+        gl::Interpolation interpolation(asCompute);
+        frame.clearIndirect();
+        interpolation.run(frame, clusters, 10.0f, false, timers, true);
+        const core::Image e = frame.read(frame.indirect());
+        int off = 0, valid = 0;
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) {
+                if (pos[(std::size_t(h - 1 - y) * w + x) * 4 + 3] == 0.0f) continue;
+                ++valid;
+                off += e.at(x, y) != constant;
+            }
+        EXPECT_GT(valid, 600);
+        EXPECT_EQ(off, 0) << "shading points whose interpolated constant is not the constant";
 
-    for (std::size_t k = 0; k < c.size(); ++k) c[k].irradiance = glm::vec4(float(k), float(2 * k), 1.0f, 0.25f);
-    clusters.clusters().update(0, c.size() * sizeof(gl::GpuCluster), c.data());
-    clusters.buildPointTree(true, counters);
-    interpolation.run(frame, clusters, 10.0f, false, timers, true);
-    const core::Image f = frame.read(frame.indirect());
-    int wrong = 0, samples = 0;
-    for (std::size_t k = 0; k < c.size(); ++k) {
-        if (c[k].sample.w < 0.0f) continue;
-        ++samples;
-        const int p = int(c[k].sample.w), x = p % 40, y = 29 - p / 40;
-        wrong += f.at(x, y) != glm::vec3(float(k), float(2 * k), 1.0f);
+        for (std::size_t k = 0; k < c.size(); ++k) c[k].irradiance = glm::vec4(float(k), float(2 * k), 1.0f, 0.25f);
+        clusters.clusters().update(0, c.size() * sizeof(gl::GpuCluster), c.data());
+        clusters.buildPointTree(true, counters);
+        frame.clearIndirect();
+        interpolation.run(frame, clusters, 10.0f, false, timers, true);
+        const core::Image f = frame.read(frame.indirect());
+        int wrong = 0, samples = 0;
+        for (std::size_t k = 0; k < c.size(); ++k) {
+            if (c[k].sample.w < 0.0f) continue;
+            ++samples;
+            const int p = int(c[k].sample.w), x = p % w, y = h - 1 - p / w;
+            wrong += f.at(x, y) != glm::vec3(float(k), float(2 * k), 1.0f);
+        }
+        EXPECT_GT(samples, 30);
+        EXPECT_EQ(wrong, 0) << "samples whose own pixel does not read their irradiance";
+        fields[asCompute ? 1 : 0] = f;
     }
-    EXPECT_GT(samples, 30);
-    EXPECT_EQ(wrong, 0) << "samples whose own pixel does not read their irradiance";
+    testing::expectImagesClose("photon-interpolation-compute-vs-fragments", fields[1], fields[0],
+                               testing::ImageMetric::relativeRmse(), 1e-6, "one function, two stages");
 }
 
 struct Variant {

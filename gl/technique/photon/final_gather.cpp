@@ -4,8 +4,10 @@
 #include <string>
 #include <vector>
 
+#include "gl/context/context.h"
 #include "gl/frame/bindings.h"
 #include "gl/gl.h"
+#include "gl/resource/dispatch.h"
 #include "gl/resource/pass_state.h"
 #include "gl/technique/photon/bindings.h"
 #include "gl/technique/photon/photon_tracer.h"
@@ -73,23 +75,30 @@ void FinalGather::gather(const Frame& frame, const RayCaster& caster, const Phot
     uncovered_ = hits[1];
 }
 
-Interpolation::Interpolation()
-    : program_(
-          Program::graphics("photon.interpolate", "frame/fullscreen.vert", "technique/photon/photon_interpolate.frag")),
+Interpolation::Interpolation(bool asCompute)
+    : asCompute_(asCompute),
+      program_(asCompute ? Program::compute("photon.interpolate", "technique/photon/photon_interpolate.comp")
+                         : Program::graphics("photon.interpolate", "frame/fullscreen.vert",
+                                             "technique/photon/photon_interpolate.frag")),
       framebuffer_("photon.interpolate")
 {}
+
+bool Interpolation::defaultAsCompute()
+{
+    return !softwareRasterizer();
+}
 
 void Interpolation::run(Frame& frame, const ShadingClusters& clusters, float maxError, bool ownSampleOnly,
                         PassTimers& timers, bool writeIrradiance)
 {
     auto t = timers.scope("interpolate");
-    if (attached_ != frame.indirect().id()) {
+    if (!asCompute_ && attached_ != frame.indirect().id()) {
         framebuffer_ = Framebuffer("photon.interpolate");
         framebuffer_.attach(GL_COLOR_ATTACHMENT0, frame.indirect());
         framebuffer_.checkComplete();
         attached_ = frame.indirect().id();
     }
-    PassState::fullscreen(framebuffer_, frame.width(), frame.height()).apply();
+    if (!asCompute_) PassState::fullscreen(framebuffer_, frame.width(), frame.height()).apply();
     frame.bindGBuffer();
     clusters.bind();
     clusters.bindPointTree(program_);
@@ -100,6 +109,12 @@ void Interpolation::run(Frame& frame, const ShadingClusters& clusters, float max
     program_.set("ownSampleOnly", ownSampleOnly ? 1 : 0);
     program_.set("writeIrradiance", writeIrradiance ? 1 : 0);
     program_.set("cameraPosition", frame.camera().position);
+    if (asCompute_) {
+        frame.indirect().bindImage(0, GL_WRITE_ONLY);
+        dispatchCompute(program_, {frame.width(), frame.height(), 1}, {8, 8, 1});
+        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
+        return;
+    }
     program_.use();
     frame.drawFullscreen();
     glBindFramebuffer(GL_FRAMEBUFFER, 0);

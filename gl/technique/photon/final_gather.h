@@ -43,13 +43,19 @@ private:
 
 class Interpolation {
 public:
-    Interpolation();
+    // asCompute: one invocation per pixel into the indirect texture (photon_interpolate.comp); else a
+    // full-screen triangle (photon_interpolate.frag). The same arithmetic (photon_interpolate.glsl).
+    explicit Interpolation(bool asCompute = defaultAsCompute());
+    // Fragments on a software rasteriser, compute elsewhere: a GPU's graphics units may be few (an NVIDIA
+    // H200's fragment form took 9.6 ms at 1024x768).
+    static bool defaultAsCompute();
     // Writes the diffuse radiance of the interpolated irradiance into `target` (the frame's indirect
     // texture), or the irradiance itself with writeIrradiance (tests).
     void run(Frame& frame, const ShadingClusters& clusters, float maxError, bool ownSampleOnly, PassTimers& timers,
              bool writeIrradiance = false);
 
 private:
+    bool asCompute_;
     Program program_;
     Framebuffer framebuffer_;
     unsigned attached_ = 0;

@@ -23,6 +23,7 @@ struct PhotonSettings {
     ShadingClusterSettings clusters;
     FinalGatherSettings gather;
     float interpolationError = 0.3f;
+    bool interpolateAsCompute = true;
 };
 
 class Photon final : public Technique {
@@ -34,7 +35,8 @@ public:
           tracer_(s.tracer),
           tree_(s.leafPhotons),
           clusters_(s.clusters),
-          gather_(frame, s.gather)
+          gather_(frame, s.gather),
+          interpolation_(s.interpolateAsCompute)
     {
         const core::Bounds& b = frame.gpuScene().bounds();
         sceneSize_ = b.empty() ? 1.0f : std::max(glm::length(b.extent()), 1e-30f);
@@ -157,6 +159,9 @@ TechniqueInfo photonTechniqueInfo()
                     "gather at the clusters' samples and interpolate (the paper), or at every pixel (Fig. 6)"),
         choiceParam("density", {"cut", "photons"}, 0,
                     "gather hits read the illumination cut (the paper), or the full photon map (Fig. 6)"),
+        choiceParam("interpolation", {"auto", "fragments", "compute"}, 0,
+                    "the interpolation pass's form: a full-screen triangle or one compute invocation per pixel; "
+                    "auto: fragments on a software rasteriser, compute on a GPU, whose graphics units may be few"),
     };
     // Every pass with a small photon map, few clusters and short gathers: the tests' cheap settings.
     info.quickSets = {"photons=4096", "clusters=64", "gatherRays=16"};
@@ -180,6 +185,8 @@ TechniqueInfo photonTechniqueInfo()
         s.gather.fullPhotonMap = v.getChoice(photonTechniqueInfo().params, "density") == "photons";
         s.gather.densityPhotons = v.getInt("densityPhotons");
         s.interpolationError = float(v.get("interpolationError"));
+        const std::string form = v.getChoice(photonTechniqueInfo().params, "interpolation");
+        s.interpolateAsCompute = form == "auto" ? Interpolation::defaultAsCompute() : form == "compute";
         return std::make_unique<Photon>(frame, s);
     };
     return info;
