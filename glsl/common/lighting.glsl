@@ -88,7 +88,8 @@ vec3 directFromAreaTriangle(Light l, vec3 p, vec3 n, vec3 wo, BrdfParams b)
 
 // Still frames (gl/frame/shadow_maps.h): one emitting triangle's outgoing radiance towards wo from this
 // frame's point x on its mesh (the light's position; the mesh's area A in intensityCosInner.w on the
-// triangle that holds x, 0 on the others) and the shadow cube at x.
+// triangle that holds x, 0 on the others), before the visibility V of the mesh's shadow cube at x, which
+// the caller applies once per mesh (glsl/frame/direct.frag).
 //   diffuse  the one-sample estimate L A cos_p cos_x / r^2 V f_diffuse: unbiased, and never negative, so
 //            the still frames' mean is the path tracer's soft shadow;
 //   glossy   the lobe over kAreaGlossyPoints^2 stratified points of the triangle (rotated from frame to
@@ -102,7 +103,7 @@ vec3 directFromAreaTriangle(Light l, vec3 p, vec3 n, vec3 wo, BrdfParams b)
 // mean keeps the early frames' ratios.
 const int kAreaGlossyPoints = 4;
 
-vec3 directFromAreaSample(Light l, vec3 p, vec3 n, vec3 wo, BrdfParams b, vec2 rotation)
+vec3 areaSampleUnshadowed(Light l, vec3 p, vec3 n, vec3 wo, BrdfParams b, vec2 rotation)
 {
     float sampleArea = l.intensityCosInner.w;
 #ifdef SCENE_DIFFUSE_ONLY
@@ -140,10 +141,7 @@ vec3 directFromAreaSample(Light l, vec3 p, vec3 n, vec3 wo, BrdfParams b, vec2 r
         brdfEvalLobes(b, n, wo, wi, diffuseFactor, glossyLobe);
         diffuse = diffuseFactor * b.diffuse * L * (g * sampleArea);
     }
-    if (max(max(diffuse.r, diffuse.g), max(max(diffuse.b, glossy.r), max(glossy.g, glossy.b))) <= 0.0)
-        return vec3(0.0);
-    // The shadow cube is at x, shared by the mesh's triangles: every one of them reads it.
-    return (diffuse + glossy) * shadowVisibility(l, p, n);
+    return diffuse + glossy;
 }
 
 #endif

@@ -2,7 +2,7 @@
 // Direct light as one full-screen pass: emission plus every light through the one BRDF, shadowed.
 // PUNCTUAL_LIGHTS, AREA_LIGHTS: defined when the scene has lights of that kind; AREA_SAMPLED (still
 // frames): the emitters' light from this frame's point on each emitting mesh (lighting.glsl,
-// directFromAreaSample) instead of the polygon form factor shadowed from the mesh's centroid.
+// areaSampleUnshadowed) instead of the polygon form factor shadowed from the mesh's centroid.
 #include "common/gbuffer.glsl"
 #include "common/lighting.glsl"
 
@@ -31,8 +31,15 @@ void main()
 #endif
 #ifdef AREA_LIGHTS
 #ifdef AREA_SAMPLED
-    for (int i = punctualLightCount; i < lightCount; ++i)
-        radiance += directFromAreaSample(lights[i], p, n, wo, b, areaRotation);
+    // The triangles of one emitting mesh are consecutive and share its shadow cube at this frame's point
+    // (shadow.x, its first layer): their light is summed and the cube read once per mesh.
+    vec3 mesh = vec3(0.0);
+    for (int i = punctualLightCount; i < lightCount; ++i) {
+        mesh += areaSampleUnshadowed(lights[i], p, n, wo, b, areaRotation);
+        if (i + 1 < lightCount && lights[i + 1].shadow.x == lights[i].shadow.x) continue;
+        if (max(mesh.r, max(mesh.g, mesh.b)) > 0.0) radiance += mesh * shadowVisibility(lights[i], p, n);
+        mesh = vec3(0.0);
+    }
 #else
     for (int i = punctualLightCount; i < lightCount; ++i) radiance += directFromAreaTriangle(lights[i], p, n, wo, b);
 #endif
