@@ -13,6 +13,9 @@
 
 #include "core/cornell.h"
 #include "core/image.h"
+#include "gl/frame/frame.h"
+#include "gl/frame/points/adaptive_pixels.h"
+#include "gl/gl.h"
 #include "tests/gl/gl_test_fixture.h"
 #include "tests/gl/point_test_util.h"
 #include "tests/image_expect.h"
@@ -177,6 +180,46 @@ TEST_F(PointprojTest, AdaptiveSamplingAndProgressiveFrames)
                 e1, e6, six.counter("accumulatedFrames"));
     EXPECT_EQ(six.counter("accumulatedFrames"), 6.0);
     EXPECT_LT(e6, e1);
+}
+
+// The radiance scale of §3.3's coherence metric (the mean outgoing luminance of the first level's samples)
+// reduced on the GPU against the same mean from the images read back and summed on the CPU, on a viewport
+// that is not a multiple of the reduction's 16 x 16 tiles, with light images filled with known values and
+// gathered marks (alpha 1) on the first level's grid only; with no gathered pixel the mean is 0.
+TEST_F(PointprojTest, RadianceScaleOnTheGpuIsTheMeanOfTheSampledLuminance)
+{
+    const core::Scene scene = core::makeCornell("cornell-spot");
+    constexpr int w = 53, h = 37;
+    gl::FrameSettings fs;
+    fs.width = w;
+    fs.height = h;
+    gl::Frame frame(scene, fs);
+    gl::PassTimers timers;
+    frame.beginFrame();
+    frame.renderGBuffer(timers);
+    gl::AdaptivePixels pixels(frame, gl::AdaptiveSettings{});
+    const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    pixels.diffuseLight().clear(0, zero);
+    pixels.glossyLight().clear(0, zero);
+    EXPECT_EQ(pixels.meanSampledLuminance(frame), 0.0f) << "nothing gathered";
+
+    std::vector<float> d(std::size_t(w) * h * 4, 0.0f), g(d.size(), 0.0f);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const std::size_t i = (std::size_t(y) * w + x) * 4;
+            const bool gathered = x % 4 == 0 && y % 4 == 0;
+            for (int k = 0; k < 3; ++k) {
+                d[i + k] = 0.1f + 0.37f * float((x * 7 + y * 3 + k) % 11);
+                g[i + k] = 0.05f * float((x + 2 * y + k) % 5);
+            }
+            d[i + 3] = gathered ? 1.0f : 0.0f; // the others hold light too, which the mean must not read
+        }
+    glTextureSubImage2D(pixels.diffuseLight().id(), 0, 0, 0, w, h, GL_RGBA, GL_FLOAT, d.data());
+    glTextureSubImage2D(pixels.glossyLight().id(), 0, 0, 0, w, h, GL_RGBA, GL_FLOAT, g.data());
+    const float gpu = pixels.meanSampledLuminance(frame), cpu = pixels.meanSampledLuminanceOnCpu(frame);
+    std::printf("[ measured ] mean sampled luminance %.7g on the GPU, %.7g on the CPU\n", gpu, cpu);
+    EXPECT_GT(cpu, 0.0f);
+    EXPECT_NEAR(gpu, cpu, 1e-5 * cpu);
 }
 
 } // namespace

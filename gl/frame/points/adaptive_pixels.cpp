@@ -20,6 +20,9 @@ AdaptivePixels::AdaptivePixels(Frame& frame, const AdaptiveSettings& settings)
       select_(Program::compute("points.adaptiveSelect", "frame/points/adaptive_select.comp")),
       interpolate_(Program::compute("points.adaptiveInterpolate", "frame/points/adaptive_interpolate.comp")),
       compose_(Program::compute("points.adaptiveCompose", "frame/points/adaptive_compose.comp")),
+      mean_(Program::compute("points.adaptiveMean", "frame/points/adaptive_mean.comp")),
+      meanFinal_(
+          Program::compute("points.adaptiveMeanFinal", "frame/points/adaptive_mean.comp", {{"MEAN_FINAL", "1"}})),
       count_("points.adaptiveCount", sizeof(std::uint32_t))
 {
     allocate(frame.width(), frame.height());
@@ -34,6 +37,7 @@ void AdaptivePixels::allocate(int width, int height)
     glossy_ = Texture::create2D("points.adaptive.glossy", GL_RGBA32F, width, height);
     accumulated_ = Texture::create2D("points.adaptive.accumulated", GL_RGBA32F, width, height);
     targets_ = Buffer("points.adaptiveTargets", std::size_t(width) * height * 8);
+    partials_ = Texture::create2D("points.adaptive.meanPartials", GL_RGBA32F, (width + 15) / 16, (height + 15) / 16);
 }
 
 void AdaptivePixels::setCommon(Frame& frame, Program& program, int spacing)
@@ -79,10 +83,28 @@ int AdaptivePixels::select(Frame& frame, int level, PassTimers& timers)
     return int(n);
 }
 
-float AdaptivePixels::meanSampledLuminance(Frame& frame) const
+float AdaptivePixels::meanSampledLuminance(Frame& frame)
 {
-    // The first level's samples: a quarter-by-quarter grid, read back once per frame (what the paper's
-    // display-scaled L_o gets from its tone mapping).
+    // The first level's samples: a quarter-by-quarter grid (what the paper's display-scaled L_o gets from
+    // its tone mapping), summed per 16 x 16 tile, then the tiles by one work group.
+    frame.bindGBuffer();
+    mean_.set("viewSize", glm::ivec2(width_, height_));
+    diffuse_.bindImage(0, GL_READ_ONLY, 0, GL_RGBA32F);
+    glossy_.bindImage(1, GL_READ_ONLY, 0, GL_RGBA32F);
+    partials_.bindImage(2, GL_WRITE_ONLY, 0, GL_RGBA32F);
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    dispatchCompute(mean_, {width_, height_, 1}, {16, 16, 1});
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    partials_.bindImage(0, GL_READ_WRITE, 0, GL_RGBA32F);
+    dispatchCompute(meanFinal_, {16, 16, 1}, {16, 16, 1});
+    glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
+    float texel[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    glGetTextureSubImage(partials_.id(), 0, 0, 0, 0, 1, 1, 1, GL_RGBA, GL_FLOAT, sizeof texel, texel);
+    return texel[2];
+}
+
+float AdaptivePixels::meanSampledLuminanceOnCpu(Frame& frame) const
+{
     glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
     const std::vector<float> d = diffuse_.readFloats(0, 4), g = glossy_.readFloats(0, 4),
                              c = frame.diffuse().readFloats(0, 4);

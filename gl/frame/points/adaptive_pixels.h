@@ -50,16 +50,23 @@ public:
 
     int sampledLastFrame() const { return sampled_; } // gather targets over every level of the last frame
 
+    // The mean outgoing luminance of the pixels gathered so far (the first level's, when select() asks
+    // for it on level 1): a reduction on the GPU (adaptive_mean.comp), 16 bytes read back; and the same
+    // from the three images read back, for tests. The light images, for tests to fill.
+    float meanSampledLuminance(Frame& frame);
+    float meanSampledLuminanceOnCpu(Frame& frame) const;
+    Texture& diffuseLight() { return diffuse_; }
+    Texture& glossyLight() { return glossy_; }
+
 private:
     AdaptiveSettings settings_;
     int width_ = 0, height_ = 0;
-    Program select_, interpolate_, compose_;
-    Texture state_, diffuse_, glossy_, accumulated_;
+    Program select_, interpolate_, compose_, mean_, meanFinal_;
+    Texture state_, diffuse_, glossy_, accumulated_, partials_;
     Buffer targets_, count_;
     int sampled_ = 0;
     float radianceScale_ = 0.0f; // the mean outgoing luminance of the first level's samples
     void allocate(int width, int height);
-    float meanSampledLuminance(Frame& frame) const;
     void setCommon(Frame& frame, Program& program, int spacing);
 };
 

@@ -22,6 +22,13 @@ uniform float sceneDiagonal; // d, metres
 
 bool hasGeometry(ivec2 px) { return gbufferHasGeometry(px); }
 
+// L_o's luminance at px from its two light images (the diffuse part times the pixel's diffuse colour, plus
+// the glossy part).
+float luminanceOf(ivec2 px, vec3 diffuseLight, vec3 glossyLight)
+{
+    return dot(gbufferDiffuse(px).rgb * diffuseLight + glossyLight, vec3(0.2126, 0.7152, 0.0722));
+}
+
 bool onGrid(ivec2 px, int s) { return px.x % s == 0 && px.y % s == 0; }
 
 // The parents of a candidate on the S grid: the corners of the grid cell around it (the image's last grid

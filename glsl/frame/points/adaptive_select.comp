@@ -21,8 +21,7 @@ uniform float radianceScale; // 1 / the mean outgoing luminance of the first lev
 
 float outgoingLuminance(ivec2 px)
 {
-    vec3 l = gbufferDiffuse(px).rgb * imageLoad(lightDiffuse, px).rgb + imageLoad(lightGlossy, px).rgb;
-    return dot(l, vec3(0.2126, 0.7152, 0.0722));
+    return luminanceOf(px, imageLoad(lightDiffuse, px).rgb, imageLoad(lightGlossy, px).rgb);
 }
 
 void main()
