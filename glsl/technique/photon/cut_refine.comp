@@ -26,10 +26,8 @@ void main()
     uint f = cutFlags(i);
     if (cutNodes[i].irradiance.w == 0.0) {
         vec3 x = nodeCentre(node), n = nodeNormal(node);
-        // The search starts at half the radius that holds k of the node's photons at its mean density.
         float radius;
-        DensitySums s = nearestPhotons(x, n, 0.5 * node.hi.w * sqrt(float(NEAREST_K) / (kPi * max(node.lo.w, 1.0))),
-                                       radius);
+        DensitySums s = nearestPhotons(x, n, nearestStartRadius(node), radius);
         float area = kPi * radius * radius;
         float accurate = s.cosWeighted / area;
         float approx = node.power.w;

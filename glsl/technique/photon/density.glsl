@@ -30,6 +30,13 @@ struct DensitySums {
 // order), can take that many. Fewer than k photons in the whole map: all of
 // them. radius: the k-th's distance (at least treeMinRadius, so that photons on top of x give a finite
 // estimate).
+// Where a search for the k nearest photons in a node's region starts: half the radius that holds k of its
+// photons at its mean density (lo.w photons within its bounding radius hi.w).
+float nearestStartRadius(PhotonNode node)
+{
+    return 0.5 * node.hi.w * sqrt(float(NEAREST_K) / (kPi * max(node.lo.w, 1.0)));
+}
+
 DensitySums nearestPhotons(vec3 x, vec3 n, float start, out float radius)
 {
     float nearestD2[NEAREST_K];

@@ -56,7 +56,7 @@ vec3 gatherRadiance(vec3 origin, vec3 dir, Hit hit, out int coverage)
 #ifdef DENSITY_PHOTONS
     float radius;
     PhotonNode root = photonNodes[1];
-    DensitySums s = nearestPhotons(y, n, 0.5 * root.hi.w * sqrt(float(NEAREST_K) / (kPi * max(root.lo.w, 1.0))), radius);
+    DensitySums s = nearestPhotons(y, n, nearestStartRadius(root), radius);
     vec3 irradiance = s.power / (kPi * radius * radius);
     vec3 wi = n;
 #else
