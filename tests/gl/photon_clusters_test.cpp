@@ -117,15 +117,9 @@ TEST_F(PhotonClustersTest, QuadtreeErrorsAreEq2SummedOverEachNode)
 {
     const core::Scene scene = core::makeCornell("cornell-spot");
     constexpr int w = 150, h = 70;
-    gl::Frame frame(scene, photontest::smallFrame(w, h));
-    gl::PassTimers timers;
-    frame.beginFrame();
-    frame.renderGBuffer(timers);
-    gl::Buffer counters("photon.counters", gl::kCounterSlots * 4);
-    gl::ShadingClusterSettings s;
-    s.clusters = 64;
-    gl::ShadingClusters clusters(s);
-    clusters.cluster(frame, glm::length(scene.bounds().extent()), counters, timers);
+    photontest::ClusteredFrame c(scene, w, h, 64);
+    gl::Frame& frame = c.frame;
+    const gl::ShadingClusters& clusters = c.clusters;
     const std::vector<gl::GpuQuadNode> nodes = clusters.downloadQuadtree();
     const int size = clusters.quadSize(), levels = clusters.quadLevels();
     ASSERT_EQ(size, 256);

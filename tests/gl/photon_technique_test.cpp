@@ -116,15 +116,11 @@ TEST_F(PhotonTechniqueTest, InterpolationReproducesAConstantFieldExactly)
 {
     const core::Scene scene = core::makeCornell("cornell-spot");
     constexpr int w = 41, h = 30; // odd: the compute form's partial work groups
-    gl::Frame frame(scene, photontest::smallFrame(w, h));
-    gl::PassTimers timers;
-    frame.beginFrame();
-    frame.renderGBuffer(timers);
-    gl::Buffer counters("photon.counters", gl::kCounterSlots * 4);
-    gl::ShadingClusterSettings s;
-    s.clusters = 60;
-    gl::ShadingClusters clusters(s);
-    clusters.cluster(frame, glm::length(scene.bounds().extent()), counters, timers);
+    photontest::ClusteredFrame cf(scene, w, h, 60);
+    gl::Frame& frame = cf.frame;
+    gl::PassTimers& timers = cf.timers;
+    gl::Buffer& counters = cf.counters;
+    gl::ShadingClusters& clusters = cf.clusters;
     const std::vector<gl::GpuCluster> original = clusters.download();
     const std::vector<float> pos = frame.readPositions();
     core::Image fields[2];

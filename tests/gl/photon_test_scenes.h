@@ -8,6 +8,8 @@
 
 #include "core/scene.h"
 #include "gl/frame/frame.h"
+#include "gl/technique/photon/photon_tracer.h"
+#include "gl/technique/photon/shading_clusters.h"
 #include "tests/gl/closed_box.h"
 
 namespace bounce::photontest {
@@ -45,5 +47,29 @@ inline gl::FrameSettings smallFrame(int w, int h)
     s.shadowMapSize = 256;
     return s;
 }
+
+// A small frame's G-buffer and its shading clusters after one cluster() call, for the tests that look
+// inside them.
+struct ClusteredFrame {
+    ClusteredFrame(const core::Scene& scene, int w, int h, int clusterCount)
+        : frame(scene, smallFrame(w, h)),
+          counters("photon.counters", gl::kCounterSlots * 4),
+          clusters(settings(clusterCount))
+    {
+        frame.beginFrame();
+        frame.renderGBuffer(timers);
+        clusters.cluster(frame, glm::length(scene.bounds().extent()), counters, timers);
+    }
+    static gl::ShadingClusterSettings settings(int clusterCount)
+    {
+        gl::ShadingClusterSettings s;
+        s.clusters = clusterCount;
+        return s;
+    }
+    gl::Frame frame;
+    gl::PassTimers timers;
+    gl::Buffer counters;
+    gl::ShadingClusters clusters;
+};
 
 } // namespace bounce::photontest
