@@ -7,6 +7,7 @@
 #include "app/demo_script.h"
 #include "app/options.h"
 #include "app/render_job.h"
+#include "app/roofline.h"
 #include "core/image.h"
 
 namespace bounce::app {
@@ -108,6 +109,7 @@ int cmdDemo(const Args& args)
     } catch (const gl::ContextError& e) {
         throw UsageError(e.what());
     }
+    gl::setKnownCeilings(cachedCeilings(context->info().renderer));
     std::printf("GL renderer: %s (%s)\n", context->info().renderer.c_str(), context->info().platform.c_str());
     Demo demo(*context, std::move(settings));
     return demo.run();

@@ -83,7 +83,10 @@ std::unique_ptr<gl::Context> createContextForCli(const std::string& backend, boo
     gl::ContextOptions o;
     o.visible = window;
     try {
-        return gl::Context::create(b, o);
+        std::unique_ptr<gl::Context> context = gl::Context::create(b, o);
+        // Passes written in two forms choose by this renderer's ceilings where `bounce probe` measured them.
+        gl::setKnownCeilings(cachedCeilings(context->info().renderer));
+        return context;
     } catch (const gl::ContextError& e) {
         throw UsageError(e.what());
     }

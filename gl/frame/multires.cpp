@@ -7,6 +7,7 @@
 #include "gl/context/context.h"
 #include "gl/frame/bindings.h"
 #include "gl/gl.h"
+#include "gl/probe/machine_probe.h"
 #include "gl/resource/pass_state.h"
 
 namespace bounce::gl {
@@ -86,7 +87,7 @@ MultiresPyramid::MultiresPyramid(int width, int height, const MultiresSettings& 
       reduceFromGBuffer_(
           Program::compute("multires.minmax.level1", "frame/multires_minmax.comp", {{"FROM_GBUFFER", "1"}})),
       reduce_(Program::compute("multires.minmax", "frame/multires_minmax.comp")),
-      upsampleAsFragments_(softwareRasterizer()),
+      upsampleAsFragments_(preferFragmentPasses()),
       upsample_(upsampleProgram(upsampleAsFragments_, false))
 {
     if (settings_.coarsestLevel < MultiresSettings::kAutoLevel)

@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "gl/context/context.h"
 #include "gl/gl.h"
 #include "gl/resource/buffer.h"
 #include "gl/resource/dispatch.h"
@@ -280,6 +281,21 @@ Ceilings probeMachine(const ProbeOptions& options)
     if (options.repeats < 1) throw std::invalid_argument("probe repeats must be at least 1");
     Probe probe(options);
     return probe.run();
+}
+
+namespace {
+std::optional<Ceilings> knownCeilings;
+} // namespace
+
+void setKnownCeilings(const std::optional<Ceilings>& ceilings)
+{
+    knownCeilings = ceilings;
+}
+
+bool preferFragmentPasses()
+{
+    if (knownCeilings) return knownCeilings->fragmentGflops > knownCeilings->computeGflops;
+    return softwareRasterizer();
 }
 
 } // namespace bounce::gl

@@ -10,6 +10,7 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -48,5 +49,15 @@ struct ProbeOptions {
 
 // Runs every kernel on the current context. Needs GL 4.5 core.
 Ceilings probeMachine(const ProbeOptions& options = {});
+
+// The ceilings `bounce probe` measured for the renderer in use, when the application knows them (it reads
+// its cache after making a context); nullopt forgets them.
+void setKnownCeilings(const std::optional<Ceilings>& ceilings);
+// Whether a pass written both as a full-screen fragment pass and as a compute pass runs as fragments (the
+// passes' `auto` forms: multiresolution gathers and upsampling, photon interpolation). By the probe's FMA
+// ceilings when known: fragments where a fragment pass computes faster (llvmpipe: 58 GFLOP/s against 35),
+// compute where the graphics units are few (an NVIDIA H200: 1.8 TFLOP/s against 48). Unknown: by the
+// renderer's kind, fragments on a software rasteriser.
+bool preferFragmentPasses();
 
 } // namespace bounce::gl

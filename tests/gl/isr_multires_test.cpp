@@ -19,15 +19,18 @@
 #include "core/cornell.h"
 #include "core/image.h"
 #include "core/metrics.h"
+#include "gl/context/context.h"
 #include "gl/frame/frame.h"
 #include "gl/frame/multires.h"
 #include "gl/frame/rsm.h"
+#include "gl/probe/machine_probe.h"
 #include "gl/renderer.h"
 #include "gl/technique/isr/hisr_technique.h"
 #include "gl/technique/isr/multires_gather.h"
 #include "gl/technique/isr/vpl_gather.h"
 #include "gl/technique/isr/vpl_sample.h"
 #include "gl/technique/isr/vpl_tree.h"
+#include "gl/technique/photon/final_gather.h"
 #include "tests/gl/gl_test_fixture.h"
 #include "tests/image_expect.h"
 
@@ -492,6 +495,33 @@ TEST_F(IsrMultiresTest, HisrTraversalMatchesCpuTraversal)
     // Some clusters were refined and some were not: the test exercised both branches of Eq. 8.
     EXPECT_GT(clusters / fragments, double(tree.rootCount()));
     EXPECT_LT(clusters / fragments, double(kRsm * kRsm) / 2.0);
+}
+
+// The passes written in two forms choose by the probe's ceilings when the application knows them: an
+// NVIDIA H200's (fragment FMA 1.8 TFLOP/s, compute 48) give compute passes, llvmpipe's (58 and 35 GFLOP/s)
+// fragment passes; without them the renderer's kind decides (fragments on a software rasteriser).
+TEST_F(IsrMultiresTest, AutoFormsFollowTheProbesCeilings)
+{
+    struct Forget {
+        ~Forget() { gl::setKnownCeilings(std::nullopt); }
+    } forget;
+    gl::Ceilings h200;
+    h200.renderer = "NVIDIA H200/PCIe/SSE2";
+    h200.fragmentGflops = 1828.3;
+    h200.computeGflops = 47647.8;
+    gl::setKnownCeilings(h200);
+    EXPECT_FALSE(gl::preferFragmentPasses());
+    EXPECT_FALSE(gl::MultiresGather::defaultGatherAsFragments());
+    EXPECT_TRUE(gl::Interpolation::defaultAsCompute());
+    gl::Ceilings llvmpipe = h200;
+    llvmpipe.renderer = "llvmpipe (LLVM 15.0.6, 256 bits)";
+    llvmpipe.fragmentGflops = 58.2;
+    llvmpipe.computeGflops = 34.9;
+    gl::setKnownCeilings(llvmpipe);
+    EXPECT_TRUE(gl::MultiresGather::defaultGatherAsFragments());
+    EXPECT_FALSE(gl::Interpolation::defaultAsCompute());
+    gl::setKnownCeilings(std::nullopt);
+    EXPECT_EQ(gl::preferFragmentPasses(), gl::softwareRasterizer());
 }
 
 // The gathers' two forms (the paper's stenciled quad, and the compute pass over the listed valid fragments

@@ -7,6 +7,7 @@
 
 #include "gl/context/context.h"
 #include "gl/gl.h"
+#include "gl/probe/machine_probe.h"
 #include "gl/resource/pass_state.h"
 #include "gl/technique/isr/bindings.h"
 #include "gl/technique/isr/vpl_gather.h"
@@ -35,15 +36,16 @@ Program MultiresGather::gatherProgram(const std::string& label, const std::strin
 
 bool MultiresGather::defaultGatherAsFragments()
 {
-    return softwareRasterizer();
+    return preferFragmentPasses();
 }
 
 ParamDecl MultiresGather::gatherFormParam()
 {
     return choiceParam("gather", {"auto", "fragments", "compute"}, 0,
                        "the gather's form: fragments (the paper's stenciled quad) or compute (the valid fragments "
-                       "listed, one invocation each); auto: fragments on a software rasteriser, compute on a GPU, "
-                       "whose graphics units may be few");
+                       "listed, one invocation each); auto: the faster form by this renderer's `bounce probe` "
+                       "ceilings, else fragments on a software rasteriser and compute on a GPU, whose graphics "
+                       "units may be few");
 }
 
 bool MultiresGather::gatherAsFragmentsFrom(const ParamValues& values, const std::vector<ParamDecl>& decls)

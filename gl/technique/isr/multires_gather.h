@@ -74,9 +74,10 @@ public:
     // each invocation adding into its fragment's rgb: the same fragments get the same light.
     void gather(Frame& frame, Program& program, PassTimers& timers, int draws = 1,
                 const std::function<void(Program&, int)>& setupDraw = {}, const PassCost& perFragment = {});
-    // Which form of the gather to run: the paper's stenciled quad on a software rasteriser, where fragment
-    // work is as fast as compute work, and a compute pass elsewhere: a GPU may shade fragments on a small
-    // part of its units (an NVIDIA H100: graphics in 2 of 66 TPCs; bounce probe read 1.8 TFLOP/s in a
+    // Which form of the gather to run (preferFragmentPasses(), gl/probe/machine_probe.h: by the probe's
+    // ceilings when known): the paper's stenciled quad on a software rasteriser, where fragment work is as
+    // fast as compute work, and a compute pass elsewhere: a GPU may shade fragments on a small part of its
+    // units (an NVIDIA H100: graphics in 2 of 66 TPCs; bounce probe read 1.8 TFLOP/s in a
     // fragment pass and 46 in a compute pass, and hisr's gather took 16.8 ms as fragments at 1024x768).
     static bool defaultGatherAsFragments();
     bool gatherAsFragments() const { return asFragments_; }

@@ -7,6 +7,7 @@
 #include "gl/context/context.h"
 #include "gl/frame/bindings.h"
 #include "gl/gl.h"
+#include "gl/probe/machine_probe.h"
 #include "gl/resource/dispatch.h"
 #include "gl/resource/pass_state.h"
 #include "gl/technique/photon/bindings.h"
@@ -85,7 +86,7 @@ Interpolation::Interpolation(bool asCompute)
 
 bool Interpolation::defaultAsCompute()
 {
-    return !softwareRasterizer();
+    return !preferFragmentPasses();
 }
 
 void Interpolation::run(Frame& frame, const ShadingClusters& clusters, float maxError, bool ownSampleOnly,

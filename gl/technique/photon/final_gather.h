@@ -46,8 +46,8 @@ public:
     // asCompute: one invocation per pixel into the indirect texture (photon_interpolate.comp); else a
     // full-screen triangle (photon_interpolate.frag). The same arithmetic (photon_interpolate.glsl).
     explicit Interpolation(bool asCompute = defaultAsCompute());
-    // Fragments on a software rasteriser, compute elsewhere: a GPU's graphics units may be few (an NVIDIA
-    // H200's fragment form took 9.6 ms at 1024x768).
+    // !preferFragmentPasses() (gl/probe/machine_probe.h): compute on a GPU, whose graphics units may be
+    // few (an NVIDIA H200's fragment form took 9.6 ms at 1024x768, the compute form 0.58).
     static bool defaultAsCompute();
     // Writes the diffuse radiance of the interpolated irradiance into `target` (the frame's indirect
     // texture), or the irradiance itself with writeIrradiance (tests).

@@ -161,7 +161,8 @@ TechniqueInfo photonTechniqueInfo()
                     "gather hits read the illumination cut (the paper), or the full photon map (Fig. 6)"),
         choiceParam("interpolation", {"auto", "fragments", "compute"}, 0,
                     "the interpolation pass's form: a full-screen triangle or one compute invocation per pixel; "
-                    "auto: fragments on a software rasteriser, compute on a GPU, whose graphics units may be few"),
+                    "auto: the faster form by this renderer's `bounce probe` ceilings, else fragments on a software "
+                    "rasteriser and compute on a GPU, whose graphics units may be few"),
     };
     // Every pass with a small photon map, few clusters and short gathers: the tests' cheap settings.
     info.quickSets = {"photons=4096", "clusters=64", "gatherRays=16"};
