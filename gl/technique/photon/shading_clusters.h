@@ -40,6 +40,7 @@ struct GpuCluster {
 static_assert(sizeof(GpuCluster) == 96);
 struct GpuPointNode {
     glm::vec4 lo, hi;
+    glm::uvec4 normals; // the box of the points' normals, half floats (shading_clusters.glsl)
 };
 // std430 mirror of QuadNode in shading_clusters.glsl: a node of the seeding quadtree.
 struct GpuQuadNode {

@@ -1,10 +1,10 @@
 #version 450 core
 // k-means, classification (section 3.2): every shading point to its nearest centre by Eq. 2, found
-// through the tree of centres: a subtree is skipped when alpha times the distance to its box (a lower
-// bound of Eq. 2: the normal term is never negative) exceeds the best error so far; the previous
-// assignment's error starts the bound. Ties go to the lower cluster index, so the result is the brute
-// force's (bruteForce: every centre, for tests). Writes the cluster and the (cluster, pixel) pair the
-// sort by cluster takes.
+// through the tree of centres: a subtree is skipped when a lower bound of Eq. 2 over it (pointNodeBound:
+// alpha times the distance to its box plus the distance from the normal to its normals' box) exceeds the
+// best error so far; the previous assignment's error starts the bound. Ties go to the lower cluster
+// index, so the result is the brute force's (bruteForce: every centre, for tests). Writes the cluster and
+// the (cluster, pixel) pair the sort by cluster takes.
 #include "common/gbuffer.glsl"
 #include "technique/photon/shading_clusters.glsl"
 
@@ -49,7 +49,7 @@ void main()
             uint i = 1u;
             while (i != 0u) {
                 PointNode node = pointNodes[i];
-                if (node.lo.w <= 0.0 || alpha * pointBoxDistance(x, node.lo.xyz, node.hi.xyz) > best) {
+                if (node.lo.w <= 0.0 || pointNodeBound(x, n, node) * (1.0 - 1e-5) > best) {
                     i = pointSkip(i);
                 } else if (findMSB(i) == pointTreeDepth) {
                     consider(floatBitsToUint(node.hi.w), x, n, best, bestCluster);

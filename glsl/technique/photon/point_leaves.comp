@@ -14,11 +14,12 @@ void main()
     uint k = gl_GlobalInvocationID.x;
     uint leaves = 1u << uint(pointTreeDepth);
     if (k >= leaves) return;
-    PointNode n = PointNode(vec4(vec3(3.0e38), 0.0), vec4(vec3(-3.0e38), 0.0));
+    PointNode n = PointNode(vec4(vec3(3.0e38), 0.0), vec4(vec3(-3.0e38), 0.0), packNormalBox(vec3(2.0), vec3(-2.0)));
     if (keys[k] != 0xFFFFFFFFu) {
         uint c = values[k];
         vec3 p = useSamples != 0 ? clusters[c].samplePoint.xyz : clusters[c].centre.xyz;
-        n = PointNode(vec4(p, 1.0), vec4(p, uintBitsToFloat(c)));
+        vec3 normal = useSamples != 0 ? clusters[c].sampleNormal.xyz : clusters[c].normal.xyz;
+        n = PointNode(vec4(p, 1.0), vec4(p, uintBitsToFloat(c)), packNormalBox(normal, normal));
     }
     pointNodes[leaves + k] = n;
 }

@@ -21,6 +21,11 @@ void main()
     if (k >= (1u << uint(level))) return;
     uint i = (1u << uint(level)) + k;
     PointNode a = pointNodes[2u * i], b = pointNodes[2u * i + 1u];
+    vec3 alo, ahi, blo, bhi;
+    unpackNormalBox(a.normals, alo, ahi);
+    unpackNormalBox(b.normals, blo, bhi);
+    // The children's boxes were widened once already: merged as they are (packNormalBox widens again).
     pointNodes[i] = PointNode(vec4(min(a.lo.xyz, b.lo.xyz), a.lo.w + b.lo.w),
-                              vec4(max(a.hi.xyz, b.hi.xyz), max(reach(2u * i), reach(2u * i + 1u))));
+                              vec4(max(a.hi.xyz, b.hi.xyz), max(reach(2u * i), reach(2u * i + 1u))),
+                              packNormalBox(min(alo, blo), max(ahi, bhi)));
 }
