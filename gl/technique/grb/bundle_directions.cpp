@@ -1,21 +1,39 @@
 #include "gl/technique/grb/bundle_directions.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "core/sampling.h"
 
 namespace bounce::gl {
 
+std::uint64_t bundleSequenceIndex(std::uint64_t index)
+{
+    // Fisher-Yates over the block, driven by a hash of the block's number: the same permutation every
+    // call, a different one per block.
+    const std::uint64_t block = index / kBundleShuffleBlock;
+    std::array<std::uint32_t, kBundleShuffleBlock> order;
+    for (std::uint32_t j = 0; j < kBundleShuffleBlock; ++j) order[j] = j;
+    std::uint64_t state = core::mixBits(block + 0x9e3779b97f4a7c15ull);
+    for (std::uint32_t j = kBundleShuffleBlock - 1; j > 0; --j) {
+        state = core::mixBits(state + j);
+        std::swap(order[j], order[state % (j + 1)]);
+    }
+    return block * kBundleShuffleBlock + order[index % kBundleShuffleBlock];
+}
+
 glm::vec3 bundleDirection(std::uint64_t index)
 {
-    const glm::vec2 u(float(core::halton(0, index + 1)), float(core::halton(1, index + 1)));
+    const std::uint64_t h = bundleSequenceIndex(index) + 1;
+    const glm::vec2 u(float(core::halton(0, h)), float(core::halton(1, h)));
     return core::sampleUniformSphere(u);
 }
 
 glm::vec2 bundleJitter(std::uint64_t index)
 {
-    return {float(core::halton(2, index + 1)), float(core::halton(3, index + 1))};
+    const std::uint64_t h = bundleSequenceIndex(index) + 1;
+    return {float(core::halton(2, h)), float(core::halton(3, h))};
 }
 
 BundleView bundleView(const core::Bounds& bounds, glm::vec3 dir, glm::vec2 jitter, int size)
