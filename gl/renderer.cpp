@@ -117,6 +117,7 @@ void Renderer::renderFrame(bool keepTimings)
     frame_->beginFrame();
     frame_->renderShadowMaps(timers_);
     frame_->renderGBuffer(timers_);
+    frame_->setAreaLightsInDirect(!technique_->carriesEmittersLight());
     frame_->renderDirect(timers_);
     frame_->clearIndirect();
     if (indirectScale_ > 1)

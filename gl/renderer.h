@@ -60,6 +60,8 @@ public:
 
     Frame& frame() { return *frame_; }
     const TechniqueInfo& technique() const { return *info_; }
+    // The technique writes the emitters' reflected light into indirect() (Technique::carriesEmittersLight).
+    bool indirectCarriesEmittersLight() const { return technique_->carriesEmittersLight(); }
     const ParamValues& techniqueValues() const { return techniqueValues_; }
     const ParamValues& frameValues() const { return frameValues_; }
     PassTimers& timers() { return timers_; }

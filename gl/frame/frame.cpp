@@ -33,10 +33,12 @@ std::vector<Define> sceneDefines(const core::Scene& scene, const GpuScene& gpu)
 // still: the still frames' program, where they differ from the moving frame's: area lights sampled on the
 // emitter (AREA_SAMPLED), a directional light's cascades read (SHADOW_CASCADES); none where neither is
 // in the scene. Moving: the area lights' PCSS when asked for.
-Program directProgram(const core::Scene& scene, const GpuScene& gpu, const FrameSettings& settings, bool still = false)
+// areaLights false: the emitters' reflected light is left to the technique (Frame::setAreaLightsInDirect).
+Program directProgram(const core::Scene& scene, const GpuScene& gpu, const FrameSettings& settings, bool still = false,
+                      bool areaLights = true)
 {
     std::vector<Define> kinds = sceneDefines(scene, gpu);
-    const bool area = int(gpu.lights().size()) > gpu.punctualLightCount();
+    const bool area = areaLights && int(gpu.lights().size()) > gpu.punctualLightCount();
     const bool cascades = settings.shadowCascades > 0 && hasLightOfType(gpu.lights(), kLightDirectional);
     if (still && !area && !cascades) return Program();
     if (gpu.punctualLightCount() > 0) kinds.push_back({"PUNCTUAL_LIGHTS", "1"});
@@ -143,10 +145,21 @@ void Frame::setLights(const std::vector<core::Light>& lights)
     gpu_.setLights(lights);
     shadows_.update(gpu_);
     ++version_.lights;
-    if ((punctualBefore > 0) != (gpu_.punctualLightCount() > 0) || directionalBefore != directional()) {
-        directProgram_ = directProgram(scene_, gpu_, settings_);
-        directStillProgram_ = directProgram(scene_, gpu_, settings_, true);
-    }
+    if ((punctualBefore > 0) != (gpu_.punctualLightCount() > 0) || directionalBefore != directional())
+        rebuildDirectPrograms();
+}
+
+void Frame::setAreaLightsInDirect(bool on)
+{
+    if (on == areaLightsInDirect_) return;
+    areaLightsInDirect_ = on;
+    rebuildDirectPrograms();
+}
+
+void Frame::rebuildDirectPrograms()
+{
+    directProgram_ = directProgram(scene_, gpu_, settings_, false, areaLightsInDirect_);
+    directStillProgram_ = directProgram(scene_, gpu_, settings_, true, areaLightsInDirect_);
 }
 
 void Frame::resize(int width, int height)
@@ -322,7 +335,8 @@ void Frame::renderDirect(PassTimers& timers)
     // clipped polygon's form factor) and its shadow taps.
     const double taps =
         double((2 * settings_.pcfRadius + 1) * (2 * settings_.pcfRadius + 1)) * (settings_.pcfLinear ? 4.0 : 1.0);
-    const double punctual = gpu_.punctualLightCount(), area = shadows_.lightCount() - punctual;
+    const double punctual = gpu_.punctualLightCount(),
+                 area = areaLightsInDirect_ ? shadows_.lightCount() - punctual : 0.0;
     PassCost cost;
     cost.flops = 30 + punctual * (60 + 10 * taps) + area * (250 + 10 * taps);
     cost.fetches = 2 + (specular_ ? 1 : 0) + (emission_ ? 1 : 0) + (punctual + area) * taps;

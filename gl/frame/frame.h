@@ -51,6 +51,12 @@ public:
 
     void setCamera(const core::Camera& camera);
     void setLights(const std::vector<core::Light>& lights); // moves punctual lights, re-renders shadows
+    // Whether the direct pass adds the light that emitting triangles reflect (on by default). Off for a
+    // technique that carries the emitters' light itself and writes it into indirect() (grb's
+    // emitters=bundles): the direct pass then holds emission and punctual lights only. The Renderer sets
+    // it from Technique::carriesEmittersLight() before every frame.
+    void setAreaLightsInDirect(bool on);
+    bool areaLightsInDirect() const { return areaLightsInDirect_; }
     void resize(int width, int height);
 
     // The frame's own passes, in order: shadow maps, G-buffer, direct light. Then the technique runs,
@@ -142,11 +148,13 @@ private:
     Program directProgram_, directStillProgram_, compositeProgram_, accumulateProgram_, accumulateDirectProgram_;
     int frameIndex_ = -1;
     bool compositeUsed_ = true;
+    bool areaLightsInDirect_ = true;
     bool accumulatedResult_ = false; // result() is accumulated_
     int stillFrame_ = 0;
     glm::vec2 jitter_{0.0f};
     FrameVersion version_;
     void allocateTargets();
+    void rebuildDirectPrograms();
     void updateGBufferCamera();
     std::vector<float> decode(int output) const;
 };

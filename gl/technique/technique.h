@@ -97,6 +97,10 @@ public:
     virtual int accumulatedSteps() const { return 0; }
     // What the run's JSON record should say beyond numbers (which capture ran and why...); {} for nothing.
     virtual nlohmann::json notes() const { return {}; }
+    // True when the technique writes the light that emitting triangles reflect into frame.indirect()
+    // itself (grb's emitters=bundles, Sec. 5.1): the frame's direct pass then leaves it out
+    // (Frame::setAreaLightsInDirect), so that it is not counted twice.
+    virtual bool carriesEmittersLight() const { return false; }
 };
 
 // The G-buffer channels a technique may read (Frame::bindGBuffer, glsl/common/gbuffer.glsl).

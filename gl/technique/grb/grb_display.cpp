@@ -9,15 +9,22 @@
 
 namespace bounce::gl {
 
-GrbDisplay::GrbDisplay(const Frame& frame, const RadianceAtlases& radiance, const KBuffer& kbuffer, bool finalGlossy)
-    : finalGlossy_(finalGlossy), displayFbo_("grb.display.fbo"), glossyFbo_("grb.finalGlossy.fbo"), vao_("grb.display")
+GrbDisplay::GrbDisplay(const Frame& frame, const RadianceAtlases& radiance, const KBuffer& kbuffer, bool finalGlossy,
+                       bool showEmitted)
+    : finalGlossy_(finalGlossy),
+      showEmitted_(showEmitted),
+      displayFbo_("grb.display.fbo"),
+      glossyFbo_("grb.finalGlossy.fbo"),
+      vao_("grb.display")
 {
     std::vector<Define> d = {{"ATLAS_TEXTURES", "1"}};
     if (finalGlossy) d.push_back({"FINAL_GLOSSY", "1"});
+    if (showEmitted) d.push_back({"SHOW_EMITTED", "1"});
     display_ = Program::graphics("grb.display", "technique/grb/display.vert", "technique/grb/display.frag", d);
     if (finalGlossy) {
         std::vector<Define> g = radiance.defines();
         for (const Define& r : kbuffer.readerDefines()) g.push_back(r);
+        if (showEmitted) g.push_back({"SHOW_EMITTED", "1"});
         gather_ = Program::graphics("grb.finalGlossy", "frame/fullscreen.vert", "technique/grb/final_glossy.frag", g);
     }
     allocate(frame);
@@ -81,6 +88,7 @@ void GrbDisplay::display(Frame& frame, const GrbAtlas& atlas, const RadianceAtla
     frame.bindSceneData();
     atlas.bind();
     radiance.indirect().bind(UNIT_GRB_SENDER_INDIRECT);
+    if (showEmitted_) radiance.direct().bind(UNIT_GRB_SENDER_DIRECT);
     if (finalGlossy_) glossySum_.bind(UNIT_GRB_FINAL_GLOSSY);
     display_.set("viewProj", frame.projection() * frame.view());
     display_.set("cameraPosition", frame.camera().position);

@@ -19,20 +19,24 @@ namespace bounce::gl {
 
 class GrbDisplay {
 public:
-    GrbDisplay(const Frame& frame, const RadianceAtlases& radiance, const KBuffer& kbuffer, bool finalGlossy);
+    // showEmitted (emitters=bundles, Sec. 5.1): the display adds the light the bundles carried from
+    // emitting surfaces (the direct atlas) and the final glossy bounce the emitters' glossy reflection, in
+    // place of the frame's direct light from emitters (Frame::setAreaLightsInDirect).
+    GrbDisplay(const Frame& frame, const RadianceAtlases& radiance, const KBuffer& kbuffer, bool finalGlossy,
+               bool showEmitted);
 
     // Zero the final glossy sums (the camera moved, or the accumulation starts over).
     void clear();
     // Sec. 5.3 for one direction: Eq. 3 towards the eye at every glossy pixel, added to the sums.
     void gatherFinalGlossy(const Frame& frame, const GrbAtlas& atlas, const RadianceAtlases& radiance,
                            const KBuffer& kbuffer, const BundleView& view, PassTimers& timers);
-    // The indirect radiance into frame.indirect().
+    // The indirect radiance (and with showEmitted the emitters' light) into frame.indirect().
     void display(Frame& frame, const GrbAtlas& atlas, const RadianceAtlases& radiance, PassTimers& timers);
 
     bool finalGlossy() const { return finalGlossy_; }
 
 private:
-    bool finalGlossy_;
+    bool finalGlossy_, showEmitted_;
     int width_ = 0, height_ = 0;
     Texture depth_, glossySum_;
     Framebuffer displayFbo_, glossyFbo_;

@@ -89,10 +89,14 @@ public:
         rs.glossy = frame.scene().hasGlossy();
         rs.punctual = frame.gpuScene().punctualLightCount() > 0;
         rs.interleaved = v.getBool("interleaved");
+        rs.areaGlossy = rs.glossy && int(frame.gpuScene().lights().size()) > frame.gpuScene().punctualLightCount();
         radiance_ = std::make_unique<RadianceAtlases>(atlas_, *kbuffer_, rs);
         const std::string fg = v.getChoice(grbTechniqueInfo().params, "finalGlossy");
         const bool finalGlossy = fg == "on" || (fg == "auto" && rs.glossy);
-        display_ = std::make_unique<GrbDisplay>(frame, *radiance_, *kbuffer_, finalGlossy);
+        const int lights = int(frame.gpuScene().lights().size());
+        emittersShown_ = v.getChoice(grbTechniqueInfo().params, "emitters") == "bundles" &&
+                         lights > frame.gpuScene().punctualLightCount();
+        display_ = std::make_unique<GrbDisplay>(frame, *radiance_, *kbuffer_, finalGlossy, emittersShown_);
         stats_ = std::make_unique<KBufferStats>(*kbuffer_);
     }
 
@@ -120,6 +124,7 @@ public:
     }
 
     void restart() override { started_ = false; }
+    bool carriesEmittersLight() const override { return emittersShown_; }
     int accumulatedSteps() const override { return directions_; }
 
     std::vector<Counter> counters() const override
@@ -183,6 +188,7 @@ private:
     std::unique_ptr<GrbDisplay> display_;
     std::unique_ptr<KBufferStats> stats_;
     bool started_ = false;
+    bool emittersShown_ = false; // emitters=bundles in a scene with emitting triangles
     FrameVersion version_;
     int directions_ = 0;
     double frameOverflow_ = 0.0, overflowTotal_ = 0.0, largestSeen_ = 0.0, occupied_ = 0.0, entries_ = 0.0;
@@ -222,7 +228,7 @@ TechniqueInfo grbTechniqueInfo()
         {"capture", "the scene rasterised into the k-buffer along one direction (per direction)", ""},
         {"kbuffer-stats", "overflowed pixels and depth complexity of the k-buffer (per direction)", ""},
         {"transfer", "Eq. 3 over every atlas texel, sender/receiver atlases swap (per direction)", ""},
-        {"display", "the atlas's indirect light at every pixel", ""},
+        {"display", "the atlas's indirect light (emitters=bundles: and the emitters' light) at every pixel", ""},
         {"seed", "punctual lights' direct light into the atlas through the shadow maps",
          "when accumulation starts over and the scene has point, spot or directional lights"},
         {"final-glossy", "Eq. 3 towards the eye at glossy pixels (per direction, Sec. 5.3)",
@@ -281,7 +287,11 @@ TechniqueInfo grbTechniqueInfo()
         interleaved,
         choiceParam("finalGlossy", {"auto", "on", "off"}, 0,
                     "Sec. 5.3 final glossy bounce towards the eye (auto: where the scene is glossy); restarts "
-                    "on camera moves")};
+                    "on camera moves"),
+        choiceParam("emitters", {"bundles", "frame"}, 0,
+                    "light from emitting surfaces as seen: bundles (Sec. 5.1: the bundles' direct atlas, and the "
+                    "final glossy bounce its glossy reflection; with finalGlossy off glossy surfaces show none) "
+                    "or frame (the frame's direct light; the bundles still carry it to the first bounce)")};
     // Every pass with fewer, coarser bundles and a small atlas: the tests' cheap settings.
     info.quickSets = {"directionsPerFrame=2", "kbufferSize=64", "atlasTexels=4096"};
     info.create = [](Frame& frame, const ParamValues& v) -> std::unique_ptr<Technique> {

@@ -1,5 +1,6 @@
 #include "gl/technique/grb/radiance_atlases.h"
 
+#include "core/sampling.h"
 #include "gl/frame/bindings.h"
 #include "gl/gl.h"
 #include "gl/resource/pass_state.h"
@@ -47,6 +48,7 @@ std::vector<Define> RadianceAtlases::defines() const
     std::vector<Define> d = {{"ATLAS_TEXTURES", "1"}};
     if (settings_.glossy) d.push_back({"GLOSSY", "1"});
     if (settings_.punctual) d.push_back({"PUNCTUAL_LIGHTS", "1"});
+    if (settings_.areaGlossy) d.push_back({"AREA_GLOSSY", "1"});
     if (settings_.interleaved) d.push_back({"INTERLEAVED", "1"});
     return d;
 }
@@ -103,6 +105,13 @@ void RadianceAtlases::transfer(const Frame& frame, const GrbAtlas& atlas, const 
     transfer_.set("nextDir", next);
     transfer_.set("atlasWidth", width_);
     transfer_.set("punctualLightCount", frame.gpuScene().punctualLightCount());
+    if (settings_.areaGlossy) {
+        transfer_.set("lightCount", frame.shadowMaps().lightCount());
+        // The emitters' points rotate from direction to direction (Halton dimensions 6 and 7 of the count
+        // of transfers so far), so that their sum over directions covers each emitter evenly.
+        const auto n = std::uint64_t(++transfers_);
+        transfer_.set("areaRotation", glm::vec2(float(core::halton(6, n)), float(core::halton(7, n))));
+    }
     frame.shadowMaps().setPcfUniforms(transfer_, frame.settings().pcfRadius);
     transfer_.use();
     vao_.bind();

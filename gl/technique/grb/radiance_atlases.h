@@ -4,6 +4,8 @@
 // glossy materials, the pair of glossy transfer atlases (Sec. 5.4).
 #pragma once
 
+#include <cstdint>
+
 #include <vector>
 
 #include "gl/frame/frame.h"
@@ -18,8 +20,11 @@
 namespace bounce::gl {
 
 struct RadianceSettings {
-    bool glossy = false;     // the scene has a glossy lobe somewhere: allocate the transfer atlases
-    bool punctual = false;   // the scene has point, spot or directional lights: seed them
+    bool glossy = false;   // the scene has a glossy lobe somewhere: allocate the transfer atlases
+    bool punctual = false; // the scene has point, spot or directional lights: seed them
+    // The scene has emitting triangles and a glossy lobe: the glossy transfer takes the emitters' light by
+    // sampling them (as the frame's still frames do) instead of through the bundles.
+    bool areaGlossy = false;
     bool interleaved = true; // Sec. 5.5; false: senders send only the seed and their emission (one bounce)
 };
 
@@ -52,7 +57,8 @@ private:
     Framebuffer fbo_[2], seedFbo_;
     Program transfer_, seedProgram_;
     VertexArray vao_;
-    int current_ = 0; // the sender pair; the transfer writes the other
+    int current_ = 0;             // the sender pair; the transfer writes the other
+    std::uint64_t transfers_ = 0; // directions transferred since the atlases were made (AREA_GLOSSY's rotation)
 };
 
 } // namespace bounce::gl

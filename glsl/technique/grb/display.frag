@@ -2,13 +2,18 @@
 // The indirect light at each pixel: the reflected part of the atlas (radiance.glsl: the indirect sums
 // over their counts, bilinearly among the texels that took samples) times the pixel's own diffuse colour
 // and Fresnel transmission towards the eye, from the G-buffer (sharp textures, back faces black);
-// FINAL_GLOSSY: plus the final glossy bounce gathered at the pixel (Sec. 5.3). The direct part of the atlas
-// (emitters through the bundles, the seed) is not shown: the frame computes direct light.
+// FINAL_GLOSSY: plus the final glossy bounce gathered at the pixel (Sec. 5.3). SHOW_EMITTED (emitters=bundles,
+// Sec. 5.1): the light the bundles carried from emitting surfaces (the direct atlas, whose counts are the
+// indirect atlas's) is shown too, and the frame leaves it out of its direct light. Without it the frame's
+// direct light holds it. The seed (punctual lights) is never shown: the frame computes it.
 #include "common/brdf.glsl"
 #include "common/gbuffer.glsl"
 #include "technique/grb/bindings.glsl"
 
 layout(binding = UNIT_GRB_SENDER_INDIRECT) uniform sampler2D atlasIndirect;
+#ifdef SHOW_EMITTED
+layout(binding = UNIT_GRB_SENDER_DIRECT) uniform sampler2D atlasDirect;
+#endif
 #ifdef FINAL_GLOSSY
 layout(binding = UNIT_GRB_FINAL_GLOSSY) uniform sampler2D finalGlossy;
 #endif
@@ -39,6 +44,9 @@ void main()
     for (int j = 0; j < 2; ++j)
         for (int i = 0; i < 2; ++i) {
             vec4 v = texelFetch(atlasIndirect, base + ivec2(i, j), 0);
+#ifdef SHOW_EMITTED
+            v.rgb += texelFetch(atlasDirect, base + ivec2(i, j), 0).rgb;
+#endif
             float w = (i == 1 ? f.x : 1.0 - f.x) * (j == 1 ? f.y : 1.0 - f.y);
             if (v.a > 0.0 && w > 0.0) {
                 sum += w * v.rgb / v.a;

@@ -1,8 +1,8 @@
 #version 450 core
 // The final glossy bounce (Sec. 5.3): at every G-buffer pixel with a glossy lobe, Eq. 3 towards the eye
 // (w_i+1 = w_o) for this direction, from the sender the pixel finds in the k-buffer, added (blending) to a
-// per-pixel sum with the count in alpha. Light the sender emits is left out: the frame's direct light
-// holds its glossy reflection.
+// per-pixel sum with the count in alpha. Light the sender emits is left out (the frame's direct light
+// holds its glossy reflection) unless SHOW_EMITTED (emitters=bundles: the frame leaves emitters out).
 #include "common/gbuffer.glsl"
 #include "technique/grb/kbuffer.glsl"
 #include "technique/grb/radiance.glsl"
@@ -24,6 +24,9 @@ void main()
     if (s.counts && s.sender != 0u && s.cosine > 0.0) {
         vec3 Le, Lr;
         senderRadiance(atlasTexelOf(s.sender - 1u), -s.wi, Le, Lr);
+#ifdef SHOW_EMITTED
+        Lr += Le;
+#endif
         glossy = 2.0 * kPi * brdfGlossy(b, n, wo, s.wi) * Lr * s.cosine;
     }
     outGlossy = vec4(glossy, s.counts ? 1.0 : 0.0);

@@ -7,12 +7,22 @@
 // Both orientations of the direction serve: a receiver takes its sender on the side its face faces.
 // GLOSSY: also writes the glossy transfer atlas for the next direction (Sec. 5.4). PUNCTUAL_LIGHTS: the
 // glossy transfer includes the punctual lights' glossy reflection towards the next direction.
+// AREA_GLOSSY: and the emitting triangles' glossy reflection, sampled as the frame's still frames do
+// (lighting.glsl, areaSampleUnshadowed: 16 stratified points per triangle, the mesh's shadow cube at this
+// frame's point), in place of the emitted light a bundle happens to bring (Fig. 11's hybrid carried over
+// to the glossy transfer). Through the bundles, light -> glossy -> diffuse paths from a small emitter need
+// w_i to hit the emitter and w_i+1 to fall in the lobe: on cornell-glossy a lamp's reflection off the tall
+// block's top lay on the ceiling as blotches after thousands of directions.
 #include "common/lighting.glsl"
 #include "technique/grb/kbuffer.glsl"
 #include "technique/grb/radiance.glsl"
 
 uniform vec3 nextDir;           // w_i+1, for the glossy transfer atlas
 uniform int punctualLightCount; // lights [0, punctualLightCount): point, spot, directional
+#ifdef AREA_GLOSSY
+uniform int lightCount;         // lights [punctualLightCount, lightCount): emitting triangles
+uniform vec2 areaRotation;      // this direction's offset of the emitters' points
+#endif
 
 layout(location = 0) out vec4 outDirect;
 layout(location = 1) out vec4 outIndirect;
@@ -48,7 +58,20 @@ void main()
     vec3 wo = dot(nf, nextDir) >= 0.0 ? nextDir : -nextDir;
     vec3 glossy = vec3(0.0);
     if (b.weight > 0.0 && dot(ns, wo) > 0.0) {
+#ifdef AREA_GLOSSY
+        glossy = 2.0 * kPi * brdfGlossy(b, ns, wo, s.wi) * Lr * s.cosine;
+        BrdfParams lobe = b;
+        lobe.diffuse = vec3(0.0); // the glossy lobe only: the diffuse part is the bundles'
+        vec3 mesh = vec3(0.0);
+        for (int i = punctualLightCount; i < lightCount; ++i) {
+            mesh += areaSampleUnshadowed(lights[i], pos.xyz, ns, wo, lobe, areaRotation);
+            if (i + 1 < lightCount && lights[i + 1].shadow.x == lights[i].shadow.x) continue;
+            if (max(mesh.r, max(mesh.g, mesh.b)) > 0.0) glossy += mesh * shadowVisibility(lights[i], pos.xyz, ns);
+            mesh = vec3(0.0);
+        }
+#else
         glossy = 2.0 * kPi * brdfGlossy(b, ns, wo, s.wi) * (Le + Lr) * s.cosine;
+#endif
 #ifdef PUNCTUAL_LIGHTS
         for (int i = 0; i < punctualLightCount; ++i) {
             vec3 wl;
