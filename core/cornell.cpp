@@ -74,6 +74,31 @@ Material roughWhiteMetal()
     return m;
 }
 
+// cornell-mirror's tall block: the same metal polished (cornell-box.md), GGX alpha = 0.05^2.
+Material polishedWhiteMetal()
+{
+    Material m = roughWhiteMetal();
+    m.name = "polished white metal";
+    m.roughness = 0.05f;
+    return m;
+}
+
+// cornell-panels (the project's own, not in cornell-box.md): cornell-area's light split into four panels
+// of half its width and depth, one over each quarter of the ceiling, at its height and radiance, so the
+// four emit the same power as the one. Light independence (issue 27): ray bundles cost the same per
+// direction for one panel or four, where the frame's direct light pays per light.
+std::vector<Quad> ceilingPanels()
+{
+    const float hx = 0.25f * (kLightQuad[0].x - kLightQuad[2].x), hz = 0.25f * (kLightQuad[1].z - kLightQuad[0].z);
+    const float y = kLightQuad[0].y;
+    std::vector<Quad> panels;
+    for (float cz : {0.1395f, 0.4195f})
+        for (float cx : {0.138f, 0.418f})
+            panels.push_back(
+                {{{cx + hx, y, cz - hz}, {cx + hx, y, cz + hz}, {cx - hx, y, cz + hz}, {cx - hx, y, cz - hz}}});
+    return panels;
+}
+
 // Which way a triangle's normal must point, given the triangle's centroid.
 using Facing = std::function<glm::dvec3(const glm::dvec3& centroid)>;
 
@@ -187,8 +212,8 @@ void addSlatsAndShelf(Scene& scene, std::uint32_t material)
 
 std::vector<std::string> builtinSceneNames()
 {
-    return {"cornell-area",          "cornell-spot",  "cornell-point",
-            "cornell-point-ceiling", "cornell-slats", "cornell-glossy"};
+    return {"cornell-area",  "cornell-spot",   "cornell-point",  "cornell-point-ceiling",
+            "cornell-slats", "cornell-glossy", "cornell-mirror", "cornell-panels"};
 }
 
 Scene makeCornell(std::string_view variant)
@@ -197,7 +222,7 @@ Scene makeCornell(std::string_view variant)
     if (std::find(names.begin(), names.end(), variant) == names.end())
         throw SceneError(std::string(variant) + ": not a Cornell box variant (cornell-area, cornell-spot, "
                                                 "cornell-point, cornell-point-ceiling, cornell-slats, "
-                                                "cornell-glossy)");
+                                                "cornell-glossy, cornell-mirror, cornell-panels)");
 
     Scene scene;
     scene.name = std::string(variant);
@@ -213,20 +238,28 @@ Scene makeCornell(std::string_view variant)
     scene.meshes.push_back(
         quadMesh("short block", white, {kShortBlock.begin(), kShortBlock.end()}, awayFrom(centreOf(kShortBlock))));
     std::uint32_t tallBlock = white;
-    if (variant == "cornell-glossy") {
-        scene.materials.push_back(roughWhiteMetal());
+    if (variant == "cornell-glossy" || variant == "cornell-mirror") {
+        scene.materials.push_back(variant == "cornell-glossy" ? roughWhiteMetal() : polishedWhiteMetal());
         tallBlock = std::uint32_t(scene.materials.size() - 1);
     }
     scene.meshes.push_back(
         quadMesh("tall block", tallBlock, {kTallBlock.begin(), kTallBlock.end()}, awayFrom(centreOf(kTallBlock))));
 
-    if (variant == "cornell-area" || variant == "cornell-glossy") {
+    if (variant == "cornell-area" || variant == "cornell-glossy" || variant == "cornell-mirror" ||
+        variant == "cornell-panels") {
         // Emits from its front face (down) only and reflects nothing.
         Material emitter = lambertian("light", glm::vec3(0.0f));
         emitter.emission = kAreaRadiance;
         scene.materials.push_back(emitter);
-        scene.meshes.push_back(quadMesh("light", std::uint32_t(scene.materials.size() - 1), {kLightQuad},
-                                        [](const glm::dvec3&) { return glm::dvec3(0.0, -1.0, 0.0); }));
+        const auto down = [](const glm::dvec3&) { return glm::dvec3(0.0, -1.0, 0.0); };
+        const std::uint32_t light = std::uint32_t(scene.materials.size() - 1);
+        if (variant == "cornell-panels") {
+            const std::vector<Quad> panels = ceilingPanels();
+            for (std::size_t k = 0; k < panels.size(); ++k)
+                scene.meshes.push_back(quadMesh("light " + std::to_string(k + 1), light, {panels[k]}, down));
+        } else {
+            scene.meshes.push_back(quadMesh("light", light, {kLightQuad}, down));
+        }
     } else if (variant == "cornell-spot" || variant == "cornell-slats") {
         scene.lights.push_back(punctual("spot", LightType::Spot, kSpotPosition));
         if (variant == "cornell-slats") addSlatsAndShelf(scene, white);

@@ -85,6 +85,35 @@ TEST(Cornell, AllVariantsAreValid)
     }
 }
 
+// cornell-panels: four separate emitting meshes whose area (so power, at one radiance) is the one light's;
+// cornell-mirror: cornell-glossy's block polished to roughness 0.05.
+TEST(Cornell, PanelsEmitTheOneLightsPowerAndTheMirrorIsPolished)
+{
+    const auto emittingArea = [](const Scene& s, int* meshes) {
+        double a = 0.0;
+        *meshes = 0;
+        for (const Mesh& m : s.meshes) {
+            if (s.materials[m.material].emission == glm::vec3(0.0f)) continue;
+            ++*meshes;
+            for (std::size_t t = 0; t + 2 < m.indices.size(); t += 3) {
+                const glm::vec3 p0 = m.positions[m.indices[t]], p1 = m.positions[m.indices[t + 1]],
+                                p2 = m.positions[m.indices[t + 2]];
+                a += 0.5 * double(glm::length(glm::cross(p1 - p0, p2 - p0)));
+            }
+        }
+        return a;
+    };
+    int one = 0, four = 0;
+    const double a1 = emittingArea(makeCornell("cornell-area"), &one);
+    const double a4 = emittingArea(makeCornell("cornell-panels"), &four);
+    EXPECT_EQ(one, 1);
+    EXPECT_EQ(four, 4);
+    EXPECT_NEAR(a4, a1, 1e-6);
+    const Scene mirror = makeCornell("cornell-mirror");
+    EXPECT_FLOAT_EQ(mirror.materials[meshNamed(mirror, "tall block").material].roughness, 0.05f);
+    EXPECT_FLOAT_EQ(mirror.materials[meshNamed(mirror, "tall block").material].metallic, 1.0f);
+}
+
 TEST(Cornell, VerticesAreThePublishedNumbers)
 {
     const Scene s = makeCornell("cornell-area");
@@ -255,7 +284,7 @@ TEST(Cornell, UnknownVariantThrows)
 
 TEST(SceneLoading, BuiltinNamesAndErrors)
 {
-    EXPECT_EQ(builtinSceneNames().size(), 6u);
+    EXPECT_EQ(builtinSceneNames().size(), 8u);
     EXPECT_EQ(loadScene("cornell-spot").contentHash(), makeCornell("cornell-spot").contentHash());
     try {
         loadScene("no-such-scene");

@@ -1,7 +1,8 @@
 // One conformance test for every registered technique (DESIGN.md, "What lives where when a family is
 // added"): a new technique gets it without a line of test code. `ctest -R Conformance` runs one case per
-// technique; each renders cornell-spot, cornell-area, cornell-point-ceiling (the light 1 mm under the
-// ceiling) and a closed furnace box at 32x32, 1x1 and 3x5 with the technique's defaults and its
+// technique; each renders cornell-spot, cornell-panels (cornell-area's light as four emitting meshes: the
+// light-independence scene, and every area-light path with more than one emitter), cornell-point-ceiling
+// (the light 1 mm under the ceiling) and a closed furnace box at 32x32, 1x1 and 3x5 with the technique's defaults and its
 // quickSets (TechniqueInfo: cheap values that run the same passes), and checks:
 //   - it builds (every shader compiles) and renders two frames without a GL error or a high-severity
 //     debug message (the fixture fails the test on either);
@@ -109,7 +110,7 @@ TEST_P(Conformance, Technique)
         if (p.when.empty()) required.insert(p.name);
     }
 
-    const std::vector<std::string> scenes = {"cornell-spot", "cornell-area", "cornell-point-ceiling", "furnace"};
+    const std::vector<std::string> scenes = {"cornell-spot", "cornell-panels", "cornell-point-ceiling", "furnace"};
     const std::vector<std::pair<int, int>> sizes = {{32, 32}, {1, 1}, {3, 5}};
     gl::ParamValues frameValues(gl::frameParams());
     frameValues.setValue("shadow.size", 256); // small: the test checks behaviour, not shadow quality
