@@ -115,9 +115,9 @@ void Renderer::renderFrame(bool keepTimings)
     if (frame_->width() != techniqueWidth_ || frame_->height() != techniqueHeight_) make(*info_, techniqueValues_);
     advanceStill();
     frame_->beginFrame();
+    frame_->setAreaLightsInDirect(!technique_->carriesEmittersLight(), technique_->readsAreaShadowMaps());
     frame_->renderShadowMaps(timers_);
     frame_->renderGBuffer(timers_);
-    frame_->setAreaLightsInDirect(!technique_->carriesEmittersLight());
     frame_->renderDirect(timers_);
     frame_->clearIndirect();
     if (indirectScale_ > 1)

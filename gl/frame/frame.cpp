@@ -149,8 +149,9 @@ void Frame::setLights(const std::vector<core::Light>& lights)
         rebuildDirectPrograms();
 }
 
-void Frame::setAreaLightsInDirect(bool on)
+void Frame::setAreaLightsInDirect(bool on, bool keepAreaShadowMaps)
 {
+    shadows_.setAreaViews(on || keepAreaShadowMaps);
     if (on == areaLightsInDirect_) return;
     areaLightsInDirect_ = on;
     rebuildDirectPrograms();
@@ -228,7 +229,7 @@ PassCost shadowCost(const GpuScene& scene, const ShadowMaps& shadows)
     PassCost c;
     c.bytesRead = 4; // depth test
     c.bytesWritten = 4;
-    const double views = double(shadows.views().size());
+    const double views = double(shadows.renderedViewCount());
     c.triangles = views * double(scene.triangleCount());
     c.bytesFixed = views * (double(shadows.size()) * shadows.size() * 4 + 3.0 * scene.triangleCount() * kVertexBytes);
     return c;

@@ -54,8 +54,9 @@ public:
     // Whether the direct pass adds the light that emitting triangles reflect (on by default). Off for a
     // technique that carries the emitters' light itself and writes it into indirect() (grb's
     // emitters=bundles): the direct pass then holds emission and punctual lights only. The Renderer sets
-    // it from Technique::carriesEmittersLight() before every frame.
-    void setAreaLightsInDirect(bool on);
+    // it from Technique::carriesEmittersLight() before every frame. Off, the emitters' shadow cubes are not
+    // rendered either unless keepAreaShadowMaps (Technique::readsAreaShadowMaps).
+    void setAreaLightsInDirect(bool on, bool keepAreaShadowMaps = true);
     bool areaLightsInDirect() const { return areaLightsInDirect_; }
     void resize(int width, int height);
 

@@ -223,13 +223,20 @@ void ShadowMaps::render(const GpuScene& scene)
         // pass) in still frames only: on llvmpipe three of them took Crytek Sponza's shadow pass at 1024x768
         // from 32 to 117 ms (vertex work and binning, once per view), and the moving frame must not get
         // slower. Moving frames, and every other pass, read the whole-scene view.
-        if (views_[i].cascade && still_ == 0) continue;
+        if (!renders(i)) continue;
         fbo_.attachLayer(GL_DEPTH_ATTACHMENT, depth_, int(i));
         glNamedFramebufferDrawBuffer(fbo_.id(), GL_NONE);
         glClear(GL_DEPTH_BUFFER_BIT);
         program_.set("viewProj", views_[i].proj * views_[i].view);
         program_.draw(scene);
     }
+}
+
+int ShadowMaps::renderedViewCount() const
+{
+    int n = 0;
+    for (std::size_t i = 0; i < views_.size(); ++i) n += renders(i) ? 1 : 0;
+    return n;
 }
 
 void SamplerDeleter::operator()(unsigned id) const

@@ -42,6 +42,17 @@ public:
     // Recomputes views and light buffers after lights moved (keeps the texture when the layer count holds).
     void update(const GpuScene& scene);
     void render(const GpuScene& scene);
+    // Whether render() draws the emitting meshes' cubes (on by default). Off while nothing reads them: a
+    // technique that carries the emitters' light itself and samples none (Frame::setAreaLightsInDirect).
+    void setAreaViews(bool on) { areaViews_ = on; }
+    // Whether render() draws view i this frame: a cascade in still frames only, an emitter's cube unless
+    // setAreaViews(false).
+    bool renders(std::size_t i) const
+    {
+        return !(views_[i].cascade && still_ == 0) && (areaViews_ || views_[i].areaCount == 0);
+    }
+    // The views each ShadowMaps' views() that render() draws this frame.
+    int renderedViewCount() const;
     // The views and lights of still frame `index` (see above); 0 restores the plain ones.
     void setStill(int index);
     int stillFrame() const { return still_; }
@@ -71,6 +82,7 @@ private:
     std::vector<glm::ivec2> areaGroups_; // per emitting mesh: first light, triangle count
     core::Bounds bounds_;
     int still_ = 0;
+    bool areaViews_ = true;
     ViewFit fit_;
     bool fitted_ = false; // fit_.camera has been set
     std::vector<GpuLight> gpuLights_;

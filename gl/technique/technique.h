@@ -101,6 +101,9 @@ public:
     // itself (grb's emitters=bundles, Sec. 5.1): the frame's direct pass then leaves it out
     // (Frame::setAreaLightsInDirect), so that it is not counted twice.
     virtual bool carriesEmittersLight() const { return false; }
+    // With carriesEmittersLight(): whether the technique reads the emitting meshes' shadow cubes (the frame
+    // renders them only then).
+    virtual bool readsAreaShadowMaps() const { return true; }
 };
 
 // The G-buffer channels a technique may read (Frame::bindGBuffer, glsl/common/gbuffer.glsl).

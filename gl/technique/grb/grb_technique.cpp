@@ -125,6 +125,8 @@ public:
 
     void restart() override { started_ = false; }
     bool carriesEmittersLight() const override { return emittersShown_; }
+    // The glossy transfer samples the emitters through their cubes (AREA_GLOSSY); nothing else of grb's does.
+    bool readsAreaShadowMaps() const override { return radiance_->settings().areaGlossy; }
     int accumulatedSteps() const override { return directions_; }
 
     std::vector<Counter> counters() const override
