@@ -166,15 +166,8 @@ void ShadowMaps::upload()
     if (gv.empty()) gv.push_back({});
     if (lights.empty()) lights.push_back({});
     // Still frames rewrite the same sizes in place.
-    const auto put = [](Buffer& b, const char* label, const auto& v) {
-        const std::size_t bytes = v.size() * sizeof(v[0]);
-        if (b && b.bytes() == bytes)
-            b.update(0, bytes, v.data());
-        else
-            b = Buffer::fromVector(label, v);
-    };
-    put(lightsBuffer_, "lights", lights);
-    put(viewsBuffer_, "shadow.views", gv);
+    Buffer::assign(lightsBuffer_, "lights", lights);
+    Buffer::assign(viewsBuffer_, "shadow.views", gv);
 }
 
 void ShadowMaps::update(const GpuScene& scene)

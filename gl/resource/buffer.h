@@ -26,6 +26,21 @@ public:
         return Buffer(label, v.size() * sizeof(T), v.empty() ? nullptr : v.data());
     }
 
+    // v into b: rewritten in place where b already has v's size (uploads made every frame whose size
+    // rarely changes, such as still frames' lights), else b is made anew under `label`. True when b was
+    // made anew, so that views of it (buffer textures) must be made anew too.
+    template <class T>
+    static bool assign(Buffer& b, const std::string& label, const std::vector<T>& v)
+    {
+        const std::size_t bytes = v.size() * sizeof(T);
+        if (b && b.bytes() == bytes) {
+            if (bytes > 0) b.update(0, bytes, v.data());
+            return false;
+        }
+        b = fromVector(label, v);
+        return true;
+    }
+
     unsigned id() const { return handle_.id(); }
     std::size_t bytes() const { return bytes_; }
     explicit operator bool() const { return bool(handle_); }

@@ -144,4 +144,19 @@ vec3 areaSampleUnshadowed(Light l, vec3 p, vec3 n, vec3 wo, BrdfParams b, vec2 r
     return diffuse + glossy;
 }
 
+// Still frames: the light of the emitting triangles [first, end) towards wo from this frame's point on
+// each mesh (areaSampleUnshadowed). The triangles of one mesh are consecutive and share its shadow cube
+// (shadow.x, its first layer): their light is summed and the cube read once per mesh.
+vec3 sampledAreaLights(int first, int end, vec3 p, vec3 n, vec3 wo, BrdfParams b, vec2 rotation)
+{
+    vec3 sum = vec3(0.0), mesh = vec3(0.0);
+    for (int i = first; i < end; ++i) {
+        mesh += areaSampleUnshadowed(lights[i], p, n, wo, b, rotation);
+        if (i + 1 < end && lights[i + 1].shadow.x == lights[i].shadow.x) continue;
+        if (max(mesh.r, max(mesh.g, mesh.b)) > 0.0) sum += mesh * shadowVisibility(lights[i], p, n);
+        mesh = vec3(0.0);
+    }
+    return sum;
+}
+
 #endif

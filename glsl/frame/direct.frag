@@ -31,15 +31,7 @@ void main()
 #endif
 #ifdef AREA_LIGHTS
 #ifdef AREA_SAMPLED
-    // The triangles of one emitting mesh are consecutive and share its shadow cube at this frame's point
-    // (shadow.x, its first layer): their light is summed and the cube read once per mesh.
-    vec3 mesh = vec3(0.0);
-    for (int i = punctualLightCount; i < lightCount; ++i) {
-        mesh += areaSampleUnshadowed(lights[i], p, n, wo, b, areaRotation);
-        if (i + 1 < lightCount && lights[i + 1].shadow.x == lights[i].shadow.x) continue;
-        if (max(mesh.r, max(mesh.g, mesh.b)) > 0.0) radiance += mesh * shadowVisibility(lights[i], p, n);
-        mesh = vec3(0.0);
-    }
+    radiance += sampledAreaLights(punctualLightCount, lightCount, p, n, wo, b, areaRotation);
 #else
     for (int i = punctualLightCount; i < lightCount; ++i) radiance += directFromAreaTriangle(lights[i], p, n, wo, b);
 #endif

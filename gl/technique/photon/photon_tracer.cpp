@@ -191,17 +191,9 @@ void PhotonTracer::buildEmitters(const Frame& frame, const RayCaster& caster)
     if (cells.empty()) cells.push_back(0);
     // Every frame calls this; while the lights hold, the sizes do too and the buffers are rewritten in
     // place (the cells' buffer view kept) rather than made anew.
-    const std::size_t emitterBytes = emitters_.size() * sizeof(PhotonEmitter), cellBytes = cells.size() * 4;
-    if (emitterBuffer_ && emitterBuffer_.bytes() == emitterBytes)
-        emitterBuffer_.update(0, emitterBytes, emitters_.data());
-    else
-        emitterBuffer_ = Buffer::fromVector("photon.emitters", emitters_);
-    if (cells_ && cells_.bytes() == cellBytes) {
-        cells_.update(0, cellBytes, cells.data());
-    } else {
-        cells_ = Buffer::fromVector("photon.projectionCells", cells);
+    Buffer::assign(emitterBuffer_, "photon.emitters", emitters_);
+    if (Buffer::assign(cells_, "photon.projectionCells", cells))
         cellTexels_ = Texture::createBufferView("photon.projectionCells", GL_R32UI, cells_);
-    }
     if (first == 0) emitters_.clear();
 }
 

@@ -9,7 +9,9 @@
 #include "frame/points/adaptive.glsl"
 
 layout(local_size_x = 16, local_size_y = 16) in;
-shared vec2 partial[256];
+#define GROUP_SUM_TYPE vec2
+#define GROUP_SUM_SIZE 256
+#include "common/group_sum.glsl"
 
 #ifdef MEAN_FINAL
 layout(rgba32f, binding = 0) uniform image2D partials;
@@ -33,14 +35,8 @@ void main()
         if (d.a >= 1.0) mine = vec2(luminanceOf(px, d.rgb, imageLoad(lightGlossy, px).rgb), 1.0);
     }
 #endif
-    partial[t] = mine;
-    barrier();
-    for (uint stride = 128u; stride > 0u; stride /= 2u) {
-        if (t < stride) partial[t] += partial[t + stride];
-        barrier();
-    }
+    vec2 s = groupSum(mine);
     if (t != 0u) return;
-    vec2 s = partial[0];
 #ifdef MEAN_FINAL
     imageStore(partials, ivec2(0), vec4(s, s.y > 0.0 ? s.x / s.y : 0.0, 0.0));
 #else

@@ -62,13 +62,7 @@ void main()
         glossy = 2.0 * kPi * brdfGlossy(b, ns, wo, s.wi) * Lr * s.cosine;
         BrdfParams lobe = b;
         lobe.diffuse = vec3(0.0); // the glossy lobe only: the diffuse part is the bundles'
-        vec3 mesh = vec3(0.0);
-        for (int i = punctualLightCount; i < lightCount; ++i) {
-            mesh += areaSampleUnshadowed(lights[i], pos.xyz, ns, wo, lobe, areaRotation);
-            if (i + 1 < lightCount && lights[i + 1].shadow.x == lights[i].shadow.x) continue;
-            if (max(mesh.r, max(mesh.g, mesh.b)) > 0.0) glossy += mesh * shadowVisibility(lights[i], pos.xyz, ns);
-            mesh = vec3(0.0);
-        }
+        glossy += sampledAreaLights(punctualLightCount, lightCount, pos.xyz, ns, wo, lobe, areaRotation);
 #else
         glossy = 2.0 * kPi * brdfGlossy(b, ns, wo, s.wi) * (Le + Lr) * s.cosine;
 #endif

@@ -13,7 +13,9 @@
 
 #ifdef QUAD_GROUP
 layout(local_size_x = QUAD_GROUP) in;
-shared float partial[QUAD_GROUP];
+#define GROUP_SUM_TYPE float
+#define GROUP_SUM_SIZE QUAD_GROUP
+#include "common/group_sum.glsl"
 #else
 layout(local_size_x = 8, local_size_y = 8) in;
 #endif
@@ -59,13 +61,8 @@ void main()
         for (uint i = t; i < count; i += uint(QUAD_GROUP))
             eps += memberError(lo + ivec2(i % width, i / width), mean, n);
     }
-    partial[t] = eps;
-    barrier();
-    for (uint stride = uint(QUAD_GROUP) / 2u; stride > 0u; stride /= 2u) {
-        if (t < stride) partial[t] += partial[t + stride];
-        barrier();
-    }
-    if (t == 0u) quadNodes[index].normal.w = partial[0];
+    eps = groupSum(eps);
+    if (t == 0u) quadNodes[index].normal.w = eps;
 #else
     if (members) {
         ivec2 hi = min(lo + span, viewport);
