@@ -227,4 +227,14 @@ int plotSpeedError(const std::filesystem::path& out)
     return rc;
 }
 
+int plotConvergence(const std::filesystem::path& out)
+{
+    const std::string plot = plotPython() + " '" +
+                             (std::filesystem::path(BOUNCE_SOURCE_ROOT) / "bench/plot_convergence.py").string() +
+                             "' '" + (out / "results.json").string() + "' '" + (out / "convergence.png").string() + "'";
+    const int rc = std::system(plot.c_str());
+    if (rc != 0) std::fprintf(stderr, "bounce bench: the convergence plot failed (%d): %s\n", rc, plot.c_str());
+    return rc;
+}
+
 } // namespace bounce::app

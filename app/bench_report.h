@@ -26,5 +26,8 @@ void writeBenchReport(const std::filesystem::path& out, const BenchConfig& confi
 
 // Runs the plot script on out/results.csv into out/speed_error.png; returns its exit status (0: done).
 int plotSpeedError(const std::filesystem::path& out);
+// bench/plot_convergence.py: convergence.png from results.json, for runs recorded with "curve": true
+// (their error against the GPU time and the accumulation steps so far, beside the path tracer's).
+int plotConvergence(const std::filesystem::path& out);
 
 } // namespace bounce::app

@@ -3,6 +3,7 @@
 // the technique's own light paths and of `full`. The config is read and checked first
 // (app/bench_config.*), then the sweep runs (app/bench_run.*), then the files are written
 // (app/bench_report.*): results.csv, results.json, report.md and speed_error.png in --out.
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 
@@ -35,7 +36,8 @@ const char* kUsage =
     "\"temporalFrames\": N (the light moves along a fixed circle; mean frame-to-frame difference of the\n"
     "indirect light). A run may override \"size\", \"warmup\" and \"frames\" and restrict \"scenes\";\n"
     "\"curve\": true records, for a progressive technique, the relative RMSE against `full` after every timed\n"
-    "frame with the GPU time so far (record \"curve\"). The top-level \"pathTracerSpp\": [N...] adds rows\n"
+    "frame with the GPU time so far (record \"curve\"), plotted in convergence.png. The top-level\n"
+    "\"pathTracerSpp\": [N...] adds rows\n"
     "\"path-tracer\" (`full` at N spp, the reference's size, timed) for time against error beside it.\n"
     "The top-level \"compareTo\": [paths...] adds references beyond the technique's own and `full` (e.g.\n"
     "\"onebounce\"). A reference \"size\" that divides every run's size compares box-downsampled images\n"
@@ -83,6 +85,11 @@ int cmdBench(const Args& args)
     int rc = plotSpeedError(out);
     std::printf("wrote %s/{results.csv,results.json,report.md%s}\n", out.string().c_str(),
                 rc == 0 ? ",speed_error.png" : "; not speed_error.png: the plot script failed");
+    if (std::any_of(rows.begin(), rows.end(), [](const BenchRow& r) { return r.record.contains("curve"); })) {
+        rc |= plotConvergence(out);
+        std::printf("wrote %s/convergence.png: the curves' error against time and steps, beside the path tracer\n",
+                    out.string().c_str());
+    }
     if (hasRoofline(rows)) {
         rc |= plotRoofline(out);
         std::printf("wrote %s/{roofline.csv,roofline.png}: every pass against its bound\n", out.string().c_str());

@@ -422,6 +422,39 @@ double relativeRmseOf(const bounce::core::Image& a, const bounce::core::Image& r
 // made independently (camera rays against the light quad): rel_rmse_own and rel_rmse_full agree to 1e-4
 // relative, and each technique is closer to its own light paths than to `full`. The Pareto front the plot marks
 // (printed by the plot script) is the set of rows no other row beats in both time and error.
+// A progressive run with "curve": true records its error after every timed frame (steps, directions and
+// GPU time growing) and the bench plots those curves beside the path tracer's rows in convergence.png.
+TEST(Cli, BenchRecordsAndPlotsTheCurvesOfProgressiveRuns)
+{
+    const fs::path d = outDir("bench-curve");
+    const fs::path config = d / "curve.json";
+    std::ofstream(config) << R"({"size": "16x16", "warmup": 0, "frames": 3, "reference": {"spp": 64},
+                                "scenes": ["cornell-spot"], "pathTracerSpp": [4, 16],
+                                "runs": [{"technique": "grb", "curve": true,
+                                          "set": {"directionsPerFrame": 2, "kbufferSize": 32, "atlasTexels": 1024}}]})";
+    const CliRun r = run("bench --backend " + testBackend() + " --config " + config.string() + " --out " +
+                         (d / "out").string() + " --cache " + (d / "cache").string());
+    ASSERT_EQ(r.status, 0) << r.output;
+    EXPECT_GT(fs::file_size(d / "out" / "convergence.png"), 1000u) << r.output;
+    std::ifstream in(d / "out" / "results.json");
+    const nlohmann::json j = nlohmann::json::parse(in);
+    int curves = 0, tracer = 0;
+    for (const nlohmann::json& rec : j) {
+        if (rec.value("technique", "") == "path-tracer") ++tracer;
+        if (!rec.contains("curve")) continue;
+        ++curves;
+        const nlohmann::json& c = rec["curve"];
+        ASSERT_EQ(c.size(), 3u);
+        for (std::size_t i = 0; i < c.size(); ++i) {
+            EXPECT_EQ(c[i]["accumulated"].get<int>(), 2 * int(i + 1));
+            EXPECT_GT(c[i]["relativeRmseFull"].get<double>(), 0.0);
+            if (i > 0) EXPECT_GT(c[i]["elapsedMs"].get<double>(), c[i - 1]["elapsedMs"].get<double>());
+        }
+    }
+    EXPECT_EQ(curves, 1);
+    EXPECT_EQ(tracer, 2);
+}
+
 TEST(Cli, BenchWritesTheFourFilesWithTheirFigures)
 {
     const fs::path d = outDir("bench");
