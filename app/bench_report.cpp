@@ -219,22 +219,12 @@ void writeBenchReport(const std::filesystem::path& out, const BenchConfig& confi
 
 int plotSpeedError(const std::filesystem::path& out)
 {
-    const std::string plot = plotPython() + " '" +
-                             (std::filesystem::path(BOUNCE_SOURCE_ROOT) / "bench/plot_speed_error.py").string() +
-                             "' '" + (out / "results.csv").string() + "' '" + (out / "speed_error.png").string() + "'";
-    const int rc = std::system(plot.c_str());
-    if (rc != 0) std::fprintf(stderr, "bounce bench: the plot script failed (%d): %s\n", rc, plot.c_str());
-    return rc;
+    return runPlotScript("bench/plot_speed_error.py", out / "results.csv", out / "speed_error.png");
 }
 
 int plotConvergence(const std::filesystem::path& out)
 {
-    const std::string plot = plotPython() + " '" +
-                             (std::filesystem::path(BOUNCE_SOURCE_ROOT) / "bench/plot_convergence.py").string() +
-                             "' '" + (out / "results.json").string() + "' '" + (out / "convergence.png").string() + "'";
-    const int rc = std::system(plot.c_str());
-    if (rc != 0) std::fprintf(stderr, "bounce bench: the convergence plot failed (%d): %s\n", rc, plot.c_str());
-    return rc;
+    return runPlotScript("bench/plot_convergence.py", out / "results.json", out / "convergence.png");
 }
 
 } // namespace bounce::app

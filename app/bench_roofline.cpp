@@ -111,14 +111,18 @@ std::string plotPython()
     return python && *python ? python : "/usr/bin/python3";
 }
 
+int runPlotScript(const std::string& script, const std::filesystem::path& input, const std::filesystem::path& png)
+{
+    const std::string plot = plotPython() + " '" + (std::filesystem::path(BOUNCE_SOURCE_ROOT) / script).string() +
+                             "' '" + input.string() + "' '" + png.string() + "'";
+    const int rc = std::system(plot.c_str());
+    if (rc != 0) std::fprintf(stderr, "bounce bench: %s failed (%d): %s\n", script.c_str(), rc, plot.c_str());
+    return rc;
+}
+
 int plotRoofline(const std::filesystem::path& out)
 {
-    const std::string plot = plotPython() + " '" +
-                             (std::filesystem::path(BOUNCE_SOURCE_ROOT) / "bench/plot_roofline.py").string() + "' '" +
-                             (out / "roofline.csv").string() + "' '" + (out / "roofline.png").string() + "'";
-    const int rc = std::system(plot.c_str());
-    if (rc != 0) std::fprintf(stderr, "bounce bench: the roofline plot failed (%d): %s\n", rc, plot.c_str());
-    return rc;
+    return runPlotScript("bench/plot_roofline.py", out / "roofline.csv", out / "roofline.png");
 }
 
 } // namespace bounce::app

@@ -24,5 +24,8 @@ int plotRoofline(const std::filesystem::path& out);
 // python3-matplotlib; a python3 earlier on PATH may be another one without it). A GPU machine's image
 // often has matplotlib only in another Python (scripts/device-check.sh picks one that imports it).
 std::string plotPython();
+// Runs SCRIPT (a path in the source tree) INPUT PNG under plotPython(); prints the command when it fails.
+// Its exit status.
+int runPlotScript(const std::string& script, const std::filesystem::path& input, const std::filesystem::path& png);
 
 } // namespace bounce::app
