@@ -122,6 +122,7 @@ void Frame::allocateTargets()
     compositeFbo_.attach(GL_COLOR_ATTACHMENT0, composite_);
     compositeFbo_.checkComplete();
     accumulated_ = Texture();
+    accumulatedIndirect_ = Texture();
     accumulatedResult_ = false;
     clearIndirect();
 }
@@ -200,16 +201,20 @@ void Frame::accumulate(PassTimers& timers, bool progressive)
     if (!accumulated_) accumulated_ = Texture::create2D("accumulated", GL_RGBA32F, settings_.width, settings_.height);
     PassCost cost;
     cost.flops = 8;
-    cost.fetches = progressive ? 2 : 1;
-    cost.bytesRead = progressive ? 48 : 32;
-    cost.bytesWritten = progressive ? 32 : 16;
+    cost.fetches = progressive ? 3 : 1;
+    cost.bytesRead = progressive ? 64 : 32;
+    cost.bytesWritten = progressive ? 48 : 16;
     auto t = timers.scope("accumulate", cost);
     Program& program = progressive ? accumulateDirectProgram_ : accumulateProgram_;
     (progressive ? direct_ : result()).bind(UNIT_COMPOSITE_DIRECT);
     accumulated_.bindImage(0, GL_READ_WRITE);
     if (progressive) {
+        if (!accumulatedIndirect_)
+            accumulatedIndirect_ =
+                Texture::create2D("accumulated.indirect", GL_RGBA32F, settings_.width, settings_.height);
         indirect_.bind(UNIT_COMPOSITE_INDIRECT);
         composite_.bindImage(1, GL_WRITE_ONLY);
+        accumulatedIndirect_.bindImage(2, GL_READ_WRITE);
         compositeUsed_ = true;
     }
     program.set("stillFrame", stillFrame_);

@@ -79,8 +79,9 @@ public:
     glm::vec2 jitter() const { return jitter_; }
     // After composite(), for still frame 1 and later: result() becomes the mean of the still frames'
     // results ("accumulate" pass), so that a still view converges to box-filtered pixels. A progressive
-    // technique (its indirect light is already its own running mean) gets the mean of the direct light
-    // plus its latest indirect light. Still frame 0: nothing, result() is this frame's.
+    // technique (its indirect light is already its own running mean, but taken at each frame's sample
+    // position in the pixel) gets the mean of the direct light plus the mean of its indirect light with
+    // frame n weighing n, so that its early frames fade. Still frame 0: nothing, result() is this frame's.
     void accumulate(PassTimers& timers, bool progressive);
     void clearIndirect();
 
@@ -140,8 +141,9 @@ private:
     GpuScene gpu_;
     ShadowMaps shadows_;
     Texture geometry_, diffuse_, specular_, emission_, depth_, direct_, indirect_, composite_;
-    Texture black_;       // 1x1, bound for the targets the scene does not need
-    Texture accumulated_; // still frames' mean (accumulate()), allocated at the first still frame
+    Texture black_;               // 1x1, bound for the targets the scene does not need
+    Texture accumulated_;         // still frames' mean (accumulate()), allocated at the first still frame
+    Texture accumulatedIndirect_; // a progressive technique's indirect light, weighted over the still frames
     Buffer gbufferCamera_;
     Framebuffer gbufferFbo_, directFbo_, compositeFbo_;
     VertexArray emptyVao_;

@@ -2,8 +2,14 @@
 // Still frames (gl/frame/frame.h, Frame::accumulate): the running mean of the frames rendered since the
 // view last changed, each with its samples at another point inside the pixel.
 //   default               accumulated = mean of `current` (the frame's result: direct, or direct + indirect)
-//   ADD_INDIRECT          accumulated = mean of `current` (the direct light); result = it + `indirect`
-//                         (a progressive technique's indirect light, already its own running mean)
+//   ADD_INDIRECT          accumulated = mean of `current` (the direct light); result = it + the mean of
+//                         `indirect` over the still frames with frame n weighing n. A progressive
+//                         technique's indirect light is already its own running mean, but each frame shows
+//                         it at that frame's sample position in the pixel (grb's bilinear atlas lookup at a
+//                         silhouette or beside a bright texel changed a pixel from 8.3 to 3.6 between two
+//                         frames): the pixel needs its mean over the positions too. Weights growing with n
+//                         let the early, less converged frames fade (their share falls as 1 / n^2) where a
+//                         plain mean would keep them at 1 / n.
 #include "common/bindings.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -13,6 +19,7 @@ layout(rgba32f, binding = 0) uniform image2D accumulated;
 #ifdef ADD_INDIRECT
 layout(binding = UNIT_COMPOSITE_INDIRECT) uniform sampler2D indirect;
 layout(rgba32f, binding = 1) writeonly uniform image2D result;
+layout(rgba32f, binding = 2) uniform image2D accumulatedIndirect;
 #endif
 
 uniform int stillFrame; // 1 for the first still frame (the mean restarts), then 2, 3, ...
@@ -27,6 +34,11 @@ void main()
     if (stillFrame > 1) mean += (c - mean) / float(stillFrame);
     imageStore(accumulated, px, vec4(mean, 1.0));
 #ifdef ADD_INDIRECT
-    imageStore(result, px, vec4(mean + texelFetch(indirect, px, 0).rgb, 1.0));
+    // The weighted mean's increment: sum_t t x_t / sum_t t, old + (new - old) 2 / (n + 1).
+    vec3 ind = texelFetch(indirect, px, 0).rgb;
+    vec3 im = stillFrame <= 1 ? ind : imageLoad(accumulatedIndirect, px).rgb;
+    if (stillFrame > 1) im += (ind - im) * (2.0 / float(stillFrame + 1));
+    imageStore(accumulatedIndirect, px, vec4(im, 1.0));
+    imageStore(result, px, vec4(mean + im, 1.0));
 #endif
 }
