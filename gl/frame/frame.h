@@ -81,7 +81,7 @@ public:
     // results ("accumulate" pass), so that a still view converges to box-filtered pixels. A progressive
     // technique (its indirect light is already its own running mean, but taken at each frame's sample
     // position in the pixel) gets the mean of the direct light plus the mean of its indirect light with
-    // frame n weighing n, so that its early frames fade. Still frame 0: nothing, result() is this frame's.
+    // frame n weighing n^3, so that its early frames fade. Still frame 0: nothing, result() is this frame's.
     void accumulate(PassTimers& timers, bool progressive);
     void clearIndirect();
 

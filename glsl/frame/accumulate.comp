@@ -3,13 +3,15 @@
 // view last changed, each with its samples at another point inside the pixel.
 //   default               accumulated = mean of `current` (the frame's result: direct, or direct + indirect)
 //   ADD_INDIRECT          accumulated = mean of `current` (the direct light); result = it + the mean of
-//                         `indirect` over the still frames with frame n weighing n. A progressive
+//                         `indirect` over the still frames with frame n weighing n^3. A progressive
 //                         technique's indirect light is already its own running mean, but each frame shows
 //                         it at that frame's sample position in the pixel (grb's bilinear atlas lookup at a
 //                         silhouette or beside a bright texel changed a pixel from 8.3 to 3.6 between two
-//                         frames): the pixel needs its mean over the positions too. Weights growing with n
-//                         let the early, less converged frames fade (their share falls as 1 / n^2) where a
-//                         plain mean would keep them at 1 / n.
+//                         frames): the pixel needs its mean over the positions too. Weights growing as n^3
+//                         let the early, less converged frames fade (the first half of the frames holds
+//                         1/16 of the weight); weights n kept enough of them to make cornell-area's error
+//                         at 256x256 after 300 frames 5.2% where the latest frame alone gave 4.0% (n^3:
+//                         4.4%, and the pixels box-filtered).
 #include "common/bindings.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -34,10 +36,11 @@ void main()
     if (stillFrame > 1) mean += (c - mean) / float(stillFrame);
     imageStore(accumulated, px, vec4(mean, 1.0));
 #ifdef ADD_INDIRECT
-    // The weighted mean's increment: sum_t t x_t / sum_t t, old + (new - old) 2 / (n + 1).
+    // The weighted mean's increment: sum_t t^3 x_t / sum_t t^3, old + (new - old) 4 n / (n + 1)^2.
     vec3 ind = texelFetch(indirect, px, 0).rgb;
     vec3 im = stillFrame <= 1 ? ind : imageLoad(accumulatedIndirect, px).rgb;
-    if (stillFrame > 1) im += (ind - im) * (2.0 / float(stillFrame + 1));
+    float n = float(stillFrame);
+    if (stillFrame > 1) im += (ind - im) * (4.0 * n / ((n + 1.0) * (n + 1.0)));
     imageStore(accumulatedIndirect, px, vec4(im, 1.0));
     imageStore(result, px, vec4(mean + im, 1.0));
 #endif
