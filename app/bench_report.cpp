@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
+#include <fstream>
 #include <iomanip>
 #include <sstream>
 
@@ -215,6 +216,27 @@ void writeBenchReport(const std::filesystem::path& out, const BenchConfig& confi
         core::writeFileAtomic((out / "roofline.csv").string(), rooflineCsv(rows));
     }
     core::writeFileAtomic((out / "report.md").string(), md);
+    writeHtmlReport(out, rows, context);
+}
+
+void writeHtmlReport(const std::filesystem::path& out, const std::vector<BenchRow>& rows,
+                     const gl::ContextInfo& context)
+{
+    nlohmann::json results = nlohmann::json::array();
+    for (const BenchRow& r : rows) results.push_back(r.record);
+    const nlohmann::json data = {{"renderer", context.renderer},
+                                 {"platform", context.platform},
+                                 {"results", nlohmann::json::parse(recordText(results))}};
+    core::writeFileAtomic((out / "report-data.js").string(), "window.BOUNCE_REPORT = " + data.dump() + ";\n");
+    // The page itself is static: copied from the source tree, so that it is read and tested as code.
+    const std::filesystem::path page = std::filesystem::path(BOUNCE_SOURCE_ROOT) / "bench" / "report";
+    for (const char* name : {"report.html", "report.js", "report.css"}) {
+        std::ifstream in(page / name, std::ios::binary);
+        if (!in) throw core::ImageError("cannot read " + (page / name).string());
+        std::ostringstream bytes;
+        bytes << in.rdbuf();
+        core::writeFileAtomic((out / name).string(), bytes.str());
+    }
 }
 
 int plotSpeedError(const std::filesystem::path& out)

@@ -1,6 +1,6 @@
 // What `bounce bench` writes: results.csv (one row per render, the plot's input), results.json (the
 // runs' full records), report.md (one table per scene, then the per-pass breakdown like the papers'
-// tables) and speed_error.png (bench/plot_speed_error.py, matplotlib).
+// tables), speed_error.png (bench/plot_speed_error.py, matplotlib) and report.html (bench/report/).
 #pragma once
 
 #include <filesystem>
@@ -23,6 +23,11 @@ struct SceneRays {
 // rays.json when the config measured ray casting.
 void writeBenchReport(const std::filesystem::path& out, const BenchConfig& config, const std::vector<BenchRow>& rows,
                       const std::vector<SceneRays>& rays, const gl::ContextInfo& context);
+
+// report.html, report.js and report.css (bench/report/, static) and report-data.js (the records as
+// window.BOUNCE_REPORT) into out: the page reads the images the records name (app/bench_images.h).
+void writeHtmlReport(const std::filesystem::path& out, const std::vector<BenchRow>& rows,
+                     const gl::ContextInfo& context);
 
 // Runs the plot script on out/results.csv into out/speed_error.png; returns its exit status (0: done).
 int plotSpeedError(const std::filesystem::path& out);

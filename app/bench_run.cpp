@@ -6,6 +6,7 @@
 #include <limits>
 #include <map>
 
+#include "app/bench_images.h"
 #include "app/commands.h"
 #include "app/render_job.h"
 #include "core/image.h"
@@ -86,7 +87,8 @@ std::string passesText(const nlohmann::json& passes)
 // settings and size (e.g. rsm-full at 1024^2: minutes per frame, rendered once per sweep).
 struct SceneCache {
     std::map<std::string, core::Image> references, baselines;
-    std::map<std::string, double> directLight; // by frame parameters, size and frame count
+    std::map<std::string, double> directLight;  // by frame parameters, size and frame count
+    std::map<std::string, std::string> written; // references already in the report's images: key -> id
 };
 
 // The emitter mask of a scene seen from its camera at w x h (the `direct` frame's emission channel).
@@ -194,6 +196,42 @@ void compareWithBaseline(const BenchSetting& s, const core::Scene& scene, gl::Re
                               {"relativeRmseIndirect", row.relRmseBaseline}};
 }
 
+// The `bounce render` command that makes the same image as a run (same settings, size and frames).
+std::string renderCommand(const BenchConfig& config, const BenchSetting& s, const std::string& sceneName)
+{
+    std::string cmd = "bounce render --scene " + sceneName + " --technique " + s.technique + " --size " +
+                      std::to_string(config.widthOf(s)) + "x" + std::to_string(config.heightOf(s)) + " --warmup " +
+                      std::to_string(config.warmupOf(s)) + " --frames " + std::to_string(config.framesOf(s));
+    for (const std::string& set : s.sets) cmd += " --set " + set;
+    return cmd + " --out " + s.technique + ".exr";
+}
+
+// The report's name of a cached reference ("full@32x32" of cornell-spot: "ref-cornell-spot-full-32x32").
+std::string referenceStem(const std::string& sceneName, const std::string& key)
+{
+    std::string k = key;
+    std::replace(k.begin(), k.end(), '@', '-');
+    return "ref-" + sceneName + "-" + k;
+}
+
+// Writes the images of the row and every reference of the scene not written yet into out/images/, and
+// names them in the row's record: "image" (its own), "references" (by light paths, those at
+// referenceSize it was compared with). Nothing when out is empty.
+void writeRowImages(const std::filesystem::path& out, const core::Image& image, std::size_t index,
+                    const std::string& referenceSize, SceneCache& cache, BenchRow& row)
+{
+    if (out.empty()) return;
+    char stem[256];
+    std::snprintf(stem, sizeof stem, "%03zu-%s-%s", index, row.scene.c_str(), row.technique.c_str());
+    row.record["image"] = writeReportImage(out, stem, image);
+    for (const auto& [key, ref] : cache.references) {
+        if (!cache.written.count(key)) cache.written[key] = writeReportImage(out, referenceStem(row.scene, key), ref);
+        const std::string paths = key.substr(0, key.find('@'));
+        if (key == paths + "@" + referenceSize && row.record["error"].contains(paths))
+            row.record["references"][paths] = cache.written[key];
+    }
+}
+
 } // namespace
 
 // core/metrics.h's rule for images with NaN/Inf, applied to the whole row (flicker and baseline included).
@@ -214,7 +252,8 @@ void markNonFinite(BenchRow& row)
 namespace {
 
 BenchRow runSetting(const BenchConfig& config, const BenchSetting& s, const std::string& sceneName,
-                    const core::Scene& scene, const gl::ContextInfo& context, SceneCache& cache)
+                    const core::Scene& scene, const gl::ContextInfo& context, SceneCache& cache,
+                    const std::filesystem::path& out, std::size_t index)
 {
     const int w = config.widthOf(s), h = config.heightOf(s);
     const gl::TechniqueInfo& info = gl::findTechnique(s.technique);
@@ -256,6 +295,10 @@ BenchRow runSetting(const BenchConfig& config, const BenchSetting& s, const std:
     }
     row.record["size"] = row.size;
     if (s.curve) row.record["curve"] = curve;
+    row.record["command"] = renderCommand(config, s, sceneName);
+    const int rw = config.reference.width > 0 ? config.reference.width : w;
+    const int rh = config.reference.height > 0 ? config.reference.height : h;
+    writeRowImages(out, r.image(), index, std::to_string(rw) + "x" + std::to_string(rh), cache, row);
     row.nonFiniteValues = row.record["nonFiniteValues"].get<std::size_t>();
     if (row.nonFiniteValues > 0) markNonFinite(row);
     return row;
@@ -264,7 +307,7 @@ BenchRow runSetting(const BenchConfig& config, const BenchSetting& s, const std:
 // The path tracer's own time against error: `full` at each of config.pathTracerSpp samples per pixel,
 // rendered afresh (never cached: the time is the figure), against the scene's reference.
 std::vector<BenchRow> pathTracerCurve(const BenchConfig& config, const std::string& sceneName, const core::Scene& scene,
-                                      SceneCache& cache)
+                                      SceneCache& cache, const std::filesystem::path& out, std::size_t firstIndex)
 {
     std::vector<BenchRow> rows;
     const int w = config.reference.width > 0 ? config.reference.width : config.width;
@@ -305,7 +348,10 @@ std::vector<BenchRow> pathTracerCurve(const BenchConfig& config, const std::stri
                       {"rays", res.rays},
                       {"spp", spp},
                       {"passes", nlohmann::json::array()},
-                      {"error", {{"full", {{"relativeRmse", m.relativeRmse}, {"rmse", m.rmse}, {"ssim", m.ssim}}}}}};
+                      {"error", {{"full", {{"relativeRmse", m.relativeRmse}, {"rmse", m.rmse}, {"ssim", m.ssim}}}}},
+                      {"command", "bounce reference --scene " + sceneName + " --paths full --size " + row.size +
+                                      " --spp " + std::to_string(spp) + " --seed 1234 --out path-tracer.exr"}};
+        writeRowImages(out, res.image, firstIndex + rows.size(), row.size, cache, row);
         rows.push_back(row);
     }
     return rows;
@@ -314,7 +360,8 @@ std::vector<BenchRow> pathTracerCurve(const BenchConfig& config, const std::stri
 } // namespace
 
 std::vector<BenchRow> runBenchmark(const BenchConfig& config, const gl::ContextInfo& context,
-                                   const std::function<void(const std::vector<BenchRow>&)>& afterRow)
+                                   const std::function<void(const std::vector<BenchRow>&)>& afterRow,
+                                   const std::filesystem::path& out)
 {
     std::size_t renders = 0;
     for (const auto& n : config.sceneNames)
@@ -323,11 +370,12 @@ std::vector<BenchRow> runBenchmark(const BenchConfig& config, const gl::ContextI
     std::vector<BenchRow> rows;
     for (std::size_t si = 0; si < config.scenes.size(); ++si) {
         SceneCache cache;
-        for (BenchRow& row : pathTracerCurve(config, config.sceneNames[si], config.scenes[si], cache))
+        for (BenchRow& row : pathTracerCurve(config, config.sceneNames[si], config.scenes[si], cache, out, rows.size()))
             rows.push_back(std::move(row));
         for (const BenchSetting& s : config.settings) {
             if (!s.runsOn(config.sceneNames[si])) continue;
-            rows.push_back(runSetting(config, s, config.sceneNames[si], config.scenes[si], context, cache));
+            rows.push_back(
+                runSetting(config, s, config.sceneNames[si], config.scenes[si], context, cache, out, rows.size()));
             progress.add(1.0);
             if (afterRow) afterRow(rows);
         }

@@ -3,6 +3,7 @@
 // its baseline technique, and, when asked, measured for temporal coherence.
 #pragma once
 
+#include <filesystem>
 #include <functional>
 #include <string>
 #include <vector>
@@ -38,8 +39,11 @@ void markNonFinite(BenchRow& row);
 
 // Renders the sweep, scene by scene in the config's order (references are rendered or read from the
 // cache as they are first needed). Needs a current GL context. `afterRow`, when given, sees the rows so
-// far after each one (so that a run cut off by a time limit leaves what it measured).
+// far after each one (so that a run cut off by a time limit leaves what it measured). With `out`, every
+// row's image and every reference go to out/images/ (app/bench_images.h), named in the records ("image",
+// "references"), for report.html.
 std::vector<BenchRow> runBenchmark(const BenchConfig& config, const gl::ContextInfo& context,
-                                   const std::function<void(const std::vector<BenchRow>&)>& afterRow = {});
+                                   const std::function<void(const std::vector<BenchRow>&)>& afterRow = {},
+                                   const std::filesystem::path& out = {});
 
 } // namespace bounce::app

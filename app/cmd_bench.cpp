@@ -26,7 +26,10 @@ const char* kUsage =
     "For each scene x technique x parameter setting of the config: render (warm-up frames, then timed\n"
     "frames: median, min, max GPU ms per pass), compare with the cached references (the technique's own\n"
     "light paths and `full`), and write DIR/results.csv, DIR/results.json, DIR/report.md and\n"
-    "DIR/speed_error.png (time against relative RMSE, log scales, Pareto front marked).\n"
+    "DIR/speed_error.png (time against relative RMSE, log scales, Pareto front marked), and DIR/report.html:\n"
+    "the same figures as a page that opens from disk with no network (speed against error per scene, every\n"
+    "image beside the references in a viewer with flip, split, exposure, zoom and an error map, each run's\n"
+    "passes, counters, memory and the command that reproduces it), with its images under DIR/images/.\n"
     "\n"
     "Config: {\"size\": \"WxH\", \"warmup\": N, \"frames\": N, \"reference\": {\"spp\": N} | {\"noise\": X} [+ "
     "\"size\"],\n"
@@ -72,9 +75,9 @@ int cmdBench(const Args& args)
     }
     // The tables are rewritten after every render: a run stopped part way (a time limit on a lent GPU
     // machine, Ctrl-C) leaves results.json, results.csv and report.md of the renders it finished.
-    const std::vector<BenchRow> rows = runBenchmark(config, context->info(), [&](const std::vector<BenchRow>& done) {
-        writeBenchReport(out, config, done, {}, context->info());
-    });
+    const std::vector<BenchRow> rows = runBenchmark(
+        config, context->info(),
+        [&](const std::vector<BenchRow>& done) { writeBenchReport(out, config, done, {}, context->info()); }, out);
     std::vector<SceneRays> rays;
     if (config.rays > 0)
         for (std::size_t i = 0; i < config.scenes.size(); ++i) {
@@ -83,7 +86,7 @@ int cmdBench(const Args& args)
         }
     writeBenchReport(out, config, rows, rays, context->info());
     int rc = plotSpeedError(out);
-    std::printf("wrote %s/{results.csv,results.json,report.md%s}\n", out.string().c_str(),
+    std::printf("wrote %s/{results.csv,results.json,report.md,report.html%s}\n", out.string().c_str(),
                 rc == 0 ? ",speed_error.png" : "; not speed_error.png: the plot script failed");
     if (std::any_of(rows.begin(), rows.end(), [](const BenchRow& r) { return r.record.contains("curve"); })) {
         rc |= plotConvergence(out);

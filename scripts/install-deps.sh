@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages Bounce builds and tests with (only those missing), and the npm
-# packages of package.json (the Khronos glTF validator used by a test). Needs root for apt-get.
+# packages of package.json (the Khronos glTF validator, and playwright-core, which drives Debian's chromium
+# through the test of the benchmark's report.html: tests/app/report_browser.mjs). Needs root for apt-get.
 # clang-14 builds the glTF fuzz target (scripts/fuzz.sh); libclang-rt-14-dev holds its libFuzzer and
 # sanitizer runtimes, which apt does not install with clang-14 when recommends are off.
 set -euo pipefail
@@ -12,6 +13,7 @@ packages=(
   libtinygltf-dev nlohmann-json3-dev libstb-dev libtinyexr-dev libimgui-dev libgtest-dev
   libembree-dev libtbb-dev
   xvfb xauth python3-matplotlib python3-numpy
+  chromium
   clang-14 libclang-rt-14-dev
 )
 missing=()
@@ -29,7 +31,7 @@ if [ ${#missing[@]} -gt 0 ]; then
   DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"
 fi
 
-# The glTF validator (npm, from package-lock.json, so the version is pinned).
-if [ ! -d node_modules/gltf-validator ]; then
+# The glTF validator and playwright-core (npm, from package-lock.json, so the versions are pinned).
+if [ ! -d node_modules/gltf-validator ] || [ ! -d node_modules/playwright-core ]; then
   npm ci --no-audit --no-fund --silent
 fi

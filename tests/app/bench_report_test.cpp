@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "app/bench_images.h"
 #include "app/bench_report.h"
 #include "app/bench_run.h"
 
@@ -96,6 +97,56 @@ TEST(BenchReport, NonFiniteRenderHasInfiniteErrorsEverywhere)
     md << std::ifstream(d / "report.md").rdbuf();
     EXPECT_NE(md.str().find("Failed: rsm"), std::string::npos) << md.str();
     EXPECT_EQ(md.str().find("Failed: direct"), std::string::npos);
+}
+
+// The images report.html loads: base64 as RFC 4648's test vectors give it, and the radiance as little-endian
+// IEEE half floats (1 -> 0x3c00, -2 -> 0xc000, 65536 beyond the range -> +inf 0x7c00, NaN stays NaN).
+TEST(BenchReport, ImageScriptsCarryHalfFloatsInBase64)
+{
+    EXPECT_EQ(base64(""), "");
+    EXPECT_EQ(base64("f"), "Zg==");
+    EXPECT_EQ(base64("fo"), "Zm8=");
+    EXPECT_EQ(base64("foo"), "Zm9v");
+    EXPECT_EQ(base64("foob"), "Zm9vYg==");
+    EXPECT_EQ(base64("fooba"), "Zm9vYmE=");
+    EXPECT_EQ(base64("foobar"), "Zm9vYmFy");
+    EXPECT_EQ(base64(std::string("\xff\x00\xfe", 3)), "/wD+");
+
+    // Decoded here bit by bit, independently of the encoder.
+    const auto halvesOf = [](const std::string& script) {
+        const std::string alphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+        const std::size_t at = script.find(", \"") + 3;
+        const std::string b = script.substr(at, script.find('"', at) - at);
+        std::vector<std::uint16_t> out;
+        std::uint32_t bits = 0;
+        int count = 0;
+        std::string bytes;
+        for (char c : b) {
+            if (c == '=') break;
+            bits = bits << 6 | std::uint32_t(alphabet.find(c));
+            count += 6;
+            if (count >= 8) {
+                count -= 8;
+                bytes += char(bits >> count & 0xff);
+            }
+        }
+        for (std::size_t k = 0; k + 1 < bytes.size(); k += 2)
+            out.push_back(std::uint16_t((unsigned char)bytes[k] | (unsigned char)bytes[k + 1] << 8));
+        return out;
+    };
+    core::Image image(2, 1);
+    image.rgb = {1.0f, -2.0f, 65536.0f, 0.0f, NAN, 0.5f};
+    const std::string script = imageScript("images/x", image);
+    EXPECT_EQ(script.rfind("bounceImage(\"images/x\", 2, 1, \"", 0), 0u) << script;
+    const std::vector<std::uint16_t> h = halvesOf(script);
+    ASSERT_EQ(h.size(), 6u) << script;
+    EXPECT_EQ(h[0], 0x3c00);
+    EXPECT_EQ(h[1], 0xc000);
+    EXPECT_EQ(h[2], 0x7c00);
+    EXPECT_EQ(h[3], 0x0000);
+    EXPECT_EQ(h[4] & 0x7c00, 0x7c00);
+    EXPECT_NE(h[4] & 0x03ff, 0) << "NaN, not infinity";
+    EXPECT_EQ(h[5], 0x3800);
 }
 
 } // namespace

@@ -32,11 +32,10 @@ struct CliRun {
     std::string output; // stdout and stderr together
 };
 
-// `prefix` runs the binary under another command (e.g. env -u DISPLAY). New GL storage is poisoned
-// (gl/resource/allocations.h), as in the GL suite.
-CliRun run(const std::string& args, const std::string& prefix = "")
+// Runs a shell command line, its stderr with its stdout.
+CliRun runCommand(const std::string& command)
 {
-    const std::string cmd = "BOUNCE_POISON_STORAGE=1 " + prefix + std::string(BOUNCE_BINARY) + " " + args + " 2>&1";
+    const std::string cmd = command + " 2>&1";
     CliRun r;
     FILE* p = popen(cmd.c_str(), "r");
     if (!p) return r;
@@ -45,6 +44,18 @@ CliRun run(const std::string& args, const std::string& prefix = "")
     const int s = pclose(p);
     r.status = WIFEXITED(s) ? WEXITSTATUS(s) : -1;
     return r;
+}
+
+// `prefix` runs the binary under another command (e.g. env -u DISPLAY). New GL storage is poisoned
+// (gl/resource/allocations.h), as in the GL suite.
+CliRun run(const std::string& args, const std::string& prefix = "")
+{
+    return runCommand("BOUNCE_POISON_STORAGE=1 " + prefix + std::string(BOUNCE_BINARY) + " " + args);
+}
+
+bool commandExists(const std::string& name)
+{
+    return std::system(("command -v " + name + " >/dev/null 2>&1").c_str()) == 0;
 }
 
 fs::path outDir(const std::string& name)
@@ -424,14 +435,19 @@ double relativeRmseOf(const bounce::core::Image& a, const bounce::core::Image& r
 // (printed by the plot script) is the set of rows no other row beats in both time and error.
 // A progressive run with "curve": true records its error after every timed frame (steps, directions and
 // GPU time growing) and the bench plots those curves beside the path tracer's rows in convergence.png.
-TEST(Cli, BenchRecordsAndPlotsTheCurvesOfProgressiveRuns)
+// The same run's report.html is then opened in headless Chromium (tests/app/report_browser.mjs: no
+// console error or failed request, one plot point per row, flipping changes the pixels, the error map of
+// an image against itself is zero, the viewer's tone mapping is the PNG writer's); a viewport that is not
+// a power of two (24x20) beside the 16x16 ones.
+TEST(Cli, BenchPlotsCurvesAndWritesAReportThatABrowserOpens)
 {
     const fs::path d = outDir("bench-curve");
     const fs::path config = d / "curve.json";
     std::ofstream(config) << R"({"size": "16x16", "warmup": 0, "frames": 3, "reference": {"spp": 64},
                                 "scenes": ["cornell-spot"], "pathTracerSpp": [4, 16],
                                 "runs": [{"technique": "grb", "curve": true,
-                                          "set": {"directionsPerFrame": 2, "kbufferSize": 32, "atlasTexels": 1024}}]})";
+                                          "set": {"directionsPerFrame": 2, "kbufferSize": 32, "atlasTexels": 1024}},
+                                         {"technique": "direct", "size": "24x20", "frames": 1}]})";
     const CliRun r = run("bench --backend " + testBackend() + " --config " + config.string() + " --out " +
                          (d / "out").string() + " --cache " + (d / "cache").string());
     ASSERT_EQ(r.status, 0) << r.output;
@@ -448,11 +464,27 @@ TEST(Cli, BenchRecordsAndPlotsTheCurvesOfProgressiveRuns)
         for (std::size_t i = 0; i < c.size(); ++i) {
             EXPECT_EQ(c[i]["accumulated"].get<int>(), 2 * int(i + 1));
             EXPECT_GT(c[i]["relativeRmseFull"].get<double>(), 0.0);
-            if (i > 0) EXPECT_GT(c[i]["elapsedMs"].get<double>(), c[i - 1]["elapsedMs"].get<double>());
+            if (i > 0) {
+                EXPECT_GT(c[i]["elapsedMs"].get<double>(), c[i - 1]["elapsedMs"].get<double>());
+            }
         }
     }
     EXPECT_EQ(curves, 1);
     EXPECT_EQ(tracer, 2);
+    for (const nlohmann::json& rec : j) {
+        const std::string image = rec.value("image", "");
+        EXPECT_TRUE(fs::exists(d / "out" / (image + ".exr"))) << "row image " << image;
+        const nlohmann::json references = rec.value("references", nlohmann::json::object());
+        EXPECT_TRUE(references.contains("full")) << image;
+        for (const auto& [paths, id] : references.items())
+            EXPECT_TRUE(fs::exists(d / "out" / (id.get<std::string>() + ".js"))) << paths << " reference " << id;
+    }
+
+    ASSERT_TRUE(commandExists("node")) << "node is not installed; scripts/install-deps.sh installs it";
+    const CliRun browser =
+        runCommand("node " + (fs::path(BOUNCE_SOURCE_ROOT) / "tests/app/report_browser.mjs").string() + " " +
+                   (d / "out").string());
+    EXPECT_EQ(browser.status, 0) << browser.output;
 }
 
 TEST(Cli, BenchWritesTheFourFilesWithTheirFigures)

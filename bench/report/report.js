@@ -1,0 +1,501 @@
+// Bounce's benchmark report: the records of one `bounce bench` run (window.BOUNCE_REPORT, from
+// report-data.js) as plots, tables and an image viewer. Plain JavaScript and SVG, no library: the page
+// opens from disk with no network. Images come as scripts (images/STEM.js calls bounceImage with the
+// radiance as half floats): a page opened from file:// may run scripts from its folder but may not read
+// the pixels of images it loads, and exposure and the error map need the radiance.
+'use strict';
+
+(function () {
+  const data = window.BOUNCE_REPORT;
+  if (!data || !Array.isArray(data.results)) throw new Error('report-data.js did not load or holds no results');
+
+  const SVG = 'http://www.w3.org/2000/svg';
+  const PALETTE = ['#1f77b4', '#ff7f0e', '#2ca02c', '#d62728', '#9467bd', '#8c564b', '#e377c2', '#17becf',
+    '#bcbd22', '#7f7f7f', '#393b79', '#637939'];
+
+  // ---------------------------------------------------------------------------------------------
+  // Records
+
+  // JSON has no infinity: the bench writes "inf" for a render that failed (NaN/Inf in its image).
+  function num(v) {
+    if (typeof v === 'number') return v;
+    if (v === 'inf') return Infinity;
+    if (v === '-inf') return -Infinity;
+    return NaN;
+  }
+  const records = data.results.map((r, index) => Object.assign({ index }, r));
+  const scenes = [...new Set(records.map((r) => r.scene))];
+  const techniques = [...new Set(records.map((r) => r.technique))];
+  const colourOf = (technique) => technique === 'path-tracer' ? '#888' :
+    PALETTE[techniques.indexOf(technique) % PALETTE.length];
+  const fullError = (r) => num(r.error && r.error.full ? r.error.full.relativeRmse : NaN);
+  const label = (r) => r.technique + ' (' + r.settings + ')';
+  const fmt = (v, digits) => Number.isFinite(v) ? v.toPrecision(digits || 3) : String(v);
+
+  function el(tag, attrs, text) {
+    const e = tag.startsWith('svg:') ? document.createElementNS(SVG, tag.slice(4)) : document.createElement(tag);
+    for (const [k, v] of Object.entries(attrs || {})) e.setAttribute(k, v);
+    if (text !== undefined) e.textContent = text;
+    return e;
+  }
+
+  // ---------------------------------------------------------------------------------------------
+  // Log-log plots
+
+  function logRange(values) {
+    const v = values.filter((x) => Number.isFinite(x) && x > 0);
+    if (!v.length) return [0.1, 10];
+    let lo = Math.min(...v), hi = Math.max(...v);
+    if (hi / lo < 4) { lo /= 2; hi *= 2; }
+    return [Math.pow(10, Math.floor(Math.log10(lo) * 4) / 4), Math.pow(10, Math.ceil(Math.log10(hi) * 4) / 4)];
+  }
+
+  // An SVG with log axes over xs and ys; returns {svg, x(v), y(v)}.
+  function logAxes(xs, ys, xLabel, yLabel) {
+    const W = 560, H = 360, L = 60, R = 16, T = 12, B = 44;
+    const [x0, x1] = logRange(xs), [y0, y1] = logRange(ys);
+    const x = (v) => L + (Math.log10(v) - Math.log10(x0)) / (Math.log10(x1) - Math.log10(x0)) * (W - L - R);
+    const y = (v) => H - B - (Math.log10(v) - Math.log10(y0)) / (Math.log10(y1) - Math.log10(y0)) * (H - T - B);
+    const svg = el('svg:svg', { width: W, height: H, viewBox: `0 0 ${W} ${H}` });
+    const axis = el('svg:g', { class: 'axis' });
+    const ticks = (lo, hi) => {
+      const out = [];
+      for (let e = Math.floor(Math.log10(lo)); e <= Math.ceil(Math.log10(hi)); ++e)
+        for (const m of [1, 2, 5]) {
+          const v = m * Math.pow(10, e);
+          if (v >= lo * 0.999 && v <= hi * 1.001) out.push(v);
+        }
+      return out;
+    };
+    for (const v of ticks(x0, x1)) {
+      axis.append(el('svg:line', { class: 'grid', x1: x(v), x2: x(v), y1: T, y2: H - B }));
+      axis.append(el('svg:text', { x: x(v), y: H - B + 14, 'text-anchor': 'middle' }, fmt(v, 2)));
+    }
+    for (const v of ticks(y0, y1)) {
+      axis.append(el('svg:line', { class: 'grid', x1: L, x2: W - R, y1: y(v), y2: y(v) }));
+      axis.append(el('svg:text', { x: L - 4, y: y(v) + 4, 'text-anchor': 'end' }, fmt(v, 2)));
+    }
+    axis.append(el('svg:path', { d: `M${L},${T}V${H - B}H${W - R}`, fill: 'none' }));
+    axis.append(el('svg:text', { x: (L + W - R) / 2, y: H - 8, 'text-anchor': 'middle' }, xLabel));
+    axis.append(el('svg:text', { x: 14, y: (T + H - B) / 2, 'text-anchor': 'middle',
+      transform: `rotate(-90 14 ${(T + H - B) / 2})` }, yLabel));
+    svg.append(axis);
+    return { svg, x, y };
+  }
+
+  // The runs no other run beats in both time and error, fastest first.
+  function paretoFront(runs) {
+    const pts = runs.filter((r) => Number.isFinite(fullError(r)) && r.totalMs > 0)
+      .sort((a, b) => a.totalMs - b.totalMs || fullError(a) - fullError(b));
+    const front = [];
+    for (const r of pts) if (!front.length || fullError(r) < fullError(front[front.length - 1])) front.push(r);
+    return front;
+  }
+
+  // Speed against error: one circle per run of the scene (path-tracer rows included), the path
+  // tracer's rows joined by a line, the Pareto front dashed.
+  function drawSpeedPlot(scene) {
+    const runs = records.filter((r) => r.scene === scene);
+    const box = document.getElementById('plot');
+    box.replaceChildren();
+    const plot = logAxes(runs.map((r) => r.totalMs), runs.map(fullError), 'GPU ms per frame (path tracer: CPU ms)',
+      'relative RMSE against full');
+    const clampY = (v) => Number.isFinite(v) ? v : NaN;
+    const tracer = runs.filter((r) => r.technique === 'path-tracer').sort((a, b) => a.totalMs - b.totalMs);
+    if (tracer.length > 1)
+      plot.svg.append(el('svg:polyline', { class: 'tracer',
+        points: tracer.map((r) => `${plot.x(r.totalMs)},${plot.y(fullError(r))}`).join(' ') }));
+    const front = paretoFront(runs);
+    if (front.length > 1)
+      plot.svg.append(el('svg:polyline', { class: 'pareto',
+        points: front.map((r) => `${plot.x(r.totalMs)},${plot.y(fullError(r))}`).join(' ') }));
+    for (const r of runs) {
+      const e = clampY(fullError(r));
+      // A failed render (infinite error) sits on the top edge, hollow, so that it is still one point per run.
+      const cy = Number.isFinite(e) && e > 0 ? plot.y(e) : 12;
+      const c = el('svg:circle', { class: 'run', r: 5, cx: plot.x(Math.max(r.totalMs, 1e-6)), cy,
+        fill: Number.isFinite(e) ? colourOf(r.technique) : 'none', 'data-index': r.index });
+      c.append(el('svg:title', {}, `${label(r)}\n${fmt(r.totalMs)} ms, relative RMSE ${fmt(e)}` +
+        (front.includes(r) ? '\nPareto front' : '')));
+      c.addEventListener('click', () => selectRun(r));
+      plot.svg.append(c);
+    }
+    box.append(plot.svg);
+    const legend = el('p', { class: 'hint' });
+    for (const t of [...new Set(runs.map((r) => r.technique))]) {
+      const s = el('span', { class: 'swatch' });
+      s.style.background = colourOf(t);
+      legend.append(s, document.createTextNode(t + '  '));
+    }
+    box.append(legend);
+  }
+
+  // Progressive runs recorded with "curve": their error after every step against the GPU time so far,
+  // beside the path tracer's rows.
+  function drawConvergence(scene) {
+    const box = document.getElementById('convergence');
+    box.replaceChildren();
+    const curves = records.filter((r) => r.scene === scene && Array.isArray(r.curve) && r.curve.length);
+    if (!curves.length) return;
+    const tracer = records.filter((r) => r.scene === scene && r.technique === 'path-tracer')
+      .sort((a, b) => a.totalMs - b.totalMs);
+    const xs = tracer.map((r) => r.totalMs), ys = tracer.map(fullError);
+    for (const r of curves) for (const p of r.curve) { xs.push(num(p.elapsedMs)); ys.push(num(p.relativeRmseFull)); }
+    box.append(el('h3', {}, 'Convergence of progressive runs'));
+    const plot = logAxes(xs, ys, 'ms so far (GPU; path tracer: CPU)', 'relative RMSE against full');
+    const line = (pts, cls, colour) => {
+      const p = el('svg:polyline', { class: cls, points: pts.map(([a, b]) => `${plot.x(a)},${plot.y(b)}`).join(' ') });
+      if (colour) p.setAttribute('style', `fill:none;stroke:${colour};stroke-width:1.5`);
+      plot.svg.append(p);
+    };
+    if (tracer.length) line(tracer.map((r) => [r.totalMs, fullError(r)]), 'tracer');
+    for (const r of curves) {
+      const pts = r.curve.map((p) => [num(p.elapsedMs), num(p.relativeRmseFull)])
+        .filter(([a, b]) => a > 0 && b > 0 && Number.isFinite(a) && Number.isFinite(b));
+      line(pts, 'curve', colourOf(r.technique));
+      const t = el('svg:title', {}, label(r));
+      plot.svg.lastChild.append(t);
+    }
+    box.append(plot.svg);
+  }
+
+  // ---------------------------------------------------------------------------------------------
+  // Images
+
+  const images = new Map(); // id -> {width, height, rgb: Float32Array}
+  const waiting = new Map(); // id -> [resolve, reject]
+
+  function halfToFloat(h) {
+    const s = h & 0x8000 ? -1 : 1, e = (h >> 10) & 0x1f, f = h & 0x3ff;
+    if (e === 0) return s * f * Math.pow(2, -24);
+    if (e === 31) return f ? NaN : s * Infinity;
+    return s * (1 + f / 1024) * Math.pow(2, e - 15);
+  }
+
+  // Called by images/STEM.js.
+  window.bounceImage = function (id, width, height, base64) {
+    const bytes = atob(base64);
+    const rgb = new Float32Array(width * height * 3);
+    for (let i = 0; i < rgb.length; ++i)
+      rgb[i] = halfToFloat(bytes.charCodeAt(2 * i) | (bytes.charCodeAt(2 * i + 1) << 8));
+    images.set(id, { width, height, rgb });
+    const w = waiting.get(id);
+    if (w) { waiting.delete(id); w[0](images.get(id)); }
+  };
+
+  function loadImage(id) {
+    if (images.has(id)) return Promise.resolve(images.get(id));
+    return new Promise((resolve, reject) => {
+      waiting.set(id, [resolve, reject]);
+      const s = el('script', { src: id + '.js' });
+      s.onerror = () => { waiting.delete(id); reject(new Error('cannot load ' + id + '.js')); };
+      document.head.append(s);
+    });
+  }
+
+  // Box-downsamples img by an integer factor to width x height (the bench compares a render with a
+  // smaller reference the same way).
+  function downsample(img, width, height) {
+    if (img.width === width && img.height === height) return img;
+    const fx = img.width / width, fy = img.height / height;
+    if (!Number.isInteger(fx) || !Number.isInteger(fy)) return null;
+    const rgb = new Float32Array(width * height * 3);
+    for (let y = 0; y < img.height; ++y)
+      for (let x = 0; x < img.width; ++x)
+        for (let c = 0; c < 3; ++c)
+          rgb[((Math.floor(y / fy) * width) + Math.floor(x / fx)) * 3 + c] += img.rgb[(y * img.width + x) * 3 + c];
+    for (let i = 0; i < rgb.length; ++i) rgb[i] /= fx * fy;
+    return { width, height, rgb };
+  }
+
+  // A and B at one size: the larger box-downsampled to the smaller when one divides the other.
+  function sameSize(a, b) {
+    if (a.width * a.height >= b.width * b.height) {
+      const d = downsample(a, b.width, b.height);
+      return d ? [d, b] : null;
+    }
+    const d = downsample(b, a.width, a.height);
+    return d ? [a, d] : null;
+  }
+
+  const srgb = (v) => {
+    const l = Number.isFinite(v) ? Math.min(Math.max(v, 0), 1) : (v > 0 ? 1 : 0);
+    return Math.round(255 * (l <= 0.0031308 ? 12.92 * l : 1.055 * Math.pow(l, 1 / 2.4) - 0.055));
+  };
+
+  // The error map's colours: a perceptually ordered ramp (viridis' end points and three stops between)
+  // over [0, scale]; NaN/Inf in magenta.
+  const RAMP = [[68, 1, 84], [59, 82, 139], [33, 145, 140], [94, 201, 98], [253, 231, 37]];
+  function rampColour(t) {
+    if (!Number.isFinite(t)) return [255, 0, 255];
+    const u = Math.min(Math.max(t, 0), 1) * (RAMP.length - 1), i = Math.min(Math.floor(u), RAMP.length - 2);
+    const f = u - i;
+    return RAMP[i].map((c, k) => Math.round(c + f * (RAMP[i + 1][k] - c)));
+  }
+  // Per-pixel relative error: mean over channels of |A - B| over the mean of B plus 0.01 (dark pixels).
+  function pixelError(a, b, p) {
+    let d = 0, m = 0;
+    for (let c = 0; c < 3; ++c) { d += Math.abs(a.rgb[p * 3 + c] - b.rgb[p * 3 + c]); m += b.rgb[p * 3 + c]; }
+    return (d / 3) / (m / 3 + 0.01);
+  }
+
+  const view = { a: null, b: null, mode: 'a', exposure: 0, split: 0.5, errorScale: 0.25, zoom: 1, panX: 0, panY: 0,
+    run: null, stats: null };
+
+  // Draws the canvas from A and B in the current mode; the one transform (zoom, pan) applies to all modes.
+  function draw() {
+    const canvas = document.getElementById('view');
+    const info = document.getElementById('image-info');
+    const a = images.get(view.a), b = images.get(view.b);
+    if (!a || !b) return;
+    const pair = sameSize(a, b);
+    if (!pair) { info.textContent = `A is ${a.width}x${a.height}, B ${b.width}x${b.height}: no common size.`; return; }
+    const [A, B] = pair;
+    const w = A.width, h = A.height;
+    if (canvas.width !== w || canvas.height !== h) { canvas.width = w; canvas.height = h; fit(); }
+    const ctx = canvas.getContext('2d');
+    const out = ctx.createImageData(w, h);
+    const gain = Math.pow(2, view.exposure);
+    const splitX = Math.round(view.split * w);
+    let sum = 0, max = 0, bad = 0;
+    for (let y = 0; y < h; ++y)
+      for (let x = 0; x < w; ++x) {
+        const p = y * w + x;
+        const e = pixelError(A, B, p);
+        if (Number.isFinite(e)) { sum += e; max = Math.max(max, e); } else ++bad;
+        let rgb;
+        if (view.mode === 'error') rgb = rampColour(e / view.errorScale);
+        else {
+          const src = view.mode === 'b' || (view.mode === 'split' && x >= splitX) ? B : A;
+          rgb = [0, 1, 2].map((c) => srgb(src.rgb[p * 3 + c] * gain));
+        }
+        out.data.set([rgb[0], rgb[1], rgb[2], 255], p * 4);
+      }
+    ctx.putImageData(out, 0, 0);
+    view.stats = { mean: sum / (w * h - bad || 1), max, nonFinite: bad, width: w, height: h };
+    const shown = { a: 'A', b: 'B', split: 'A left, B right', error: 'error map' }[view.mode];
+    info.replaceChildren(
+      document.createTextNode(`${shown}, ${w}x${h}` + (a.width !== w || b.width !== w ? ' (box-downsampled to the smaller)' : '') +
+        `. Per-pixel relative error: mean ${fmt(view.stats.mean)}, max ${fmt(max)}` +
+        (bad ? `, ${bad} non-finite` : '') + '. '),
+      el('a', { href: view.a + '.exr' }, 'A (EXR)'), document.createTextNode(' '),
+      el('a', { href: view.b + '.exr' }, 'B (EXR)'));
+    document.getElementById('legend-text').textContent =
+      view.mode === 'error' ? `0 to ${view.errorScale} (and above), magenta: NaN/Inf` : '';
+    document.getElementById('legend').style.visibility = view.mode === 'error' ? 'visible' : 'hidden';
+    applyTransform();
+  }
+
+  // The canvas is drawn at the image's size and scaled by CSS (nearest neighbour); the split line is an
+  // overlay, so that it stays one screen pixel wide at any zoom.
+  function applyTransform() {
+    const canvas = document.getElementById('view');
+    canvas.style.transform = `translate(${view.panX}px, ${view.panY}px) scale(${view.zoom})`;
+    const line = document.getElementById('split-line');
+    line.style.display = view.mode === 'split' ? 'block' : 'none';
+    line.style.left = `${view.panX + Math.round(view.split * canvas.width) * view.zoom}px`;
+  }
+
+  function fit() {
+    const stage = document.getElementById('stage'), canvas = document.getElementById('view');
+    view.zoom = Math.min(stage.clientWidth / canvas.width, stage.clientHeight / canvas.height) || 1;
+    view.panX = (stage.clientWidth - canvas.width * view.zoom) / 2;
+    view.panY = (stage.clientHeight - canvas.height * view.zoom) / 2;
+    applyTransform();
+  }
+
+  function showImages(a, b) {
+    view.a = a;
+    view.b = b;
+    document.getElementById('image-a').value = a;
+    document.getElementById('image-b').value = b;
+    document.body.dataset.loaded = 'false';
+    return Promise.all([loadImage(a), loadImage(b)]).then(() => {
+      draw();
+      document.body.dataset.loaded = 'true';
+    }, (err) => {
+      console.error(err.message);
+      document.getElementById('image-info').textContent = err.message;
+      document.body.dataset.loaded = 'error';
+    });
+  }
+
+  // Every image of the scene: each run's, then the references its runs were compared with.
+  function sceneImages(scene) {
+    const list = [];
+    for (const r of records.filter((x) => x.scene === scene && x.image)) list.push([r.image, `#${r.index} ${label(r)}`]);
+    const refs = new Set();
+    for (const r of records.filter((x) => x.scene === scene && x.references))
+      for (const id of Object.values(r.references)) refs.add(id);
+    for (const id of refs) list.push([id, 'reference ' + id.replace(/^images\/ref-/, '')]);
+    return list;
+  }
+
+  function fillSelects(scene) {
+    for (const sel of ['image-a', 'image-b']) {
+      const s = document.getElementById(sel);
+      s.replaceChildren(...sceneImages(scene).map(([id, text]) => el('option', { value: id }, text)));
+    }
+  }
+
+  // ---------------------------------------------------------------------------------------------
+  // One run: its command, passes as a stacked bar and a table, counters, memory.
+
+  function table(head, rows) {
+    const t = el('table');
+    const tr = el('tr');
+    for (const h of head) tr.append(el('th', {}, h));
+    t.append(tr);
+    for (const row of rows) {
+      const r = el('tr');
+      row.forEach((v, i) => r.append(el('td', i === 0 ? { class: 'text' } : {}, v)));
+      t.append(r);
+    }
+    return t;
+  }
+
+  function runDetails(r) {
+    const box = document.getElementById('run-details');
+    box.replaceChildren();
+    box.append(el('h3', {}, `${label(r)} on ${r.scene}, ${r.size}`));
+    if (num(r.nonFiniteValues) > 0) box.append(el('p', { class: 'failed' }, `${r.nonFiniteValues} NaN/Inf values`));
+    const errs = Object.entries(r.error || {}).map(([paths, e]) => `${paths} ${fmt(num(e.relativeRmse))}`);
+    box.append(el('p', {}, `${fmt(r.totalMs)} ms per frame; relative RMSE: ${errs.join(', ')}`));
+    if (r.command) box.append(el('code', { class: 'command' }, r.command));
+    const passes = r.passes || [];
+    if (passes.length) {
+      const total = passes.reduce((s, p) => s + num(p.medianMs), 0) || 1;
+      const W = 560, H = 26;
+      const bar = el('svg:svg', { width: W, height: H, class: 'passes' });
+      let x = 0;
+      passes.forEach((p, i) => {
+        const w = num(p.medianMs) / total * W;
+        const rect = el('svg:rect', { x, y: 2, width: Math.max(w, 0), height: H - 4, fill: PALETTE[i % PALETTE.length] });
+        rect.append(el('svg:title', {}, `${p.pass}: ${fmt(num(p.medianMs))} ms (${fmt(100 * num(p.medianMs) / total, 2)}%)`));
+        bar.append(rect);
+        if (w > 40) bar.append(el('svg:text', { x: x + 3, y: H / 2 + 4, fill: '#fff' }, p.pass));
+        x += w;
+      });
+      box.append(el('h4', {}, 'Passes (median GPU ms)'), bar);
+      box.append(table(['pass', 'ms', 'bound ms', 'efficiency', 'limiter'], passes.map((p) => [p.pass,
+        fmt(num(p.medianMs)), p.boundMs !== undefined ? fmt(num(p.boundMs)) : '-',
+        p.efficiency !== undefined ? fmt(num(p.efficiency), 2) : '-', p.limiter || '-'])));
+    }
+    const counters = Object.entries(r.counters || {});
+    if (counters.length) box.append(el('h4', {}, 'Counters'), table(['counter', 'value'], counters.map(([k, v]) => [k, fmt(num(v), 6)])));
+    const bytes = Object.entries(r.bytesAllocated || {}).sort((a, b) => num(b[1]) - num(a[1]));
+    if (bytes.length)
+      box.append(el('h4', {}, 'Memory by resource'), table(['resource', 'MiB'],
+        bytes.map(([k, v]) => [k, (num(v) / 1048576).toFixed(3)])));
+  }
+
+  function selectRun(r) {
+    view.run = r;
+    for (const c of document.querySelectorAll('circle.run'))
+      c.classList.toggle('selected', Number(c.dataset.index) === r.index);
+    for (const row of document.querySelectorAll('tr.run-row'))
+      row.classList.toggle('selected', Number(row.dataset.index) === r.index);
+    runDetails(r);
+    const refs = r.references || {};
+    const ref = refs.full || Object.values(refs)[0];
+    if (r.image) return showImages(r.image, ref || r.image);
+    return Promise.resolve();
+  }
+
+  function drawRunTable(scene) {
+    const t = document.getElementById('run-table');
+    t.replaceChildren();
+    const head = el('tr');
+    for (const h of ['#', 'technique', 'parameters', 'size', 'light paths', 'ms', 'rel. RMSE (own)', 'rel. RMSE (full)'])
+      head.append(el('th', {}, h));
+    t.append(head);
+    for (const r of records.filter((x) => x.scene === scene)) {
+      const own = r.error && r.error[r.lightPaths] ? num(r.error[r.lightPaths].relativeRmse) : NaN;
+      const tr = el('tr', { class: 'run-row', 'data-index': r.index });
+      for (const [v, cls] of [[r.index], [r.technique, 'text'], [r.settings, 'text'], [r.size], [r.lightPaths],
+        [fmt(r.totalMs)], [fmt(own)], [fmt(fullError(r))]])
+        tr.append(el('td', cls ? { class: cls } : {}, String(v)));
+      tr.addEventListener('click', () => selectRun(r));
+      t.append(tr);
+    }
+  }
+
+  function showScene(scene) {
+    for (const b of document.querySelectorAll('#scenes button')) b.classList.toggle('current', b.textContent === scene);
+    document.getElementById('scene-name').textContent = scene;
+    drawSpeedPlot(scene);
+    drawConvergence(scene);
+    drawRunTable(scene);
+    fillSelects(scene);
+    const first = records.find((r) => r.scene === scene && r.technique !== 'path-tracer' && r.image) ||
+      records.find((r) => r.scene === scene && r.image);
+    return first ? selectRun(first) : Promise.resolve();
+  }
+
+  // ---------------------------------------------------------------------------------------------
+  // Wiring
+
+  document.getElementById('renderer').textContent =
+    `GL renderer: ${data.renderer} (${data.platform}). ${records.length} rows. Timings compare only within one run.`;
+  const nav = document.getElementById('scenes');
+  for (const s of scenes) {
+    const b = el('button', {}, s);
+    b.addEventListener('click', () => showScene(s));
+    nav.append(b);
+  }
+  const setMode = (m) => { view.mode = m; document.getElementById('mode').value = m; draw(); };
+  document.getElementById('image-a').addEventListener('change', (e) => showImages(e.target.value, view.b));
+  document.getElementById('image-b').addEventListener('change', (e) => showImages(view.a, e.target.value));
+  document.getElementById('mode').addEventListener('change', (e) => setMode(e.target.value));
+  const exposure = document.getElementById('exposure');
+  const setExposure = (v) => {
+    view.exposure = Math.min(Math.max(v, -8), 8);
+    exposure.value = view.exposure;
+    document.getElementById('exposure-value').textContent = view.exposure;
+    draw();
+  };
+  exposure.addEventListener('input', () => setExposure(Number(exposure.value)));
+  document.getElementById('split').addEventListener('input', (e) => {
+    view.split = Number(e.target.value);
+    if (view.mode !== 'split') setMode('split'); else draw();
+  });
+  document.getElementById('error-scale').addEventListener('change', (e) => { view.errorScale = Number(e.target.value); draw(); });
+  document.addEventListener('keydown', (e) => {
+    if (e.target.tagName === 'INPUT' && e.target.type !== 'range') return;
+    if (e.key === 'f' || e.key === ' ') { setMode(view.mode === 'a' ? 'b' : 'a'); e.preventDefault(); }
+    else if (e.key === 's') setMode('split');
+    else if (e.key === 'e') setMode(view.mode === 'error' ? 'a' : 'error');
+    else if (e.key === '+' || e.key === '=') setExposure(view.exposure + 0.5);
+    else if (e.key === '-') setExposure(view.exposure - 0.5);
+    else if (e.key === '0') fit();
+  });
+  const stage = document.getElementById('stage');
+  stage.addEventListener('wheel', (e) => {
+    e.preventDefault();
+    const rect = stage.getBoundingClientRect(), mx = e.clientX - rect.left, my = e.clientY - rect.top;
+    const k = Math.pow(1.0015, -e.deltaY);
+    view.panX = mx - (mx - view.panX) * k;
+    view.panY = my - (my - view.panY) * k;
+    view.zoom *= k;
+    applyTransform();
+  }, { passive: false });
+  let drag = null;
+  stage.addEventListener('mousedown', (e) => { drag = [e.clientX - view.panX, e.clientY - view.panY]; });
+  window.addEventListener('mouseup', () => { drag = null; });
+  window.addEventListener('mousemove', (e) => {
+    if (!drag) return;
+    view.panX = e.clientX - drag[0];
+    view.panY = e.clientY - drag[1];
+    applyTransform();
+  });
+  // The colour bar of the error map.
+  const bar = document.getElementById('colour-bar').getContext('2d');
+  for (let x = 0; x < 256; ++x) {
+    const [r, g, b] = rampColour(x / 255);
+    bar.fillStyle = `rgb(${r},${g},${b})`;
+    bar.fillRect(x, 0, 1, 12);
+  }
+  // For tests and scripting: the viewer's state (read-only use).
+  window.bounceReport = { view, showScene, showImages, selectRun, rampColour, records };
+  if (scenes.length) showScene(scenes[0]);
+})();

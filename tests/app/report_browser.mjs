@@ -1,0 +1,137 @@
+// Opens a `bounce bench` report (DIR/report.html) in headless Chromium (Debian's package, driven by
+// playwright-core from package.json) and checks it as a reader would use it. Exit status 0 when every
+// check holds; otherwise each failure is printed and the status is 1.
+//
+//   node tests/app/report_browser.mjs DIR [--screenshot FILE.png]
+//
+// The expectations come from DIR/results.json and the image files, read here, not from the page:
+// - the page loads with no console error, no uncaught exception and no failed request (a broken link or
+//   script fails), and every link on it names a file that exists;
+// - each scene's speed-against-error plot holds one point per row of that scene in results.json;
+// - flipping (key f) changes the displayed pixels, and flipping back restores them;
+// - the error map of an image against itself is the colour map's zero (viridis' first colour) everywhere,
+//   and that of a render against its reference is not.
+import fs from 'node:fs';
+import path from 'node:path';
+import { pathToFileURL } from 'node:url';
+import { chromium } from 'playwright-core';
+
+const args = process.argv.slice(2);
+const dir = args[0];
+const shotAt = args.indexOf('--screenshot');
+const screenshot = shotAt >= 0 ? args[shotAt + 1] : null;
+if (!dir || !fs.existsSync(path.join(dir, 'report.html'))) {
+  console.error('usage: node report_browser.mjs DIR [--screenshot FILE.png] (DIR holds report.html)');
+  process.exit(2);
+}
+const executablePath = process.env.BOUNCE_CHROMIUM || '/usr/bin/chromium';
+if (!fs.existsSync(executablePath)) {
+  console.error(`${executablePath} is missing: scripts/install-deps.sh installs Debian's chromium`);
+  process.exit(1);
+}
+
+const results = JSON.parse(fs.readFileSync(path.join(dir, 'results.json'), 'utf8'));
+const failures = [];
+const check = (ok, what) => { if (!ok) failures.push(what); };
+const ZERO = [68, 1, 84]; // the error map's colour for 0: viridis' first
+
+const browser = await chromium.launch({ executablePath, headless: true, args: ['--no-sandbox'] });
+try {
+  await checkPage();
+} catch (e) {
+  failures.push(e.message);
+} finally {
+  await browser.close();
+}
+for (const f of failures) console.error('FAIL: ' + f);
+console.log(failures.length ? `${failures.length} checks failed` : 'report.html: every check holds');
+process.exit(failures.length ? 1 : 0);
+
+async function checkPage() {
+  const page = await browser.newPage({ viewport: { width: 1400, height: 1000 } });
+  page.on('console', (m) => { if (m.type() === 'error') failures.push('console error: ' + m.text()); });
+  page.on('pageerror', (e) => failures.push('uncaught exception: ' + e.message));
+  page.on('requestfailed', (r) => failures.push('request failed: ' + r.url()));
+  await page.goto(pathToFileURL(path.resolve(dir, 'report.html')).href);
+  // The viewer marks the body loaded ("true") or not ("error": an image that did not load) after each change.
+  const loaded = async () => {
+    await page.waitForSelector('body[data-loaded="true"], body[data-loaded="error"]', { timeout: 20000 });
+    if ((await page.getAttribute('body', 'data-loaded')) !== 'true') throw new Error('an image did not load');
+  };
+  await loaded();
+
+  // The canvas' pixels, as an array of [r, g, b] strings' counts would lose order: the raw RGBA bytes.
+  const pixels = () => page.evaluate(() => {
+    const c = document.getElementById('view');
+    return Array.from(c.getContext('2d').getImageData(0, 0, c.width, c.height).data);
+  });
+
+  const scenes = [...new Set(results.map((r) => r.scene))];
+  const buttons = await page.locator('#scenes button').allTextContents();
+  check(JSON.stringify(buttons) === JSON.stringify(scenes), `scene buttons ${buttons} are not the scenes ${scenes}`);
+  for (const scene of scenes) {
+    await page.locator('#scenes button', { hasText: scene }).first().click();
+    await loaded();
+    const points = await page.locator('#plot circle.run').count();
+    const rows = results.filter((r) => r.scene === scene).length;
+    check(points === rows, `${scene}: the plot holds ${points} points for ${rows} rows`);
+    for (const r of results.filter((x) => x.scene === scene))
+      for (const id of [r.image, ...Object.values(r.references || {})])
+        for (const ext of ['.exr', '.png', '.js'])
+          check(id && fs.existsSync(path.join(dir, id + ext)), `${scene}: ${id}${ext} is missing`);
+  }
+
+  // Links: every href on the page (EXRs of the displayed images, the stylesheet) names a file.
+  const hrefs = await page.evaluate(() => [...document.querySelectorAll('[href]')].map((e) => e.getAttribute('href')));
+  for (const h of hrefs) check(fs.existsSync(path.join(dir, h)), `link ${h} names no file`);
+  check(hrefs.some((h) => h.endsWith('.exr')), 'the viewer links no EXR');
+
+  // Decoding: at exposure 0 the viewer's A is the bench's own tone-mapped PNG of the same image (C++,
+  // core/image.cpp), up to the half floats' rounding.
+  await page.selectOption('#mode', 'a');
+  const shownA = await page.inputValue('#image-a');
+  const png = 'data:image/png;base64,' + fs.readFileSync(path.join(dir, shownA + '.png')).toString('base64');
+  const fromPng = await page.evaluate(async (url) => {
+    const img = new Image();
+    img.src = url;
+    await img.decode();
+    const c = document.createElement('canvas');
+    c.width = img.width;
+    c.height = img.height;
+    c.getContext('2d').drawImage(img, 0, 0);
+    return Array.from(c.getContext('2d').getImageData(0, 0, c.width, c.height).data);
+  }, png);
+  const shown = await pixels();
+  const off = shown.filter((v, i) => Math.abs(v - fromPng[i]) > 1).length;
+  check(shown.length === fromPng.length && off === 0, `${shownA}: ${off} channel values differ from its PNG by more than 1`);
+
+  // Flip: A (a render) and B (its reference) differ, so the pixels change, and flip back restores them.
+  await page.selectOption('#mode', 'a');
+  const a = await pixels();
+  await page.keyboard.press('f');
+  const b = await pixels();
+  await page.keyboard.press('f');
+  const again = await pixels();
+  check(a.length > 0 && a.some((v, i) => v !== b[i]), 'flipping A and B left the displayed pixels unchanged');
+  check(a.every((v, i) => v === again[i]), 'flipping twice did not restore the displayed pixels');
+
+  // The error map: a render against its reference is not zero everywhere...
+  await page.keyboard.press('e');
+  const differs = await pixels();
+  const isZero = (px, i) => i % 4 === 3 || px[i] === ZERO[i % 4];
+  check(!differs.every((v, i) => isZero(differs, i)), 'the error map of a render against its reference is all zero');
+  // ...and an image against itself is zero at every pixel.
+  const imageA = await page.inputValue('#image-a');
+  await page.selectOption('#image-b', imageA);
+  await loaded();
+  await page.selectOption('#mode', 'error');
+  const self = await pixels();
+  const bad = self.filter((v, i) => !isZero(self, i)).length;
+  check(self.length > 0 && bad === 0, `the error map of ${imageA} against itself is not zero at ${bad} channel values`);
+
+  if (screenshot) {
+    await page.selectOption('#mode', 'split');
+    await page.locator('#plot circle.run').first().hover();
+    await page.screenshot({ path: screenshot, fullPage: false });
+  }
+}
