@@ -128,7 +128,7 @@ std::vector<BenchSetting> expandRun(const json& run, const std::string& key)
 {
     allowOnly(run, key,
               {"technique", "set", "sweep", "against", "temporalFrames", "size", "scenes", "warmup", "frames", "curve",
-               "comment"});
+               "full", "comment"});
     if (!run.contains("technique")) refuse(key + ".technique", "missing: every run names its technique");
     const gl::TechniqueInfo& info = technique(run["technique"], key + ".technique");
     BenchSetting base;
@@ -179,6 +179,10 @@ std::vector<BenchSetting> expandRun(const json& run, const std::string& key)
         if (!run["curve"].is_boolean()) refuse(key + ".curve", "must be true or false, not " + typeText(run["curve"]));
         base.curve = run["curve"].get<bool>();
     }
+    if (run.contains("full")) {
+        if (!run["full"].is_boolean()) refuse(key + ".full", "must be true or false, not " + typeText(run["full"]));
+        base.fullOnly = run["full"].get<bool>();
+    }
     std::vector<BenchSetting> out;
     for (const auto& c : combos) {
         out.push_back(base);
@@ -211,7 +215,7 @@ std::string settingsText(const std::vector<std::string>& sets)
     return s.empty() ? "defaults" : s;
 }
 
-BenchConfig readBenchConfig(const std::string& path, const std::string& cacheDir)
+BenchConfig readBenchConfig(const std::string& path, const std::string& cacheDir, bool full)
 {
     json config;
     {
@@ -226,9 +230,9 @@ BenchConfig readBenchConfig(const std::string& path, const std::string& cacheDir
     // The whole file is checked before anything runs or is written: its shape, every key, type and
     // range, the scenes, the techniques and their parameters against their declarations.
     if (!config.is_object()) refuse("the file", "must be an object {\"runs\": [...], ...}, not " + typeText(config));
-    allowOnly(
-        config, "",
-        {"comment", "size", "warmup", "frames", "reference", "scenes", "runs", "compareTo", "rays", "pathTracerSpp"});
+    allowOnly(config, "",
+              {"comment", "size", "warmup", "frames", "reference", "scenes", "fullScenes", "runs", "compareTo", "rays",
+               "pathTracerSpp"});
     if (!config.contains("runs")) refuse("runs", "missing: a bench config lists its runs (an empty sweep is an error)");
     BenchConfig c;
     if (config.contains("size")) size(config["size"], "size", c.width, c.height);
@@ -237,6 +241,12 @@ BenchConfig readBenchConfig(const std::string& path, const std::string& cacheDir
     c.settings = expand(config["runs"]);
     c.sceneNames =
         config.contains("scenes") ? names(config["scenes"], "scenes") : std::vector<std::string>{"cornell-spot"};
+    // The full run's extra scenes and runs are checked in every run, loaded and kept only in the full one.
+    const std::vector<std::string> fullScenes =
+        config.contains("fullScenes") ? names(config["fullScenes"], "fullScenes") : std::vector<std::string>{};
+    std::vector<std::string> allScenes = c.sceneNames;
+    allScenes.insert(allScenes.end(), fullScenes.begin(), fullScenes.end());
+    if (full) c.sceneNames = allScenes;
     if (config.contains("compareTo")) {
         c.compareTo = names(config["compareTo"], "compareTo");
         for (std::size_t i = 0; i < c.compareTo.size(); ++i) try {
@@ -254,8 +264,9 @@ BenchConfig readBenchConfig(const std::string& path, const std::string& cacheDir
     }
     for (std::size_t i = 0; i < config["runs"].size(); ++i)
         for (const std::string& n : config["runs"][i].value("scenes", std::vector<std::string>{}))
-            if (std::find(c.sceneNames.begin(), c.sceneNames.end(), n) == c.sceneNames.end())
-                refuse("runs[" + std::to_string(i) + "].scenes", "'" + n + "' is not in the top-level \"scenes\"");
+            if (std::find(allScenes.begin(), allScenes.end(), n) == allScenes.end())
+                refuse("runs[" + std::to_string(i) + "].scenes",
+                       "'" + n + "' is not in the top-level \"scenes\" or \"fullScenes\"");
     for (std::size_t i = 0; i < c.sceneNames.size(); ++i) try {
             c.scenes.push_back(loadSceneForCli(c.sceneNames[i]));
         } catch (const UsageError& e) {
@@ -271,6 +282,10 @@ BenchConfig readBenchConfig(const std::string& path, const std::string& cacheDir
         if (r.contains("size")) size(r["size"], "reference.size", c.reference.width, c.reference.height);
     }
     c.reference = referenceSpecFrom(config.value("reference", json::object()), cacheDir);
+    if (!full)
+        c.settings.erase(
+            std::remove_if(c.settings.begin(), c.settings.end(), [](const BenchSetting& s) { return s.fullOnly; }),
+            c.settings.end());
     for (const BenchSetting& s : c.settings) {
         const int w = c.widthOf(s), h = c.heightOf(s);
         if ((c.reference.width > 0 && w % c.reference.width != 0) ||

@@ -27,6 +27,8 @@ struct BenchSetting {
     // Progressive techniques: the error against `full` after every timed frame (accumulation step), with
     // the GPU time so far: the convergence curve (record "curve").
     bool curve = false;
+    // Run only by `bounce bench --full` (run key "full": true).
+    bool fullOnly = false;
 
     bool runsOn(const std::string& scene) const;
 };
@@ -52,7 +54,9 @@ struct BenchConfig {
 
 // Reads the JSON config at `path` (format in `bounce bench --help`), expands the sweeps, checks every
 // technique, parameter, scene and size, and loads the scenes. Throws UsageError saying what is wrong.
-BenchConfig readBenchConfig(const std::string& path, const std::string& cacheDir);
+// `full` keeps the runs marked "full": true and adds the scenes of "fullScenes" (`bounce bench --full`);
+// they are checked either way.
+BenchConfig readBenchConfig(const std::string& path, const std::string& cacheDir, bool full = false);
 
 // "k=v k=v", or "defaults" for none: how records, tables and the CSV name a setting.
 std::string settingsText(const std::vector<std::string>& sets);

@@ -21,7 +21,7 @@ namespace bounce::app {
 namespace {
 
 const char* kUsage =
-    "usage: bounce bench --config bench/NAME.json --out DIR [--backend egl|osmesa] [--cache DIR]\n"
+    "usage: bounce bench --config bench/NAME.json --out DIR [--backend egl|osmesa] [--cache DIR] [--full]\n"
     "\n"
     "For each scene x technique x parameter setting of the config: render (warm-up frames, then timed\n"
     "frames: median, min, max GPU ms per pass), compare with the cached references (the technique's own\n"
@@ -48,6 +48,8 @@ const char* kUsage =
     "rays per scene with the GPU ray caster and with Embree (coherent and incoherent, as `bounce rays`) into\n"
     "a table of report.md and DIR/rays.json. Timings compare only within one run.\n"
     "\n"
+    "  --full      also the runs marked \"full\": true and the scenes of the top-level \"fullScenes\"\n"
+    "              (bench/study.json: the default run is the quick study, --full all of it)\n"
     "  --roofline  measure this machine's ceilings first when they are not cached (bounce probe); with\n"
     "              cached ceilings report.md gives every pass's bound and efficiency, and DIR/roofline.csv\n"
     "              and DIR/roofline.png (achieved GFLOP/s against flop/byte under the ceilings)\n";
@@ -56,7 +58,7 @@ const char* kUsage =
 
 int cmdBench(const Args& args)
 {
-    const Options o(args, {{"config"}, {"out"}, {"backend"}, {"cache"}, {"roofline", false}}, kUsage);
+    const Options o(args, {{"config"}, {"out"}, {"backend"}, {"cache"}, {"roofline", false}, {"full", false}}, kUsage);
     if (o.helpRequested()) {
         std::fputs(kUsage, stdout);
         return 0;
@@ -64,7 +66,7 @@ int cmdBench(const Args& args)
     if (!o.has("config") || !o.has("out"))
         throw UsageError("--config and --out are required\n\n" + std::string(kUsage));
     // Everything is checked before the first (long) render and before anything is written.
-    const BenchConfig config = readBenchConfig(o.get("config"), o.get("cache"));
+    const BenchConfig config = readBenchConfig(o.get("config"), o.get("cache"), o.has("full"));
     const std::filesystem::path out = o.get("out");
     std::filesystem::create_directories(out);
     auto context = createContextForCli(o.get("backend", "egl"));

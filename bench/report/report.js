@@ -28,6 +28,9 @@
   const techniques = [...new Set(records.map((r) => r.technique))];
   const colourOf = (technique) => technique === 'path-tracer' ? '#888' :
     PALETTE[techniques.indexOf(technique) % PALETTE.length];
+  // The cost of the image shown: its still frames (the mean of which it is) times the median frame; one
+  // frame for a record that predates the figure.
+  const imageMs = (r) => r.imageMs !== undefined ? num(r.imageMs) : num(r.totalMs);
   const fullError = (r) => num(r.error && r.error.full ? r.error.full.relativeRmse : NaN);
   const label = (r) => r.technique + ' (' + r.settings + ')';
   const fmt = (v, digits) => Number.isFinite(v) ? v.toPrecision(digits || 3) : String(v);
@@ -41,6 +44,13 @@
 
   // ---------------------------------------------------------------------------------------------
   // Log-log plots
+
+  // 0.05, 2, 500, 20k, 3M: short labels for log axes.
+  function tickText(v) {
+    if (v >= 1e6) return +(v / 1e6).toPrecision(2) + 'M';
+    if (v >= 1e3) return +(v / 1e3).toPrecision(2) + 'k';
+    return String(+v.toPrecision(2));
+  }
 
   function logRange(values) {
     const v = values.filter((x) => Number.isFinite(x) && x > 0);
@@ -58,10 +68,11 @@
     const y = (v) => H - B - (Math.log10(v) - Math.log10(y0)) / (Math.log10(y1) - Math.log10(y0)) * (H - T - B);
     const svg = el('svg:svg', { width: W, height: H, viewBox: `0 0 ${W} ${H}` });
     const axis = el('svg:g', { class: 'axis' });
+    // 1, 2, 5 per decade over up to two decades, else the decades alone.
     const ticks = (lo, hi) => {
-      const out = [];
+      const out = [], steps = Math.log10(hi / lo) > 2.5 ? [1] : [1, 2, 5];
       for (let e = Math.floor(Math.log10(lo)); e <= Math.ceil(Math.log10(hi)); ++e)
-        for (const m of [1, 2, 5]) {
+        for (const m of steps) {
           const v = m * Math.pow(10, e);
           if (v >= lo * 0.999 && v <= hi * 1.001) out.push(v);
         }
@@ -69,11 +80,11 @@
     };
     for (const v of ticks(x0, x1)) {
       axis.append(el('svg:line', { class: 'grid', x1: x(v), x2: x(v), y1: T, y2: H - B }));
-      axis.append(el('svg:text', { x: x(v), y: H - B + 14, 'text-anchor': 'middle' }, fmt(v, 2)));
+      axis.append(el('svg:text', { x: x(v), y: H - B + 14, 'text-anchor': 'middle' }, tickText(v)));
     }
     for (const v of ticks(y0, y1)) {
       axis.append(el('svg:line', { class: 'grid', x1: L, x2: W - R, y1: y(v), y2: y(v) }));
-      axis.append(el('svg:text', { x: L - 4, y: y(v) + 4, 'text-anchor': 'end' }, fmt(v, 2)));
+      axis.append(el('svg:text', { x: L - 4, y: y(v) + 4, 'text-anchor': 'end' }, tickText(v)));
     }
     axis.append(el('svg:path', { d: `M${L},${T}V${H - B}H${W - R}`, fill: 'none' }));
     axis.append(el('svg:text', { x: (L + W - R) / 2, y: H - 8, 'text-anchor': 'middle' }, xLabel));
@@ -85,8 +96,8 @@
 
   // The runs no other run beats in both time and error, fastest first.
   function paretoFront(runs) {
-    const pts = runs.filter((r) => Number.isFinite(fullError(r)) && r.totalMs > 0)
-      .sort((a, b) => a.totalMs - b.totalMs || fullError(a) - fullError(b));
+    const pts = runs.filter((r) => Number.isFinite(fullError(r)) && imageMs(r) > 0)
+      .sort((a, b) => imageMs(a) - imageMs(b) || fullError(a) - fullError(b));
     const front = [];
     for (const r of pts) if (!front.length || fullError(r) < fullError(front[front.length - 1])) front.push(r);
     return front;
@@ -98,24 +109,25 @@
     const runs = records.filter((r) => r.scene === scene);
     const box = document.getElementById('plot');
     box.replaceChildren();
-    const plot = logAxes(runs.map((r) => r.totalMs), runs.map(fullError), 'GPU ms per frame (path tracer: CPU ms)',
-      'relative RMSE against full');
+    const plot = logAxes(runs.map(imageMs), runs.map(fullError),
+      'GPU ms to the image: frames averaged x median ms (path tracer: CPU ms)', 'relative RMSE against full');
     const clampY = (v) => Number.isFinite(v) ? v : NaN;
-    const tracer = runs.filter((r) => r.technique === 'path-tracer').sort((a, b) => a.totalMs - b.totalMs);
+    const tracer = runs.filter((r) => r.technique === 'path-tracer').sort((a, b) => imageMs(a) - imageMs(b));
     if (tracer.length > 1)
       plot.svg.append(el('svg:polyline', { class: 'tracer',
-        points: tracer.map((r) => `${plot.x(r.totalMs)},${plot.y(fullError(r))}`).join(' ') }));
+        points: tracer.map((r) => `${plot.x(imageMs(r))},${plot.y(fullError(r))}`).join(' ') }));
     const front = paretoFront(runs);
     if (front.length > 1)
       plot.svg.append(el('svg:polyline', { class: 'pareto',
-        points: front.map((r) => `${plot.x(r.totalMs)},${plot.y(fullError(r))}`).join(' ') }));
+        points: front.map((r) => `${plot.x(imageMs(r))},${plot.y(fullError(r))}`).join(' ') }));
     for (const r of runs) {
       const e = clampY(fullError(r));
       // A failed render (infinite error) sits on the top edge, hollow, so that it is still one point per run.
       const cy = Number.isFinite(e) && e > 0 ? plot.y(e) : 12;
-      const c = el('svg:circle', { class: 'run', r: 5, cx: plot.x(Math.max(r.totalMs, 1e-6)), cy,
+      const c = el('svg:circle', { class: 'run', r: 5, cx: plot.x(Math.max(imageMs(r), 1e-6)), cy,
         fill: Number.isFinite(e) ? colourOf(r.technique) : 'none', 'data-index': r.index });
-      c.append(el('svg:title', {}, `${label(r)}\n${fmt(r.totalMs)} ms, relative RMSE ${fmt(e)}` +
+      c.append(el('svg:title', {}, `${label(r)}\n${fmt(imageMs(r))} ms to the image (${r.imageFrames || 1} frames of ` +
+        `${fmt(num(r.totalMs))} ms), relative RMSE ${fmt(e)}` +
         (front.includes(r) ? '\nPareto front' : '')));
       c.addEventListener('click', () => selectRun(r));
       plot.svg.append(c);
@@ -138,8 +150,8 @@
     const curves = records.filter((r) => r.scene === scene && Array.isArray(r.curve) && r.curve.length);
     if (!curves.length) return;
     const tracer = records.filter((r) => r.scene === scene && r.technique === 'path-tracer')
-      .sort((a, b) => a.totalMs - b.totalMs);
-    const xs = tracer.map((r) => r.totalMs), ys = tracer.map(fullError);
+      .sort((a, b) => imageMs(a) - imageMs(b));
+    const xs = tracer.map(imageMs), ys = tracer.map(fullError);
     for (const r of curves) for (const p of r.curve) { xs.push(num(p.elapsedMs)); ys.push(num(p.relativeRmseFull)); }
     box.append(el('h3', {}, 'Convergence of progressive runs'));
     const plot = logAxes(xs, ys, 'ms so far (GPU; path tracer: CPU)', 'relative RMSE against full');
@@ -148,7 +160,7 @@
       if (colour) p.setAttribute('style', `fill:none;stroke:${colour};stroke-width:1.5`);
       plot.svg.append(p);
     };
-    if (tracer.length) line(tracer.map((r) => [r.totalMs, fullError(r)]), 'tracer');
+    if (tracer.length) line(tracer.map((r) => [imageMs(r), fullError(r)]), 'tracer');
     for (const r of curves) {
       const pts = r.curve.map((p) => [num(p.elapsedMs), num(p.relativeRmseFull)])
         .filter(([a, b]) => a > 0 && b > 0 && Number.isFinite(a) && Number.isFinite(b));
@@ -243,6 +255,10 @@
     run: null, stats: null };
 
   // Draws the canvas from A and B in the current mode; the one transform (zoom, pan) applies to all modes.
+  // Draws the canvas from A and B in the current mode; the one transform (zoom, pan) applies to all modes.
+  // Images of different sizes (a render and its smaller reference) are shown at the larger size, the
+  // smaller one's pixels repeated; the error is taken as the bench takes it, between the larger one
+  // box-downsampled and the smaller one, and each of its pixels covers its block.
   function draw() {
     const canvas = document.getElementById('view');
     const info = document.getElementById('image-info');
@@ -250,32 +266,38 @@
     if (!a || !b) return;
     const pair = sameSize(a, b);
     if (!pair) { info.textContent = `A is ${a.width}x${a.height}, B ${b.width}x${b.height}: no common size.`; return; }
-    const [A, B] = pair;
-    const w = A.width, h = A.height;
+    const [A, B] = pair; // at the smaller size
+    const big = a.width >= b.width ? a : b;
+    const w = big.width, h = big.height, f = w / A.width;
     if (canvas.width !== w || canvas.height !== h) { canvas.width = w; canvas.height = h; fit(); }
+    const errors = new Float32Array(A.width * A.height);
+    let sum = 0, max = 0, bad = 0;
+    for (let p = 0; p < errors.length; ++p) {
+      const e = errors[p] = pixelError(A, B, p);
+      if (Number.isFinite(e)) { sum += e; max = Math.max(max, e); } else ++bad;
+    }
     const ctx = canvas.getContext('2d');
     const out = ctx.createImageData(w, h);
     const gain = Math.pow(2, view.exposure);
     const splitX = Math.round(view.split * w);
-    let sum = 0, max = 0, bad = 0;
     for (let y = 0; y < h; ++y)
       for (let x = 0; x < w; ++x) {
-        const p = y * w + x;
-        const e = pixelError(A, B, p);
-        if (Number.isFinite(e)) { sum += e; max = Math.max(max, e); } else ++bad;
+        const p = y * w + x, small = Math.floor(y / f) * A.width + Math.floor(x / f);
         let rgb;
-        if (view.mode === 'error') rgb = rampColour(e / view.errorScale);
+        if (view.mode === 'error') rgb = rampColour(errors[small] / view.errorScale);
         else {
-          const src = view.mode === 'b' || (view.mode === 'split' && x >= splitX) ? B : A;
-          rgb = [0, 1, 2].map((c) => srgb(src.rgb[p * 3 + c] * gain));
+          const src = view.mode === 'b' || (view.mode === 'split' && x >= splitX) ? b : a;
+          const q = src.width === w ? p : small;
+          rgb = [0, 1, 2].map((c) => srgb(src.rgb[q * 3 + c] * gain));
         }
         out.data.set([rgb[0], rgb[1], rgb[2], 255], p * 4);
       }
     ctx.putImageData(out, 0, 0);
-    view.stats = { mean: sum / (w * h - bad || 1), max, nonFinite: bad, width: w, height: h };
+    view.stats = { mean: sum / (errors.length - bad || 1), max, nonFinite: bad, width: A.width, height: A.height };
     const shown = { a: 'A', b: 'B', split: 'A left, B right', error: 'error map' }[view.mode];
     info.replaceChildren(
-      document.createTextNode(`${shown}, ${w}x${h}` + (a.width !== w || b.width !== w ? ' (box-downsampled to the smaller)' : '') +
+      document.createTextNode(`${shown}: A ${a.width}x${a.height}, B ${b.width}x${b.height}` +
+        (f > 1 ? `; the error between the larger box-downsampled to ${A.width}x${A.height} and the smaller` : '') +
         `. Per-pixel relative error: mean ${fmt(view.stats.mean)}, max ${fmt(max)}` +
         (bad ? `, ${bad} non-finite` : '') + '. '),
       el('a', { href: view.a + '.exr' }, 'A (EXR)'), document.createTextNode(' '),
@@ -360,7 +382,8 @@
     box.append(el('h3', {}, `${label(r)} on ${r.scene}, ${r.size}`));
     if (num(r.nonFiniteValues) > 0) box.append(el('p', { class: 'failed' }, `${r.nonFiniteValues} NaN/Inf values`));
     const errs = Object.entries(r.error || {}).map(([paths, e]) => `${paths} ${fmt(num(e.relativeRmse))}`);
-    box.append(el('p', {}, `${fmt(r.totalMs)} ms per frame; relative RMSE: ${errs.join(', ')}`));
+    box.append(el('p', {}, `${fmt(num(r.totalMs))} ms per frame, ${r.imageFrames || 1} frames averaged: ` +
+      `${fmt(imageMs(r))} ms to the image; relative RMSE: ${errs.join(', ')}`));
     if (r.command) box.append(el('code', { class: 'command' }, r.command));
     const passes = r.passes || [];
     if (passes.length) {
@@ -406,14 +429,15 @@
     const t = document.getElementById('run-table');
     t.replaceChildren();
     const head = el('tr');
-    for (const h of ['#', 'technique', 'parameters', 'size', 'light paths', 'ms', 'rel. RMSE (own)', 'rel. RMSE (full)'])
+    for (const h of ['#', 'technique', 'parameters', 'size', 'light paths', 'ms per frame', 'frames', 'ms to the image',
+      'rel. RMSE (own)', 'rel. RMSE (full)'])
       head.append(el('th', {}, h));
     t.append(head);
     for (const r of records.filter((x) => x.scene === scene)) {
       const own = r.error && r.error[r.lightPaths] ? num(r.error[r.lightPaths].relativeRmse) : NaN;
       const tr = el('tr', { class: 'run-row', 'data-index': r.index });
       for (const [v, cls] of [[r.index], [r.technique, 'text'], [r.settings, 'text'], [r.size], [r.lightPaths],
-        [fmt(r.totalMs)], [fmt(own)], [fmt(fullError(r))]])
+        [fmt(num(r.totalMs))], [r.imageFrames || 1], [fmt(imageMs(r))], [fmt(own)], [fmt(fullError(r))]])
         tr.append(el('td', cls ? { class: cls } : {}, String(v)));
       tr.addEventListener('click', () => selectRun(r));
       t.append(tr);

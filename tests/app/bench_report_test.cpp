@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "app/bench_config.h"
 #include "app/bench_images.h"
 #include "app/bench_report.h"
 #include "app/bench_run.h"
@@ -147,6 +148,31 @@ TEST(BenchReport, ImageScriptsCarryHalfFloatsInBase64)
     EXPECT_EQ(h[4] & 0x7c00, 0x7c00);
     EXPECT_NE(h[4] & 0x03ff, 0) << "NaN, not infinity";
     EXPECT_EQ(h[5], 0x3800);
+}
+
+// bench/study.json's split: runs marked "full" and the scenes of "fullScenes" only with --full, yet checked
+// (a typo in them fails the quick run too).
+TEST(BenchReport, FullRunsAndScenesOnlyWithFull)
+{
+    const fs::path dir = fs::path(BOUNCE_TEST_OUT) / "bench-full";
+    fs::create_directories(dir);
+    const fs::path config = dir / "split.json";
+    std::ofstream(config) << R"({"scenes": ["cornell-spot"], "fullScenes": ["cornell-point"],
+        "runs": [{"technique": "direct"}, {"technique": "rsm", "full": true, "scenes": ["cornell-point"]}]})";
+    const BenchConfig quick = readBenchConfig(config.string(), (dir / "cache").string());
+    EXPECT_EQ(quick.sceneNames, std::vector<std::string>{"cornell-spot"});
+    ASSERT_EQ(quick.settings.size(), 1u);
+    EXPECT_EQ(quick.settings[0].technique, "direct");
+    const BenchConfig full = readBenchConfig(config.string(), (dir / "cache").string(), true);
+    EXPECT_EQ(full.sceneNames, (std::vector<std::string>{"cornell-spot", "cornell-point"}));
+    EXPECT_EQ(full.scenes.size(), 2u);
+    ASSERT_EQ(full.settings.size(), 2u);
+    EXPECT_TRUE(full.settings[1].fullOnly);
+
+    std::ofstream(config) << R"({"scenes": ["cornell-spot"],
+        "runs": [{"technique": "direct"}, {"technique": "rsm", "full": true, "set": {"vpl": 4}}]})";
+    EXPECT_THROW(readBenchConfig(config.string(), (dir / "cache").string()), std::exception)
+        << "a full run's typo fails the quick run";
 }
 
 } // namespace
