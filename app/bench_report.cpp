@@ -3,10 +3,12 @@
 #include "app/bench_roofline.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <iomanip>
+#include <limits>
 #include <sstream>
 
 #include "app/render_job.h"
@@ -138,6 +140,34 @@ void counterTable(std::ostringstream& md, const std::vector<const nlohmann::json
     }
 }
 
+// The rows no other row of the scene beats in both the time of its image (its still frames times the
+// median frame) and the relative RMSE against `full`, fastest first: what report.html's plot dashes.
+void paretoTable(std::ostringstream& md, const std::vector<const nlohmann::json*>& recs)
+{
+    const auto ms = [](const nlohmann::json& r) { return r.value("imageMs", r["totalMs"].get<double>()); };
+    const auto err = [](const nlohmann::json& r) {
+        const nlohmann::json& e = r["error"]["full"]["relativeRmse"];
+        return e.is_number() ? e.get<double>() : std::numeric_limits<double>::infinity();
+    };
+    std::vector<const nlohmann::json*> sorted;
+    for (const nlohmann::json* r : recs)
+        if (std::isfinite(err(*r))) sorted.push_back(r);
+    std::sort(sorted.begin(), sorted.end(), [&](const nlohmann::json* a, const nlohmann::json* b) {
+        return ms(*a) < ms(*b) || (ms(*a) == ms(*b) && err(*a) < err(*b));
+    });
+    md << "\n### Pareto front\n\n| technique | parameters | ms to the image | frames | rel. RMSE (full) |\n"
+          "|---|---|---:|---:|---:|\n";
+    double best = std::numeric_limits<double>::infinity();
+    for (const nlohmann::json* r : sorted) {
+        if (err(*r) >= best) continue;
+        best = err(*r);
+        char buf[512];
+        std::snprintf(buf, sizeof buf, "| %s | %s | %.1f | %d | %.4f |\n", (*r)["technique"].get<std::string>().c_str(),
+                      (*r)["settings"].get<std::string>().c_str(), ms(*r), r->value("imageFrames", 1), err(*r));
+        md << buf;
+    }
+}
+
 // The ray-casting table: Embree's and the GPU's rays per second on the same rays.
 std::string raysMarkdown(const std::vector<SceneRays>& rays)
 {
@@ -185,6 +215,7 @@ std::string markdownText(const BenchConfig& config, const std::vector<BenchRow>&
         md << "\n### per-pass GPU ms\n\n";
         passTable(md, recs);
         counterTable(md, recs);
+        paretoTable(md, recs);
         md << "\n";
     }
     md << "![speed against error](speed_error.png)\n";

@@ -286,10 +286,6 @@ BenchRow runSetting(const BenchConfig& config, const BenchSetting& s, const std:
     row.record["settings"] = row.settings;
     row.passes = passesText(row.record["passes"]);
     row.totalMs = row.record["totalMs"].get<double>();
-    // The image is the mean of the still frames since the view was last changed (every frame of the run, or
-    // the timed ones after a curve's restart): its cost is theirs, the figure speed-against-error plots.
-    row.record["imageFrames"] = r.stillFrames() + 1;
-    row.record["imageMs"] = row.totalMs * double(r.stillFrames() + 1);
     compareWithReferences(config, sceneName, scene, r, w, h, cache, row);
     directLightError(config, sceneName, scene, f, w, h, config.warmupOf(s) + config.framesOf(s), cache, row);
     if (!s.baseline.empty()) compareWithBaseline(s, scene, r, w, h, cache, row);

@@ -122,6 +122,10 @@ nlohmann::json runRecord(const gl::ContextInfo& ctx, const std::string& scene, g
     j["passes"] = passes;
     if (ceilings) j["ceilings"] = ceilings->toJson();
     j["totalMs"] = total;
+    // The image is the mean of the still frames since the view was last changed (every frame, or the timed
+    // ones after a progressive technique's restart): its GPU time is theirs, what speed against error plots.
+    j["imageFrames"] = r.stillFrames() + 1;
+    j["imageMs"] = total * double(r.stillFrames() + 1);
     nlohmann::json counters = nlohmann::json::object();
     for (const gl::Counter& c : r.counters()) counters[c.name] = c.value;
     j["counters"] = counters;

@@ -565,6 +565,19 @@ TEST(Cli, BenchWritesTheFourFilesWithTheirFigures)
             for (const std::string& f : front)
                 EXPECT_NE(printed.find(f + " "), std::string::npos) << f << " in " << printed;
             EXPECT_EQ(std::count(printed.begin(), printed.end(), ';') + 1, std::ptrdiff_t(front.size())) << printed;
+            // report.md's front (time of the image, one frame each here, against `full`): the same rows.
+            if (column != "rel_rmse_full") continue;
+            const std::size_t section = report.find("### Pareto front", report.find("## " + scene));
+            ASSERT_NE(section, std::string::npos) << report;
+            const std::string table =
+                report.substr(section, report.find("\n\n", report.find("|---", section)) - section);
+            EXPECT_EQ(std::count(table.begin(), table.end(), '\n') - 3, std::ptrdiff_t(front.size())) << table;
+            for (const std::string& f : front) {
+                const std::string technique = f.substr(0, f.find(" (")), params = f.substr(f.find(" (") + 2);
+                EXPECT_NE(table.find("| " + technique + " | " + params.substr(0, params.size() - 1) + " |"),
+                          std::string::npos)
+                    << f << " in " << table;
+            }
         }
 }
 
