@@ -130,9 +130,12 @@
         `${fmt(num(r.totalMs))} ms), relative RMSE ${fmt(e)}` +
         (front.includes(r) ? '\nPareto front' : '')));
       c.addEventListener('click', () => selectRun(r));
+      c.addEventListener('mouseenter', () => {
+        document.getElementById('hover').textContent = c.firstChild.textContent.replace(/\n/g, ' | ');
+      });
       plot.svg.append(c);
     }
-    box.append(plot.svg);
+    box.append(plot.svg, el('p', { id: 'hover', class: 'hint' }, '\u00a0'));
     const legend = el('p', { class: 'hint' });
     for (const t of [...new Set(runs.map((r) => r.technique))]) {
       const s = el('span', { class: 'swatch' });
@@ -385,6 +388,12 @@
     box.append(el('p', {}, `${fmt(num(r.totalMs))} ms per frame, ${r.imageFrames || 1} frames averaged: ` +
       `${fmt(imageMs(r))} ms to the image; relative RMSE: ${errs.join(', ')}`));
     if (r.command) box.append(el('code', { class: 'command' }, r.command));
+    if (r.image) {
+      // The bench's own tone-mapped PNG (exposure 0), linked to the EXR it was made from.
+      const link = el('a', { href: r.image + '.exr', title: 'the EXR (linear radiance)' });
+      link.append(el('img', { src: r.image + '.png', alt: label(r), class: 'thumbnail' }));
+      box.append(link);
+    }
     const passes = r.passes || [];
     if (passes.length) {
       const total = passes.reduce((s, p) => s + num(p.medianMs), 0) || 1;

@@ -2,7 +2,7 @@
 // playwright-core from package.json) and checks it as a reader would use it. Exit status 0 when every
 // check holds; otherwise each failure is printed and the status is 1.
 //
-//   node tests/app/report_browser.mjs DIR [--screenshot FILE.png]
+//   node tests/app/report_browser.mjs DIR [--screenshot FILE.png [--scene NAME]]
 //
 // The expectations come from DIR/results.json and the image files, read here, not from the page:
 // - the page loads with no console error, no uncaught exception and no failed request (a broken link or
@@ -20,8 +20,10 @@ const args = process.argv.slice(2);
 const dir = args[0];
 const shotAt = args.indexOf('--screenshot');
 const screenshot = shotAt >= 0 ? args[shotAt + 1] : null;
+const sceneAt = args.indexOf('--scene');
+const shotScene = sceneAt >= 0 ? args[sceneAt + 1] : null;
 if (!dir || !fs.existsSync(path.join(dir, 'report.html'))) {
-  console.error('usage: node report_browser.mjs DIR [--screenshot FILE.png] (DIR holds report.html)');
+  console.error('usage: node report_browser.mjs DIR [--screenshot FILE.png [--scene NAME]] (DIR holds report.html)');
   process.exit(2);
 }
 const executablePath = process.env.BOUNCE_CHROMIUM || '/usr/bin/chromium';
@@ -81,9 +83,12 @@ async function checkPage() {
           check(id && fs.existsSync(path.join(dir, id + ext)), `${scene}: ${id}${ext} is missing`);
   }
 
-  // Links: every href on the page (EXRs of the displayed images, the stylesheet) names a file.
-  const hrefs = await page.evaluate(() => [...document.querySelectorAll('[href]')].map((e) => e.getAttribute('href')));
+  // Links: every href and src on the page (EXRs and PNGs of the images, the stylesheet, the scripts)
+  // names a file.
+  const hrefs = await page.evaluate(() => [...document.querySelectorAll('[href], [src]')]
+    .map((e) => e.getAttribute('href') || e.getAttribute('src')));
   for (const h of hrefs) check(fs.existsSync(path.join(dir, h)), `link ${h} names no file`);
+  check(hrefs.some((h) => h.endsWith('.png')), 'the page shows no PNG');
   check(hrefs.some((h) => h.endsWith('.exr')), 'the viewer links no EXR');
 
   // Decoding: at exposure 0 the viewer's A is the bench's own tone-mapped PNG of the same image (C++,
@@ -130,8 +135,19 @@ async function checkPage() {
   check(self.length > 0 && bad === 0, `the error map of ${imageA} against itself is not zero at ${bad} channel values`);
 
   if (screenshot) {
+    // The README's picture: a scene afresh (its first render beside the full reference), split, the best
+    // run of the scene hovered.
+    const scene = shotScene || scenes[0];
+    await page.locator('#scenes button', { hasText: scene }).first().click();
+    await loaded();
+    const best = results.filter((r) => r.scene === scene && r.technique !== 'path-tracer' && r.image)
+      .sort((a, b) => Number(a.error.full.relativeRmse) - Number(b.error.full.relativeRmse))[0];
+    if (best) {
+      await page.locator(`#plot circle.run[data-index="${results.indexOf(best)}"]`).click();
+      await loaded();
+      await page.locator(`#plot circle.run[data-index="${results.indexOf(best)}"]`).hover();
+    }
     await page.selectOption('#mode', 'split');
-    await page.locator('#plot circle.run').first().hover();
     await page.screenshot({ path: screenshot, fullPage: false });
   }
 }
