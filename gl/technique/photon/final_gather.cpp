@@ -80,9 +80,8 @@ Interpolation::Interpolation(bool asCompute)
     : asCompute_(asCompute),
       program_(asCompute ? Program::compute("photon.interpolate", "technique/photon/photon_interpolate.comp")
                          : Program::graphics("photon.interpolate", "frame/fullscreen.vert",
-                                             "technique/photon/photon_interpolate.frag")),
-      framebuffer_("photon.interpolate")
-{}
+                                             "technique/photon/photon_interpolate.frag"))
+{} // the fragment form's framebuffer is made in run(), on the frame's indirect texture; the compute form has none
 
 bool Interpolation::defaultAsCompute()
 {
