@@ -1,5 +1,7 @@
 #include "gl/renderer.h"
 
+#include <algorithm>
+
 #include <stdexcept>
 
 #include "core/sampling.h"
@@ -101,9 +103,13 @@ void Renderer::renderCoarseIndirect()
         coarseLights_ = frame_->version().lights;
     }
     coarse_->beginFrame();
+    coarse_->setAreaLightsInDirect(frame_->areaLightsInDirect(), technique_->readsAreaShadowMaps());
     coarse_->renderShadowMaps(timers_);
     coarse_->renderGBuffer(timers_);
-    coarse_->renderDirect(timers_);
+    // The viewer sees the full frame's direct light: the coarse frame draws its own only for a technique
+    // that reads it.
+    if (std::find(info_->reads.begin(), info_->reads.end(), GBufferChannel::Direct) != info_->reads.end())
+        coarse_->renderDirect(timers_);
     coarse_->clearIndirect();
     coarseTechnique_->render(*coarse_, timers_);
     upsample_->run(*coarse_, *frame_, timers_);

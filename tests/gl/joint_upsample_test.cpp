@@ -109,6 +109,22 @@ TEST_F(JointUpsampleTest, CoarseIndirectStaysCloseToFullResolution)
     r.setIndirectScale(1);
     r.renderFrame();
     EXPECT_EQ(core::relativeRmse(r.image(), fullImage), 0.0) << "scale 1 is the full-resolution technique";
+
+    // The coarse frame draws no direct light of its own (rsm reads none; the viewer sees the full frame's):
+    // the frame's direct pass shades as many fragments with a coarse technique as without.
+    const auto directFragments = [](gl::Renderer& x) {
+        for (const gl::PassStat& p : x.timers().stats())
+            if (p.pass == "direct") return p.work.fragmentInvocations;
+        return 0.0;
+    };
+    gl::Renderer c(scene, "rsm", smallShadows(), rsm, 64, 64);
+    c.setIndirectScale(2);
+    c.renderFrame();
+    gl::Renderer f(scene, "rsm", smallShadows(), rsm, 64, 64);
+    f.renderFrame();
+    if (directFragments(f) > 0) {
+        EXPECT_EQ(directFragments(c), directFragments(f)) << "fragments of the direct pass";
+    }
     EXPECT_THROW(r.setIndirectScale(0), std::invalid_argument);
     EXPECT_THROW(r.setIndirectScale(17), std::invalid_argument);
 }
