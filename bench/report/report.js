@@ -11,7 +11,7 @@
 
   const SVG = 'http://www.w3.org/2000/svg';
   const PALETTE = ['#1f77b4', '#ff7f0e', '#2ca02c', '#d62728', '#9467bd', '#8c564b', '#e377c2', '#17becf',
-    '#bcbd22', '#7f7f7f', '#393b79', '#637939'];
+    '#bcbd22', '#e6550d', '#393b79', '#637939'];
 
   // ---------------------------------------------------------------------------------------------
   // Records
@@ -164,14 +164,22 @@
       plot.svg.append(p);
     };
     if (tracer.length) line(tracer.map((r) => [imageMs(r), fullError(r)]), 'tracer');
-    for (const r of curves) {
+    // One colour per curve (two runs of one technique differ in their settings), named below the plot.
+    const legend = el('p', { class: 'hint' });
+    curves.forEach((r, i) => {
       const pts = r.curve.map((p) => [num(p.elapsedMs), num(p.relativeRmseFull)])
         .filter(([a, b]) => a > 0 && b > 0 && Number.isFinite(a) && Number.isFinite(b));
-      line(pts, 'curve', colourOf(r.technique));
-      const t = el('svg:title', {}, label(r));
-      plot.svg.lastChild.append(t);
-    }
-    box.append(plot.svg);
+      const colour = PALETTE[(techniques.indexOf(r.technique) + i) % PALETTE.length];
+      line(pts, 'curve', colour);
+      plot.svg.lastChild.append(el('svg:title', {}, label(r)));
+      const sw = el('span', { class: 'swatch' });
+      sw.style.background = colour;
+      legend.append(sw, document.createTextNode(label(r) + '  '));
+    });
+    const sw = el('span', { class: 'swatch' });
+    sw.style.background = '#999';
+    legend.append(sw, document.createTextNode('path tracer'));
+    box.append(plot.svg, legend);
   }
 
   // ---------------------------------------------------------------------------------------------
