@@ -527,11 +527,14 @@ TEST_F(IsrMultiresTest, AutoFormsFollowTheProbesCeilings)
 // The gathers' two forms (the paper's stenciled quad, and the compute pass over the listed valid fragments
 // that a GPU runs) at a size with partial patches at every level, with gathers split over several draws
 // (hisr's default tree under llvmpipe's loop budget, 1024 VPLs in uniform blocks: each compute dispatch
-// adds to what the last wrote): the same fragments, clusters and light.
+// adds to what the last wrote): the same fragments, clusters and light. hisr's compute walk shares each
+// fragment among 16 invocations by default (one top patch in 16 each, summed in lane order), and among 64,
+// more than a draw's top patches under llvmpipe's budget: lanes without a patch add nothing.
 TEST_F(IsrMultiresTest, GatherAsComputeEqualsGatherAsFragments)
 {
     const core::Scene scene = core::makeCornell("cornell-spot");
     for (const auto& [technique, sets] : {std::pair<std::string, Sets>{"hisr", {}},
+                                          {"hisr", {{"gatherLanes", "64"}, {"topGrid", "4"}}},
                                           {"multires-gather", {{"vpls", "1024"}}},
                                           {"isr", {{"minLevel", "1"}}}}) {
         SCOPED_TRACE(technique);

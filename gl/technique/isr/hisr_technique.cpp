@@ -46,14 +46,16 @@ namespace {
 class Hisr final : public Technique {
 public:
     Hisr(Frame& frame, const RsmSettings& rsm, double tau, int topGrid, float lightDepthThreshold,
-         float lightNormalThreshold, int discontinuityLevel, const MultiresSettings& multires, bool gatherAsFragments)
+         float lightNormalThreshold, int discontinuityLevel, const MultiresSettings& multires, bool gatherAsFragments,
+         int gatherLanes)
         : rsm_(rsm),
           tree_(topGrid, lightDepthThreshold, lightNormalThreshold),
           tau_(tau),
           discontinuityLevel_(discontinuityLevel),
           gather_(frame, multires, gatherAsFragments),
-          program_(
-              gather_.gatherProgram("hisr.gather", "technique/isr/hisr_gather.frag", "technique/isr/hisr_gather.comp")),
+          lanes_(gather_.gatherAsFragments() ? 1 : gatherLanes),
+          program_(gather_.gatherProgram("hisr.gather", "technique/isr/hisr_gather.frag",
+                                         "technique/isr/hisr_gather.comp", {{"HISR_LANES", std::to_string(lanes_)}})),
           stats_("hisr.stats", 4 * sizeof(unsigned))
     {}
 
@@ -95,7 +97,7 @@ public:
                 p.set("rootBegin", i * perDraw);
                 p.set("rootEnd", std::min(roots, (i + 1) * perDraw));
             },
-            cost);
+            cost, lanes_);
         clustersPerFragment_ = gatheredPerFragment();
         gather_.upsample(frame, timers);
     }
@@ -137,6 +139,7 @@ private:
     double tau_;
     int discontinuityLevel_;
     MultiresGather gather_;
+    int lanes_; // invocations per fragment of the compute form (hisr_gather.comp)
     Program program_;
     Buffer stats_;
     double clustersPerFragment_ = 0.0;
@@ -179,6 +182,10 @@ TechniqueInfo hisrTechniqueInfo()
     };
     info.params.back().allowAuto = true;
     info.params.push_back(MultiresGather::gatherFormParam());
+    info.params.push_back(choiceParam(
+        "gatherLanes", {"1", "4", "16", "64"}, 2,
+        "compute gather: invocations that share one fragment, each walking every n-th top patch (a GPU needs "
+        "many to hide the walk's fetches: the valid fragments are few)"));
     for (const ParamDecl& p : rsmParams()) info.params.push_back(p);
     for (const ParamDecl& p : multiresParams()) info.params.push_back(p);
     info.create = [](Frame& frame, const ParamValues& v) -> std::unique_ptr<Technique> {
@@ -189,7 +196,8 @@ TechniqueInfo hisrTechniqueInfo()
         const bool asFragments = MultiresGather::gatherAsFragmentsFrom(v, hisrTechniqueInfo().params);
         return std::make_unique<Hisr>(frame, rsm, v.get("tau"), v.getInt("topGrid"),
                                       float(v.get("lightDepthThreshold")), float(v.get("lightNormalThreshold")), level,
-                                      multiresSettingsFrom(v), asFragments);
+                                      multiresSettingsFrom(v), asFragments,
+                                      std::stoi(v.getChoice(hisrTechniqueInfo().params, "gatherLanes")));
     };
     return info;
 }

@@ -131,7 +131,8 @@ void MultiresGather::markValidFragments(Frame& frame, PassTimers& timers)
 }
 
 void MultiresGather::gather(Frame& frame, Program& program, PassTimers& timers, int draws,
-                            const std::function<void(Program&, int)>& setupDraw, const PassCost& perFragment)
+                            const std::function<void(Program&, int)>& setupDraw, const PassCost& perFragment,
+                            int invocationsPerFragment)
 {
     // The quad: the stencil test masks the shader of every fragment that is not valid, but the driver may
     // count those as invocations (llvmpipe counts the whole flattened buffer): the work is the valid
@@ -147,8 +148,8 @@ void MultiresGather::gather(Frame& frame, Program& program, PassTimers& timers, 
         perInvocation.bytesFixed = flattened * 16;
     }
     auto t = timers.scope("gather", perInvocation);
-    const double valid =
-        asFragments_ ? gatherAsQuad(frame, program, draws, setupDraw) : gatherAsList(frame, program, draws, setupDraw);
+    const double valid = asFragments_ ? gatherAsQuad(frame, program, draws, setupDraw)
+                                      : gatherAsList(frame, program, draws, setupDraw, invocationsPerFragment);
     PassCost work;
     work.flopsFixed = valid * draws * perFragment.flops;
     work.fetchesFixed = valid * draws * perFragment.fetches;
@@ -188,7 +189,7 @@ double MultiresGather::gatherAsQuad(Frame& frame, Program& program, int draws,
 }
 
 double MultiresGather::gatherAsList(Frame& frame, Program& program, int draws,
-                                    const std::function<void(Program&, int)>& setupDraw)
+                                    const std::function<void(Program&, int)>& setupDraw, int invocationsPerFragment)
 {
     const int width = illumination_.width(), height = illumination_.height();
     if (!validList_.id()) {
@@ -208,12 +209,16 @@ double MultiresGather::gatherAsList(Frame& frame, Program& program, int draws,
     // The list, and the VPLs and clusters written by compute passes, before the gather reads them.
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_UNIFORM_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     illumination_.bindImage(0, GL_READ_WRITE);
-    // Each dispatch covers the longest list there can be; invocations past its count return at once.
-    const GLuint groups = GLuint((std::size_t(width) * std::size_t(height) + 63) / 64);
+    // Each dispatch covers the longest list there can be; invocations past its count return at once. Rows
+    // of at most 65,535 groups (valid_list.glsl: listInvocation), the least a driver allows per axis.
+    const std::size_t groups =
+        (std::size_t(width) * std::size_t(height) * std::size_t(std::max(invocationsPerFragment, 1)) + 63) / 64;
+    const std::size_t row = std::min<std::size_t>(groups, 65535);
+    const std::size_t rows = (groups + row - 1) / row;
     for (int i = 0; i < draws; ++i) {
         if (setupDraw) setupDraw(program, i);
         program.use();
-        glDispatchCompute(groups, 1, 1);
+        glDispatchCompute(GLuint(row), GLuint(rows), 1);
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT); // the next dispatch adds to what this one wrote
     }
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT); // the upsampling samples the buffer

@@ -72,8 +72,11 @@ public:
     // As a compute pass (gatherAsFragments() false) the valid fragments are first listed from the stencil
     // pass's marks (multires_valid_list.comp), then `program` is dispatched over the list `draws` times,
     // each invocation adding into its fragment's rgb: the same fragments get the same light.
+    // invocationsPerFragment: consecutive invocations of the compute form that share one listed fragment
+    // (hisr_gather.comp's lanes); the compute shader divides its index (valid_list.glsl) by it.
     void gather(Frame& frame, Program& program, PassTimers& timers, int draws = 1,
-                const std::function<void(Program&, int)>& setupDraw = {}, const PassCost& perFragment = {});
+                const std::function<void(Program&, int)>& setupDraw = {}, const PassCost& perFragment = {},
+                int invocationsPerFragment = 1);
     // Which form of the gather to run (preferFragmentPasses(), gl/probe/machine_probe.h: by the probe's
     // ceilings when known): the paper's stenciled quad on a software rasteriser, where fragment work is as
     // fast as compute work, and a compute pass elsewhere: a GPU may shade fragments on a small part of its
@@ -129,7 +132,8 @@ private:
     void drawLevels(Program& program, PassState state, const std::function<void(int)>& perLevel = {});
     // gather()'s two forms; each returns the valid fragments the stencil pass counted.
     double gatherAsQuad(Frame& frame, Program& program, int draws, const std::function<void(Program&, int)>& setupDraw);
-    double gatherAsList(Frame& frame, Program& program, int draws, const std::function<void(Program&, int)>& setupDraw);
+    double gatherAsList(Frame& frame, Program& program, int draws, const std::function<void(Program&, int)>& setupDraw,
+                        int invocationsPerFragment);
     bool asFragments_;
     Program stencilSetup_, cacheGather_; // cacheGather_: the fragment or the compute form
     // [NW09]'s path, allocated on the first refine(): work lists, counters, the splat vertices.

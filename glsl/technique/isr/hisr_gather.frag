@@ -24,7 +24,7 @@ layout(location = 0) out vec4 outIllumination;
 void main()
 {
     uint gathered;
-    vec3 sum = hisrGather(ivec2(gl_FragCoord.xy), gathered);
+    vec3 sum = hisrGather(ivec2(gl_FragCoord.xy), 0, 1, gathered);
     hisrCount(gathered);
     outIllumination = vec4(sum, 0.0); // alpha is masked off: the stencil pass's marks stay
 }

@@ -24,8 +24,9 @@ uniform int discontinuityLevel; // discontinuous clusters above this level are a
 int levelOffset(int m) { return ((1 << (2 * (treeDepth - m))) - 1) / 3; }
 
 // The light the VPL clusters send to the multiresolution fragment at `at` of the flattened buffer,
-// without the receiver's diffuse colour; `gathered` counts the clusters.
-vec3 hisrGather(ivec2 at, out uint gathered)
+// without the receiver's diffuse colour, from the top patches rootBegin + lane, + 2 lanes, ... below
+// rootEnd (one walker: lane 0 of 1); `gathered` counts the clusters.
+vec3 hisrGather(ivec2 at, int lane, int lanes, out uint gathered)
 {
     int level;
     ivec2 t;
@@ -36,7 +37,7 @@ vec3 hisrGather(ivec2 at, out uint gathered)
     float len = length(mp.normal);
     if (!(len > 0.0 && max(mp.diffuse.r, max(mp.diffuse.g, mp.diffuse.b)) > 0.0)) return sum;
     vec3 p = mp.position, n = mp.normal / len;
-    for (int root = rootBegin; root < rootEnd; ++root) {
+    for (int root = rootBegin + lane; root < rootEnd; root += lanes) {
         int base = root * treeSubtreeNodes;
         int m = treeDepth, code = 0; // the top patch: the one node of the coarsest level
         for (;;) {

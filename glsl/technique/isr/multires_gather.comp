@@ -6,8 +6,6 @@
 #include "technique/isr/cache_gather.glsl"
 #include "technique/isr/valid_list.glsl"
 
-layout(local_size_x = 64) in;
-
 void main()
 {
     ivec2 at;

@@ -5,18 +5,30 @@
 
 #include "technique/isr/bindings.glsl"
 
+// Groups of 64 along x (MultiresGather::gather's group count).
+layout(local_size_x = 64) in;
+
 layout(rgba32f, binding = 0) uniform image2D illumination;
 layout(std430, binding = SSBO_ISR_VALID_LIST) readonly buffer ValidList { uint validCount; uint validFragments[]; };
 
-// This invocation's fragment of the flattened buffer; false past the end of the list.
-bool listedFragment(out ivec2 at)
+// Fragment i of the list; false past its end.
+bool listedFragmentAt(uint i, out ivec2 at)
 {
-    uint i = gl_GlobalInvocationID.x;
     at = ivec2(0);
     if (i >= validCount) return false;
     at = ivec2(validFragments[i] & 0xFFFFu, validFragments[i] >> 16);
     return true;
 }
+
+// This invocation's index: the dispatch is laid out in rows of at most 65,535 groups
+// (MultiresGather::gather), the least GL_MAX_COMPUTE_WORK_GROUP_COUNT a driver may have per axis.
+uint listInvocation()
+{
+    return (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * 64u + gl_LocalInvocationIndex;
+}
+
+// This invocation's fragment of the flattened buffer; false past the end of the list.
+bool listedFragment(out ivec2 at) { return listedFragmentAt(listInvocation(), at); }
 
 // Adds to what earlier dispatches gathered at the fragment (the gather may be split over several).
 void addToFragment(ivec2 at, vec3 light)
