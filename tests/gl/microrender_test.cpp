@@ -225,6 +225,32 @@ TEST_F(MicrorenderTest, GlossyGatherOnTheMetalBlockMatchesThePathTracer)
     EXPECT_LT(rmse[1], 0.7 * rmse[0]) << "importance warping did not help the glossy gather";
 }
 
+// The cut's two walks (cutWalk): one subtree per invocation, or the whole group level by level from shared
+// queues, with the default queues and with queues of 64 nodes, which overflow from the second level on
+// (the children that do not fit are walked as subtrees). They take the same cut, and atomicMin keeps the
+// nearest node of each micro-pixel in any order: the same nodes visited, rasterised and listed, the same
+// rays, and the same image to the bit, at 24^2 (the queues share the ray pass's words), at the pixels and
+// at the points of a second bounce.
+TEST_F(MicrorenderTest, CutWalksBySubtreesAndByLevelsTakeTheSameCut)
+{
+    const core::Scene scene = core::makeCornell("cornell-spot");
+    const testing::Sets base = {{"coarsestLevel", "1"}, {"points", "4096"}, {"bounces", "2"}, {"bounceNodes", "64"}};
+    std::vector<PointRender> r;
+    for (const testing::Sets& walk : {testing::Sets{{"cutWalk", "subtrees"}}, testing::Sets{{"cutWalk", "levels"}},
+                                      testing::Sets{{"cutWalk", "levels"}, {"cutQueue", "64"}}}) {
+        testing::Sets s = base;
+        s.insert(s.end(), walk.begin(), walk.end());
+        r.push_back(renderPoints(scene, "microrender", s, 16, 12));
+    }
+    ASSERT_GT(r[0].counter("rays"), 0.0);
+    for (std::size_t i = 1; i < r.size(); ++i) {
+        for (const char* c : {"nodesVisitedPerSample", "nodesRasterisedPerSample", "microBuffersWithRays", "rays",
+                              "rayPixels", "emptyMicroPixels"})
+            EXPECT_EQ(r[i].counter(c), r[0].counter(c)) << c << ", walk " << i;
+        EXPECT_EQ(r[i].indirect.rgb, r[0].indirect.rgb) << "walk " << i;
+    }
+}
+
 // The gather point in a corner, inside the bounding spheres of the nodes around it: a small micro-buffer
 // (8^2: a post-traversal list of 64) and a fine cut (cut 0.05: every leaf above a twentieth of a micro-pixel
 // is listed; about 24 / cut leaves near a corner whatever the point count) overflow the list there; the

@@ -31,6 +31,10 @@ struct MicroGatherSettings {
     // Run the kernel up to this stage only (1 warp, 2 cut and rasterisation, 3 rays, 4 convolution): the
     // time split by stage of §5 from the differences; below 4 the image is black.
     int stages = 4;
+    // When not 0, the cut is walked level by level by the whole group from two shared queues of this many
+    // nodes (gather.comp, CUT_QUEUE; at least kGroup, made even) rather than one subtree per invocation:
+    // the same cut, without waiting for the longest walk.
+    int cutQueue = 0;
 };
 
 // gather.comp's counters of the last pixel gather.

@@ -4,6 +4,7 @@
 #include <memory>
 #include <string>
 
+#include "gl/context/context.h"
 #include "gl/frame/multires.h"
 #include "gl/frame/points/pixel_gather.h"
 #include "gl/frame/points/point_cloud.h"
@@ -124,6 +125,13 @@ TechniqueInfo microrenderTechniqueInfo()
          "cut, holes ray cast",
          false, ParamUpdate::Uniform},
         {"bounces", ParamType::Int, 1, 1, 8, "indirect bounces; > 1 gathers at the points first (§4)"},
+        choiceParam("cutWalk", {"auto", "subtrees", "levels"}, 0,
+                    "the cut's walk (the same cut): each invocation one of 64 subtrees (the paper's one walk per "
+                    "thread), or the group level by level from a shared queue (balanced); auto: subtrees on a "
+                    "software rasteriser, levels on a GPU, whose warps wait for their longest walk"),
+        {"cutQueue", ParamType::Int, 768, 64, 4096,
+         "the walk by levels: nodes each of its two shared-memory queues holds (even); children that find it full "
+         "are walked as subtrees"},
         {"stages", ParamType::Int, 4, 1, 4,
          "profiling: the gather kernel stops after stage 1 warp, 2 cut, 3 rays, 4 convolution (below 4: no light)"},
         {"bounceNodes", ParamType::Int, 4096, 64, 1048576,
@@ -149,6 +157,10 @@ TechniqueInfo microrenderTechniqueInfo()
         s.gather.rayCast = v.getBool("rayCast");
         s.gather.cut = float(v.get("cut"));
         s.gather.stages = v.getInt("stages");
+        const std::string walk = v.getChoice(microrenderTechniqueInfo().params, "cutWalk");
+        s.gather.cutQueue = walk == "auto"     ? (softwareRasterizer() ? 0 : v.getInt("cutQueue"))
+                            : walk == "levels" ? v.getInt("cutQueue")
+                                               : 0;
         s.bounces = v.getInt("bounces");
         s.bounceNodes = v.getInt("bounceNodes");
         s.multires = multiresSettingsFrom(v);

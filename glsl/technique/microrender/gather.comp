@@ -21,7 +21,18 @@
 // Results: the diffuse part without the receiver's diffuse colour and the glossy part (gather_target.glsl).
 // Defines: MICRO_RES (8, 16, 24), MICRO_GROUP (64), WARP_BINS, KEY_INDEX_BITS, LIST_CAP, RAY_CAST,
 // GATHER_AT_POINTS, PUNCTUAL_LIGHTS / AREA_LIGHTS (the lights at ray hits), MICRO_STAGES (4; fewer runs
-// only the first stages, for the time split by stage of §5: 1 the warp, 2 + the cut, 3 + the rays).
+// only the first stages, for the time split by stage of §5: 1 the warp, 2 + the cut, 3 + the rays),
+// CUT_QUEUE (the cut's walk by levels, below).
+//
+// The cut's two walks (MicroGatherSettings::cutByLevels) rasterise the same nodes, and atomicMin keeps the
+// nearest key whatever the order: the same micro-buffer. The walk by subtrees above is the paper's one
+// thread per walk, but its 64 subtrees differ in size by orders of magnitude (the surfaces near the sample
+// are refined to their leaves, those behind it culled at once), so a group waits for its longest walk. The
+// walk by levels (CUT_QUEUE: the capacity of each of two queues) shares the work instead: the group takes
+// the nodes of one level from a queue in shared memory, 64 at a time, and queues the children of the nodes
+// it refines for the next round; children that find a queue full are walked by their parent's invocation
+// as a subtree. One round and two barriers per level of the hierarchy: for a GPU, where the warps of a
+// group run in lockstep; the subtrees suit a CPU rasteriser, whose barriers are costly.
 #define SCENE_GEOMETRY
 #include "frame/points/gather_target.glsl"
 #include "technique/microrender/hierarchy.glsl"
@@ -53,8 +64,22 @@ shared uint microKeys[kPixels];
 shared vec3 partDiffuse[MICRO_GROUP];
 shared vec3 partGlossy[MICRO_GROUP];
 shared uint groupStats[8];
+// The radiance of the micro-pixels a ray took (three words each, RAY_CAST), and before the rays the walk's
+// two queues (CUT_QUEUE): one array for both, so that the queues cost no shared memory at 24 x 24.
+#if defined(CUT_QUEUE) && defined(RAY_CAST)
+const int kScratch = max(3 * kPixels, 2 * CUT_QUEUE);
+#elif defined(CUT_QUEUE)
+const int kScratch = 2 * CUT_QUEUE;
+#elif defined(RAY_CAST)
+const int kScratch = 3 * kPixels;
+#endif
+#if defined(CUT_QUEUE) || defined(RAY_CAST)
+shared uint scratch[kScratch];
+#endif
+#ifdef CUT_QUEUE
+shared uint queueCount[2];
+#endif
 #ifdef RAY_CAST
-shared vec3 microHit[kPixels];
 shared uint listNodes[LIST_CAP];
 shared uint listCount;
 #endif
@@ -79,6 +104,106 @@ bool backFacing(vec4 cone, vec3 v, float d2, float r)
     float alpha = acos(clamp(dot(cone.xyz, -v) / d, -1.0, 1.0));
     return alpha > 0.5 * kConeAll + cone.w + asin(r / d);
 }
+
+// The sample as the cut sees it: its lifted position and its frame.
+struct CutFrame {
+    vec3 x, n, tangent, bitangent;
+};
+uint visitedNodes = 0u, rasterisedNodes = 0u; // this invocation's
+
+// One node of the cut: culled (back-facing, under the horizon), rasterised into the micro-buffer, listed
+// for rays, or refined: returns true when its children are to be visited.
+bool cutVisit(CutFrame f, uint node)
+{
+    MicroNode nd = microNodes[node];
+    vec3 v = nd.sphere.xyz - f.x;
+    float r = nd.sphere.w, d2 = dot(v, v), h = dot(v, f.n);
+    bool isLeaf = node >= leafCount;
+    bool descend = false;
+    ++visitedNodes;
+    if (h > -r && !backFacing(nd.cone, v, d2, r) && !(isLeaf && h <= 0.0)) {
+        float d = sqrt(d2);
+        // A node straddling the horizon is judged at the top of its sphere, the part that can be seen.
+        vec3 top = h >= 0.0 ? v : v + f.n * r;
+        vec3 wl = normalize(vec3(dot(top, f.tangent), dot(top, f.bitangent), dot(top, f.n)));
+        float omega;
+        if (isLeaf)
+            omega = nd.areaM2 * abs(dot(nd.cone.xyz, v)) / max(d2 * d, 1e-30); // the disc's solid angle
+        else if (d2 <= r * r)
+            omega = 1e30; // inside its sphere: always descend
+        else // what its surfels subtend: at most their area over d^2, at most the sphere's solid angle
+            omega = min(2.0 * kConeAll * (1.0 - sqrt(1.0 - r * r / d2)), nd.areaM2 / d2);
+        bool large = omega > cutScale * warpPixelSolidAngle(wl);
+        if (large && !isLeaf) {
+            descend = true;
+        } else if (h >= 0.0) {
+#ifdef RAY_CAST
+            if (large) {
+                uint slot = atomicAdd(listCount, 1u);
+                if (slot < uint(LIST_CAP)) listNodes[slot] = node;
+            } else
+#endif
+            {
+                ivec2 c = warpCellOf(warpToUnit(wl));
+                uint q = uint(min(d * depthScale, kDepthMax));
+                atomicMin(microKeys[c.y * MICRO_RES + c.x], (q << KEY_INDEX_BITS) | node);
+                ++rasterisedNodes;
+            }
+        }
+    }
+    return descend;
+}
+
+// The subtree under `start`, depth first without a stack: heap indices give the skip pointers.
+void cutWalk(CutFrame f, uint start)
+{
+    uint node = start;
+    while (true) {
+        if (cutVisit(f, node)) {
+            node = 2u * node;
+            continue;
+        }
+        while (node != start && (node & 1u) == 1u) node >>= 1u;
+        if (node == start) break;
+        node += 1u;
+    }
+}
+
+#ifdef CUT_QUEUE
+// The whole cut by levels, from the MICRO_GROUP nodes of level log2(MICRO_GROUP), shared by the group
+// (in uniform control flow: every invocation reads the same counts after each barrier).
+void cutByLevels(CutFrame f, uint lid)
+{
+    scratch[lid] = uint(MICRO_GROUP) + lid;
+    if (lid == 0u) {
+        queueCount[0] = uint(MICRO_GROUP);
+        queueCount[1] = 0u;
+    }
+    barrier();
+    uint current = 0u;
+    for (;;) {
+        uint count = min(queueCount[current], uint(CUT_QUEUE));
+        if (count == 0u) break;
+        uint next = 1u - current;
+        for (uint i = lid; i < count; i += uint(MICRO_GROUP)) {
+            uint node = scratch[current * uint(CUT_QUEUE) + i];
+            if (!cutVisit(f, node)) continue;
+            uint slot = atomicAdd(queueCount[next], 2u); // even, as CUT_QUEUE: a pair fits or none
+            if (slot < uint(CUT_QUEUE)) {
+                scratch[next * uint(CUT_QUEUE) + slot] = 2u * node;
+                scratch[next * uint(CUT_QUEUE) + slot + 1u] = 2u * node + 1u;
+            } else {
+                cutWalk(f, 2u * node);
+                cutWalk(f, 2u * node + 1u);
+            }
+        }
+        barrier(); // every push done, every read of this round's count done
+        if (lid == 0u) queueCount[current] = 0u;
+        current = next;
+        barrier();
+    }
+}
+#endif
 
 void main()
 {
@@ -118,58 +243,16 @@ void main()
     barrier();
 
     vec3 x = g.position + n * gatherOffset;
-    uint visited = 0u, rasterised = 0u;
+    CutFrame f = CutFrame(x, n, tangent, bitangent);
     if (cosO > 0.0 && MICRO_STAGES >= 2) {
-        uint start = uint(MICRO_GROUP) + lid;
-        uint node = start;
-        while (true) {
-            MicroNode nd = microNodes[node];
-            vec3 v = nd.sphere.xyz - x;
-            float r = nd.sphere.w, d2 = dot(v, v), h = dot(v, n);
-            bool isLeaf = node >= leafCount;
-            bool descend = false;
-            ++visited;
-            if (h > -r && !backFacing(nd.cone, v, d2, r) && !(isLeaf && h <= 0.0)) {
-                float d = sqrt(d2);
-                // A node straddling the horizon is judged at the top of its sphere, the part that can be seen.
-                vec3 top = h >= 0.0 ? v : v + n * r;
-                vec3 wl = normalize(vec3(dot(top, tangent), dot(top, bitangent), dot(top, n)));
-                float omega;
-                if (isLeaf)
-                    omega = nd.areaM2 * abs(dot(nd.cone.xyz, v)) / max(d2 * d, 1e-30); // the disc's solid angle
-                else if (d2 <= r * r)
-                    omega = 1e30; // inside its sphere: always descend
-                else // what its surfels subtend: at most their area over d^2, at most the sphere's solid angle
-                    omega = min(2.0 * kConeAll * (1.0 - sqrt(1.0 - r * r / d2)), nd.areaM2 / d2);
-                bool large = omega > cutScale * warpPixelSolidAngle(wl);
-                if (large && !isLeaf) {
-                    descend = true;
-                } else if (h >= 0.0) {
-#ifdef RAY_CAST
-                    if (large) {
-                        uint slot = atomicAdd(listCount, 1u);
-                        if (slot < uint(LIST_CAP)) listNodes[slot] = node;
-                    } else
+#ifdef CUT_QUEUE
+        cutByLevels(f, lid);
+#else
+        cutWalk(f, uint(MICRO_GROUP) + lid);
 #endif
-                    {
-                        ivec2 c = warpCellOf(warpToUnit(wl));
-                        uint q = uint(min(d * depthScale, kDepthMax));
-                        atomicMin(microKeys[c.y * MICRO_RES + c.x], (q << KEY_INDEX_BITS) | node);
-                        ++rasterised;
-                    }
-                }
-            }
-            if (descend) {
-                node = 2u * node;
-                continue;
-            }
-            while (node != start && (node & 1u) == 1u) node >>= 1u;
-            if (node == start) break;
-            node += 1u;
-        }
     }
-    atomicAdd(groupStats[4], visited);
-    atomicAdd(groupStats[5], rasterised);
+    atomicAdd(groupStats[4], visitedNodes);
+    atomicAdd(groupStats[5], rasterisedNodes);
     barrier();
 
 #ifdef RAY_CAST
@@ -216,7 +299,9 @@ void main()
                 radiance = pointDirectRadiance(hp, hn, m.baseColorMetallic.rgb * (1.0 - m.baseColorMetallic.a));
             }
         }
-        microHit[p] = radiance;
+        scratch[3 * p] = floatBitsToUint(radiance.r);
+        scratch[3 * p + 1] = floatBitsToUint(radiance.g);
+        scratch[3 * p + 2] = floatBitsToUint(radiance.b);
         microKeys[p] = kRayKey;
         ++taken;
     }
@@ -236,7 +321,8 @@ void main()
             continue;
         }
 #ifdef RAY_CAST
-        vec3 radiance = key == kRayKey ? microHit[p] : unpackRadiance(microNodes[key & kIndexMask].radiance);
+        vec3 radiance = key == kRayKey ? uintBitsToFloat(uvec3(scratch[3 * p], scratch[3 * p + 1], scratch[3 * p + 2]))
+                                       : unpackRadiance(microNodes[key & kIndexMask].radiance);
 #else
         vec3 radiance = unpackRadiance(microNodes[key & kIndexMask].radiance);
 #endif
