@@ -480,7 +480,9 @@ TEST(Cli, BenchPlotsCurvesAndWritesAReportThatABrowserOpens)
             EXPECT_TRUE(fs::exists(d / "out" / (id.get<std::string>() + ".js"))) << paths << " reference " << id;
     }
 
-    ASSERT_TRUE(commandExists("node")) << "node is not installed; scripts/install-deps.sh installs it";
+    // What the browser does with the page needs node and Chromium (scripts/install-deps.sh, .ci/run installs
+    // both); a GPU machine that runs the suites from scripts/device-check.sh has neither.
+    if (!commandExists("node")) GTEST_SKIP() << "node is not installed (scripts/install-deps.sh installs it)";
     const CliRun browser =
         runCommand("node " + (fs::path(BOUNCE_SOURCE_ROOT) / "tests/app/report_browser.mjs").string() + " " +
                    (d / "out").string());
