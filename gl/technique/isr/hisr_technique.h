@@ -15,6 +15,9 @@ TechniqueInfo hisrTechniqueInfo();
 // point lights: their intensity; an area light: sum of radiance x area over its triangles, the peak of
 // its cosine lobe; a directional light: its irradiance in W/m^2, which has no W/sr reading).
 double hisrPeakIntensity(const std::vector<LightSource>& lights);
+// Invocations of the compute gather that share one fragment (gatherLanes=auto) for a gather of this
+// many valid fragments: a power of two from 1 to 16, the most that keep the dispatch at 2^17 invocations.
+int hisrGatherLanes(unsigned fragments);
 // Eq. 8's per-frame constant T = 2 (I - tau) / (3 tau RSM_res^2); +inf for tau <= 0 (always refine).
 double hisrRefineConstant(double peakIntensity, double tau, int rsmSize);
 

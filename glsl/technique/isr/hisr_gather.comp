@@ -6,12 +6,15 @@
 // for drivers with few graphics units (MultiresGather::gatherAsFragments): on an NVIDIA H100 a fragment
 // pass reached 1.8 TFLOP/s and a compute pass 46 (bounce probe).
 //
-// HISR_LANES invocations share one fragment (a power of two up to 64), each walking every HISR_LANES-th
-// top patch, and the first adds their sums in lane order (the same sum in every run). The valid fragments
-// are few (28,310 at 1024x768 on the Cornell box): with one invocation each, a GPU has a few warps per
-// multiprocessor to hide the walk's dependent tree fetches; with 16 it is full.
+// `lanes` invocations share one fragment (a power of two up to 64), each walking every lanes-th top patch,
+// and the first adds their sums in lane order (the same sum in every run). The valid fragments may be too
+// few to fill a GPU with one invocation each (28,310 at 1024x768 on the Cornell box): more lanes hide the
+// walk's dependent tree fetches, but the lanes of one fragment fetch different nodes, where neighbouring
+// fragments in a warp share theirs (Hisr::lanesFor chooses).
 #include "technique/isr/hisr_walk.glsl"
 #include "technique/isr/valid_list.glsl"
+
+uniform int lanes;
 
 shared vec3 laneSum[64];
 shared uint laneGathered[64];
@@ -19,16 +22,16 @@ shared uint laneGathered[64];
 void main()
 {
     uint lid = gl_LocalInvocationIndex;
-    uint lane = lid % uint(HISR_LANES);
+    uint lane = lid % uint(lanes);
     ivec2 at;
-    bool listed = listedFragmentAt(listInvocation() / uint(HISR_LANES), at);
+    bool listed = listedFragmentAt(listInvocation() / uint(lanes), at);
     uint gathered = 0u;
-    vec3 sum = listed ? hisrGather(at, int(lane), HISR_LANES, gathered) : vec3(0.0);
+    vec3 sum = listed ? hisrGather(at, int(lane), lanes, gathered) : vec3(0.0);
     laneSum[lid] = sum;
     laneGathered[lid] = gathered;
     barrier();
     if (!listed || lane != 0u) return;
-    for (uint i = 1u; i < uint(HISR_LANES); ++i) {
+    for (uint i = 1u; i < uint(lanes); ++i) {
         sum += laneSum[lid + i];
         gathered += laneGathered[lid + i];
     }
