@@ -4,6 +4,8 @@
 # through the test of the benchmark's report.html: tests/app/report_browser.mjs). Needs root for apt-get.
 # clang-14 builds the glTF fuzz target (scripts/fuzz.sh); libclang-rt-14-dev holds its libFuzzer and
 # sanitizer runtimes, which apt does not install with clang-14 when recommends are off.
+# glslang-tools: the Khronos reference GLSL compiler, which checks every shader stage the conformance
+# tests compile (tests/gl/conformance_test.cpp), as a GPU driver's stricter front end would.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -13,7 +15,7 @@ packages=(
   libtinygltf-dev nlohmann-json3-dev libstb-dev libtinyexr-dev libimgui-dev libgtest-dev
   libembree-dev libtbb-dev
   xvfb xauth python3-matplotlib python3-numpy
-  chromium
+  chromium glslang-tools
   clang-14 libclang-rt-14-dev
 )
 missing=()

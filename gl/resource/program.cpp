@@ -105,10 +105,17 @@ std::vector<Define> withDriverDefines(std::vector<Define> defines)
     return defines;
 }
 
+ShaderSourceObserver& sourceObserver()
+{
+    static ShaderSourceObserver observer;
+    return observer;
+}
+
 unsigned compileStage(unsigned stage, const std::string& rel, const std::vector<Define>& defines)
 {
     std::vector<std::string> files;
     const std::string src = preprocess(rel, withDriverDefines(defines), files);
+    if (sourceObserver()) sourceObserver()(rel, stage, src);
     const unsigned s = glCreateShader(stage);
     const char* p = src.c_str();
     glShaderSource(s, 1, &p, nullptr);
@@ -150,6 +157,11 @@ unsigned link(const std::string& label, const std::vector<unsigned>& stages)
 }
 
 } // namespace
+
+void setShaderSourceObserver(ShaderSourceObserver observer)
+{
+    sourceObserver() = std::move(observer);
+}
 
 std::string preprocessShader(const std::string& rel, const std::vector<Define>& defines)
 {

@@ -3,6 +3,7 @@
 // after #version. Uniforms are set by name with glProgramUniform*.
 #pragma once
 
+#include <functional>
 #include <map>
 #include <stdexcept>
 #include <string>
@@ -32,6 +33,12 @@ struct Define {
 std::string glslRoot();
 // Reads a shader with its #includes expanded and defines injected (exposed for tests).
 std::string preprocessShader(const std::string& relativePath, const std::vector<Define>& defines);
+
+// Called with every shader stage's source as it goes to the driver (its path under glsl/ and the GL stage
+// enum), for checks by another compiler (tests/gl/conformance_test.cpp: the Khronos reference compiler);
+// an empty function: none. One observer for the process, used from the GL thread.
+using ShaderSourceObserver = std::function<void(const std::string& path, unsigned stage, const std::string& source)>;
+void setShaderSourceObserver(ShaderSourceObserver observer);
 
 class Program {
 public:

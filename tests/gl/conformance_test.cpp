@@ -19,14 +19,22 @@
 // made anew with the same value: a uniform the technique forgets to apply fails it.
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <map>
 #include <set>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
 
 #include "core/cornell.h"
+#include "gl/gl.h"
 #include "gl/renderer.h"
+#include "gl/resource/program.h"
 #include "gl/technique/technique.h"
 #include "tests/gl/closed_box.h"
 #include "tests/gl/gl_test_fixture.h"
@@ -96,9 +104,56 @@ double furnaceFloor(const std::string& technique)
 
 class Conformance : public GlTest, public ::testing::WithParamInterface<std::string> {};
 
+// Every shader stage the technique compiled, as the driver got it, through the Khronos reference compiler
+// (glslangValidator, Debian's glslang-tools) as GLSL 4.50 for OpenGL: Mesa accepts what some GPU drivers
+// reject (and the reverse), so two front ends catch what one misses.
+class ReferenceCompiler {
+public:
+    ReferenceCompiler()
+    {
+        gl::setShaderSourceObserver([this](const std::string& path, unsigned stage, const std::string& source) {
+            sources_.emplace(source, std::pair{path, stage});
+        });
+    }
+    ~ReferenceCompiler() { gl::setShaderSourceObserver({}); }
+
+    void check(const std::string& technique)
+    {
+        gl::setShaderSourceObserver({});
+        if (std::system("command -v glslangValidator >/dev/null 2>&1") != 0) {
+            std::printf("[ glslang  ] glslangValidator is not installed (glslang-tools): %zu stages not checked\n",
+                        sources_.size());
+            return;
+        }
+        const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("bounce-glslang-" + technique);
+        std::filesystem::remove_all(dir); // an earlier run's stages; this run's stay for a failure's reader
+        std::filesystem::create_directories(dir);
+        int n = 0;
+        for (const auto& [source, where] : sources_) {
+            const auto& [path, stage] = where;
+            const char* ext = stage == GL_VERTEX_SHADER     ? ".vert"
+                              : stage == GL_FRAGMENT_SHADER ? ".frag"
+                              : stage == GL_GEOMETRY_SHADER ? ".geom"
+                                                            : ".comp";
+            const std::filesystem::path file = dir / (std::to_string(n++) + ext);
+            std::ofstream(file) << source;
+            const std::string log = (dir / "log.txt").string();
+            const int status = std::system(("glslangValidator " + file.string() + " >" + log + " 2>&1").c_str());
+            std::ifstream in(log);
+            const std::string out((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+            EXPECT_EQ(status, 0) << path << " (" << file.string() << "), as the reference compiler reads it:\n" << out;
+        }
+        std::printf("[ glslang  ] %s: %d distinct shader stages pass the reference compiler\n", technique.c_str(), n);
+    }
+
+private:
+    std::map<std::string, std::pair<std::string, unsigned>> sources_;
+};
+
 TEST_P(Conformance, Technique)
 {
     const gl::TechniqueInfo& info = gl::findTechnique(GetParam());
+    ReferenceCompiler reference;
     std::set<std::string> declared, required;
     for (const gl::PassDecl& p : gl::framePasses()) {
         declared.insert(p.name);
@@ -169,6 +224,7 @@ TEST_P(Conformance, Technique)
             }
         }
     }
+    reference.check(info.name);
 }
 
 TEST_P(Conformance, UniformsMatchARebuild)
