@@ -24,6 +24,9 @@ struct MicroGatherSettings {
     int resolution = 24; // micro-buffer side: 8, 16 or 24 (§5: "24 x 24 pixels ... is the maximum we can fit")
     bool warp = true;    // importance warping by the BRDF (§2.3); false: the Nusselt (cosine) mapping
     bool rayCast = true; // the post-traversal list and its rays (§2.2); false: large leaves rasterised as points
+    // The rays against the listed leaves' discs only, where the list is not empty (the paper), rather than
+    // through the scene's triangles where the list is not empty and at every hole.
+    bool rayDiscs = false;
     // A node is rasterised once its solid angle is at most cut x the micro-pixel's at its direction (§2.2:
     // 1). Larger values rasterise coarser nodes (fewer node centres per pixel: less of the silhouette
     // dilation of point rasterisation) and leave holes that the rays fill.

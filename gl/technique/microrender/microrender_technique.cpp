@@ -125,6 +125,10 @@ TechniqueInfo microrenderTechniqueInfo()
          "cut, holes ray cast",
          false, ParamUpdate::Uniform},
         {"bounces", ParamType::Int, 1, 1, 8, "indirect bounces; > 1 gathers at the points first (§4)"},
+        choiceParam("rays", {"triangles", "discs"}, 0,
+                    "what the rays meet: triangles (the scene's BVH, every micro-pixel where the list holds leaves "
+                    "and every hole, lit by the nearest listed leaf or the lights) or discs (§2.2: the listed "
+                    "leaves' discs only, no ray where the list is empty: holes stay)"),
         choiceParam("cutWalk", {"auto", "subtrees", "levels"}, 0,
                     "the cut's walk (the same cut): each invocation one of 64 subtrees (the paper's one walk per "
                     "thread), or the group level by level from a shared queue (balanced); auto: subtrees on a "
@@ -155,6 +159,7 @@ TechniqueInfo microrenderTechniqueInfo()
         s.gather.resolution = std::stoi(v.getChoice(microrenderTechniqueInfo().params, "microBuffer"));
         s.gather.warp = v.getBool("warp");
         s.gather.rayCast = v.getBool("rayCast");
+        s.gather.rayDiscs = v.getChoice(microrenderTechniqueInfo().params, "rays") == "discs";
         s.gather.cut = float(v.get("cut"));
         s.gather.stages = v.getInt("stages");
         const std::string walk = v.getChoice(microrenderTechniqueInfo().params, "cutWalk");

@@ -265,7 +265,46 @@ void main()
     uint listed = listCount > uint(LIST_CAP) ? 0u : listCount;
     bool everyPixel = listCount > 0u;
     uint rays = 0u, taken = 0u;
-    for (int p = int(lid); p < kPixels && cosO > 0.0 && MICRO_STAGES >= 3; p += MICRO_GROUP) {
+#ifdef RAY_DISCS
+    // The paper's rays (RAY_DISCS): when the list holds leaves, one ray per micro-pixel against the listed
+    // leaves' discs only (centre, normal, r = sqrt(area / pi)), the nearest in front of the pixel's node
+    // taking it with the leaf's radiance, ties to the lower index; no ray where the list is empty, so a
+    // pixel the cut left empty stays empty (the paper's holes). An overflowed list takes the rays through
+    // the triangles below.
+    bool discs = listCount > 0u && listCount <= uint(LIST_CAP);
+    for (int p = int(lid); p < kPixels && discs && cosO > 0.0 && MICRO_STAGES >= 3; p += MICRO_GROUP) {
+        vec3 wl = warpToDirection(warpCellSample(ivec2(p % MICRO_RES, p / MICRO_RES), jitter));
+        if (wl.z <= 0.0) continue;
+        vec3 dir = tangent * wl.x + bitangent * wl.y + n * wl.z;
+        uint key = microKeys[p];
+        float nearest = key == kEmptyKey ? 1e30 : (float(key >> KEY_INDEX_BITS) + 1.0) / depthScale;
+        uint best = 0u;
+        ++rays;
+        for (uint e = 0u; e < listed; ++e) {
+            MicroNode ln = microNodes[listNodes[e]];
+            float facing = dot(dir, ln.cone.xyz);
+            if (facing >= 0.0) continue; // the disc's back: culled, as in the cut
+            float t = dot(ln.sphere.xyz - x, ln.cone.xyz) / facing;
+            vec3 off = x + dir * t - ln.sphere.xyz;
+            bool nearer = t < nearest || (t == nearest && best != 0u && listNodes[e] < best);
+            if (t > 0.0 && nearer && dot(off, off) <= ln.sphere.w * ln.sphere.w) {
+                nearest = t;
+                best = listNodes[e];
+            }
+        }
+        if (best == 0u) continue;
+        vec3 radiance = unpackRadiance(microNodes[best].radiance);
+        scratch[3 * p] = floatBitsToUint(radiance.r);
+        scratch[3 * p + 1] = floatBitsToUint(radiance.g);
+        scratch[3 * p + 2] = floatBitsToUint(radiance.b);
+        microKeys[p] = kRayKey;
+        ++taken;
+    }
+    bool triangles = listCount > uint(LIST_CAP);
+#else
+    const bool triangles = true;
+#endif
+    for (int p = int(lid); p < kPixels && triangles && cosO > 0.0 && MICRO_STAGES >= 3; p += MICRO_GROUP) {
         uint key = microKeys[p];
         if (!everyPixel && key != kEmptyKey) continue;
         vec3 wl = warpToDirection(warpCellSample(ivec2(p % MICRO_RES, p / MICRO_RES), jitter));
