@@ -89,13 +89,13 @@ public:
         rs.glossy = frame.scene().hasGlossy();
         rs.punctual = frame.gpuScene().punctualLightCount() > 0;
         rs.interleaved = v.getBool("interleaved");
-        rs.areaGlossy = rs.glossy && int(frame.gpuScene().lights().size()) > frame.gpuScene().punctualLightCount();
+        // Every light the scene has that is not punctual is a triangle of an emitting mesh.
+        const bool areaLights = int(frame.gpuScene().lights().size()) > frame.gpuScene().punctualLightCount();
+        rs.areaGlossy = rs.glossy && areaLights;
         radiance_ = std::make_unique<RadianceAtlases>(atlas_, *kbuffer_, rs);
         const std::string fg = v.getChoice(grbTechniqueInfo().params, "finalGlossy");
         const bool finalGlossy = fg == "on" || (fg == "auto" && rs.glossy);
-        const int lights = int(frame.gpuScene().lights().size());
-        emittersShown_ = v.getChoice(grbTechniqueInfo().params, "emitters") == "bundles" &&
-                         lights > frame.gpuScene().punctualLightCount();
+        emittersShown_ = v.getChoice(grbTechniqueInfo().params, "emitters") == "bundles" && areaLights;
         display_ = std::make_unique<GrbDisplay>(frame, *radiance_, *kbuffer_, finalGlossy, emittersShown_);
         stats_ = std::make_unique<KBufferStats>(*kbuffer_);
     }
