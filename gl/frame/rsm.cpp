@@ -78,7 +78,7 @@ RsmPass::RsmPass(const RsmSettings& settings)
         if (!std::has_single_bit(unsigned(settings_.size)))
             throw std::invalid_argument("rsmSize must be a power of two for the RSM pyramid, not " +
                                         std::to_string(settings_.size));
-        if (settings_.levels > std::bit_width(unsigned(settings_.size)) - 1)
+        if (settings_.levels > int(std::bit_width(unsigned(settings_.size))) - 1)
             throw std::invalid_argument("the RSM pyramid of a " + std::to_string(settings_.size) +
                                         "^2 RSM has at most " +
                                         std::to_string(std::bit_width(unsigned(settings_.size)) - 1) + " levels");
@@ -89,7 +89,9 @@ RsmPass::RsmPass(const RsmSettings& settings)
 void RsmPass::buildViews(const Frame& frame)
 {
     // The spot's view covers exactly its cone: Eq. 4 shares the frustum's solid angle among the texels.
-    views_ = buildLightViews(frame.gpuScene().lights(), frame.gpuScene().bounds(), {.fovMargin = 1.0f}).views;
+    LightViewOptions options;
+    options.fovMargin = 1.0f;
+    views_ = buildLightViews(frame.gpuScene().lights(), frame.gpuScene().bounds(), options).views;
 }
 
 void RsmPass::allocate(int layers)

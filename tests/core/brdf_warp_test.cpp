@@ -148,7 +148,9 @@ TEST(BrdfWarp, WeightsSumToTheAlbedo)
                     const glm::vec3 sum = weightSum(c.p, c.wo, warp, res, jitter);
                     mean += glm::dvec3(sum) / 16.0;
                     // One jitter alone: Lambert within 3.5%.
-                    if (!c.p.hasSpecular()) EXPECT_NEAR(sum.x, rho.x, 0.035f * rho.x);
+                    if (!c.p.hasSpecular()) {
+                        EXPECT_NEAR(sum.x, rho.x, 0.035f * rho.x);
+                    }
                 }
                 std::printf("[ warp     ] %s %d %s: mean sum %.4f rho %.4f\n", c.name, res,
                             importance ? "warped" : "Nusselt", mean.x, rho.x);

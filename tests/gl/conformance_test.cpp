@@ -206,7 +206,9 @@ TEST_P(Conformance, Technique)
             const std::vector<gl::Counter> counters = r->counters();
             for (const gl::Counter& c : counters)
                 EXPECT_TRUE(std::isfinite(c.value) && c.value >= 0.0) << "counter " << c.name << " = " << c.value;
-            if (!info.passes.empty()) EXPECT_FALSE(counters.empty()) << "a technique with passes reports no counter";
+            if (!info.passes.empty()) {
+                EXPECT_FALSE(counters.empty()) << "a technique with passes reports no counter";
+            }
 
             if (sceneName == "furnace") {
                 // 2% over the closed form: half-float G-buffer albedo and the exact/Eq. 4 texel solid

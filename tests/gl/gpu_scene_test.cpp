@@ -78,7 +78,9 @@ TEST_F(GpuSceneTest, TrianglesAndEmittersMatchTheCpuScene)
             EXPECT_GT(got.w, previousCdf); // increasing
             previousCdf = got.w;
         }
-        if (!emissive.empty()) EXPECT_EQ(previousCdf, 1.0f);
+        if (!emissive.empty()) {
+            EXPECT_EQ(previousCdf, 1.0f);
+        }
     }
 }
 

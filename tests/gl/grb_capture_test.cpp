@@ -41,8 +41,9 @@ int differingPixels(const core::Scene& scene, gl::KBufferSettings a, gl::KBuffer
             }
             ++n;
             if (!gl::KBuffer::sameEntries(pa[p], pb[p])) ++bad;
-            if (a.capture == gl::KBufferCapture::Atomic && b.capture == gl::KBufferCapture::Peel)
+            if (a.capture == gl::KBufferCapture::Atomic && b.capture == gl::KBufferCapture::Peel) {
                 EXPECT_EQ(pa[p].count, pb[p].entries.size()) << "pixel " << p << ": counter and peeled layers";
+            }
         }
         ha.timers().endFrame(false);
     }

@@ -212,7 +212,9 @@ TEST_F(GrbTransfer, OverflowNeverLeaksThroughAWall)
         }
         std::printf("[ two rooms] k = %d: dark room max %.3g, lit room max %.3g\n", k, dark, lit);
         EXPECT_EQ(dark, 0.0);
-        if (k == 16) EXPECT_GT(lit, 0.5);
+        if (k == 16) {
+            EXPECT_GT(lit, 0.5);
+        }
     }
 }
 

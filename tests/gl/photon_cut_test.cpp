@@ -350,8 +350,9 @@ TEST_F(PhotonCutTest, CutIrradianceMatchesBruteForceDensity)
                     c.name, cut.size(), cut.coarseSize(), queries.size(), relRmse, meanRatio, uncovered);
         EXPECT_LE(uncovered, 1) << c.name;
         errors.push_back(relRmse);
-        if (c.eminLevel == 12) // the coarse cut lies at and above levels 12-13 (4,096 + 8,192 nodes)
+        if (c.eminLevel == 12) { // the coarse cut lies at and above levels 12-13 (4,096 + 8,192 nodes)
             EXPECT_LT(cut.coarseSize(), 12288u) << c.name;
+        }
         if (c.eminLevel == 30) {
             EXPECT_LT(relRmse, 0.1) << c.name;
             EXPECT_NEAR(meanRatio, 1.0, 0.03) << c.name;

@@ -78,8 +78,9 @@ TEST_F(ShadowPcfTest, GatheredKernelEqualsFilteredTaps)
                 std::printf("[ measured ] %s %s r=%d: %d pixels between lit and shadowed, largest difference %.2g\n",
                             name, linear ? "linear" : "nearest", radius, partial, worst);
                 EXPECT_GT(geometry, 2000);
-                if (radius > 0 || linear)
+                if (radius > 0 || linear) {
                     EXPECT_GT(partial, radius == 0 ? 4 : 20) << "no penumbra: the comparison proves little";
+                }
                 // llvmpipe's bilinear weights are floats (measured: differences below 6e-7); a GPU's are 8-bit
                 // fixed point, 1/256 steps, so a tap there may differ from the gathers' float weights by
                 // 1/512 per texel.
