@@ -10,7 +10,7 @@
 // and the first adds their sums in lane order (the same sum in every run). The valid fragments may be too
 // few to fill a GPU with one invocation each (28,310 at 1024x768 on the Cornell box): more lanes hide the
 // walk's dependent tree fetches, but the lanes of one fragment fetch different nodes, where neighbouring
-// fragments in a warp share theirs (Hisr::lanesFor chooses).
+// fragments in a warp share theirs (hisrGatherLanes chooses, gatherLanes=auto).
 #include "technique/isr/hisr_walk.glsl"
 #include "technique/isr/valid_list.glsl"
 
