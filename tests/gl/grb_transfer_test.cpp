@@ -18,6 +18,7 @@
 
 #include "core/cornell.h"
 #include "gl/technique/grb/bundle_directions.h"
+#include "tests/form_factor.h"
 #include "tests/gl/gl_test_fixture.h"
 #include "tests/gl/grb_harness.h"
 
@@ -30,15 +31,9 @@ using grbtest::Texel;
 
 class GrbTransfer : public GlTest {};
 
-// The form factor from a point to a parallel rectangle a x b at distance c, the point under one of its
-// corners (Howell's catalogue, C-11).
-double cornerFormFactor(double a, double b, double c)
-{
-    const double ac = std::sqrt(a * a + c * c), bc = std::sqrt(b * b + c * c);
-    return (a / ac * std::atan(b / ac) + b / bc * std::atan(a / bc)) / (2.0 * 3.14159265358979323846);
-}
+using testing::cornerFormFactor;
 
-// ... to the unit square [0, 1]^2 at distance c, the point under (x, z) inside it.
+// The form factor from a point to the unit square [0, 1]^2 at distance c, the point under (x, z) inside it.
 double squareFormFactor(double x, double z, double c)
 {
     double f = 0.0;

@@ -19,6 +19,7 @@
 
 #include "core/scene.h"
 #include "gl/renderer.h"
+#include "tests/form_factor.h"
 #include "tests/gl/gl_test_fixture.h"
 
 namespace bounce {
@@ -74,20 +75,7 @@ core::Scene softShadowScene()
     return s;
 }
 
-// The form factor from a floor point to the rectangle [0, x] x [0, y] of a parallel plane h above it, one
-// corner straight above the point; odd in x and in y, so that any rectangle is a signed sum of four.
-double cornerFormFactor(double x, double y, double h)
-{
-    const double a = std::sqrt(x * x + h * h), b = std::sqrt(y * y + h * h);
-    return (x / a * std::atan(y / a) + y / b * std::atan(x / b)) / (2.0 * M_PI);
-}
-
-double rectFormFactor(double x0, double x1, double z0, double z1, double h)
-{
-    if (x1 <= x0 || z1 <= z0) return 0.0;
-    return cornerFormFactor(x1, z1, h) - cornerFormFactor(x0, z1, h) - cornerFormFactor(x1, z0, h) +
-           cornerFormFactor(x0, z0, h);
-}
+using testing::rectFormFactor;
 
 // Reflected radiance rho L F_visible at floor point (x, z): the emitter's form factor less that of the
 // occluder's shadow on the emitter's plane (the occluder seen from the point, scaled by kEmitY / kOccY).
