@@ -66,19 +66,28 @@ vec3 directFromPunctual(Light l, vec3 p, vec3 n, vec3 wo, BrdfParams b)
     return shadedIrradiance(l, p, n, wo, b, wi, irradiance);
 }
 
+// Irradiance at p (normal n) from one emitting triangle l, unshadowed and exact (polygon form factor), and
+// the direction wi towards its centroid, which stands for the triangle where a BRDF is evaluated.
+vec3 areaTriangleIrradiance(Light l, vec3 p, vec3 n, out vec3 wi)
+{
+    int first = l.shadow.z;
+    vec3 a = lightPolygons[first].xyz, bb = lightPolygons[first + 1].xyz, c = lightPolygons[first + 2].xyz;
+    wi = normalize((a + bb + c) / 3.0 - p);
+    if (dot(p - a, l.directionCosOuter.xyz) <= 0.0) return vec3(0.0); // behind the one-sided emitter
+    return l.intensityCosInner.rgb * kPi * polygonFormFactor(p, n, a, bb, c);
+}
+
 // Outgoing radiance towards wo from one emitting triangle l at p. The diffuse part is exact (polygon
 // form factor); the glossy part evaluates the BRDF towards the triangle's centroid (an approximation).
 vec3 directFromAreaTriangle(Light l, vec3 p, vec3 n, vec3 wo, BrdfParams b)
 {
+    vec3 wi;
+    vec3 irradiance = areaTriangleIrradiance(l, p, n, wi);
+#ifdef SHADOW_PCSS
+    if (max(irradiance.r, max(irradiance.g, irradiance.b)) <= 0.0) return vec3(0.0);
     int first = l.shadow.z;
     vec3 a = lightPolygons[first].xyz, bb = lightPolygons[first + 1].xyz, c = lightPolygons[first + 2].xyz;
-    vec3 emitterNormal = l.directionCosOuter.xyz;
-    if (dot(p - a, emitterNormal) <= 0.0) return vec3(0.0); // behind the one-sided emitter
-    vec3 wi = normalize((a + bb + c) / 3.0 - p);
-    vec3 irradiance = l.intensityCosInner.rgb * kPi * polygonFormFactor(p, n, a, bb, c);
-#ifdef SHADOW_PCSS
     // The side of the square this triangle is half of: the emitter's width PCSS assumes.
-    if (max(irradiance.r, max(irradiance.g, irradiance.b)) <= 0.0) return vec3(0.0);
     float width = sqrt(length(cross(bb - a, c - a)));
     return brdfEval(b, n, wo, wi) * irradiance * pcssVisibility(l, p, n, width);
 #else

@@ -119,6 +119,15 @@ inline Versus versus(const core::Image& got, const core::Image& want, const std:
     return {w > 0.0 ? g / w : 0.0, measureImages(got, want, ImageMetric::relativeRmse(), &mask)};
 }
 
+// The mask m (> 0.5) without the pixels of `cut` (> 0.5).
+inline core::Image without(core::Image m, const core::Image& cut)
+{
+    for (int y = 0; y < m.height; ++y)
+        for (int x = 0; x < m.width; ++x)
+            if (cut.at(x, y).x > 0.5f) m.set(x, y, glm::vec3(0.0f));
+    return m;
+}
+
 // Pixels whose 3 x 3 neighbourhood lies inside `m` (> 0.5) and inside the image: the path tracer box-filters
 // each pixel, the gather shades its centre, so pixels on a silhouette or on the image's border (the Cornell
 // box's open front meets the border here) are left out.

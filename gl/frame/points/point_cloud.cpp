@@ -72,7 +72,8 @@ void setPointLightUniforms(Program& program, const Frame& frame)
     frame.shadowMaps().setPcfUniforms(program, frame.settings().pcfRadius);
 }
 
-PointCloud::PointCloud(Frame& frame, std::size_t count, std::uint64_t seed, bool keepDirect) : keepDirect_(keepDirect)
+PointCloud::PointCloud(Frame& frame, std::size_t count, std::uint64_t seed, bool keepDirect)
+    : keepDirect_(keepDirect), glossy_(frame.scene().hasGlossy())
 {
     const auto points = orderedSurfacePoints(frame.scene(), count, seed);
     count_ = int(points->size());
@@ -87,16 +88,24 @@ PointCloud::PointCloud(Frame& frame, std::size_t count, std::uint64_t seed, bool
     surfels_ = Buffer("points.surfels", std::size_t(count_) * sizeof(GpuSurfel));
     radiance_ = Buffer("points.radiance", std::size_t(count_) * 8);
     if (keepDirect_) direct_ = Buffer("points.direct", std::size_t(count_) * 8);
-    std::vector<Define> updateDefines;
+    if (glossy_) glossyLobes_ = Buffer("points.glossy", std::size_t(count_) * 16);
+    std::vector<Define> updateDefines = defines();
     if (frame.gpuScene().hasTextures()) updateDefines.push_back({"TEXTURES", "1"});
     update_ = Program::compute("points.update", "frame/points/point_update.comp", updateDefines);
     makeLightProgram(frame.gpuScene());
     if (keepDirect_) relight_ = Program::compute("points.relight", "frame/points/point_relight.comp");
 }
 
+std::vector<Define> PointCloud::defines() const
+{
+    if (glossy_) return {{"GLOSSY_POINTS", "1"}};
+    return {};
+}
+
 void PointCloud::makeLightProgram(const GpuScene& scene)
 {
     std::vector<Define> d = lightKindDefines(scene);
+    for (const Define& k : defines()) d.push_back(k);
     punctual_ = scene.punctualLightCount() > 0;
     area_ = int(scene.lights().size()) > scene.punctualLightCount();
     if (keepDirect_) d.push_back({"KEEP_DIRECT", "1"});
@@ -109,6 +118,7 @@ void PointCloud::bind() const
     surfels_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_POINT_SURFELS);
     radiance_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_POINT_RADIANCE);
     if (keepDirect_) direct_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_POINT_DIRECT);
+    if (glossy_) glossyLobes_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_POINT_GLOSSY);
 }
 
 void PointCloud::update(Frame& frame, PassTimers& timers)

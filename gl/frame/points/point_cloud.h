@@ -5,7 +5,9 @@
 // clusters at once), on the GPU (glsl/frame/points/point_cloud.glsl). Passes:
 //   "point-update"  every point's position, normal and diffuse colour from (triangle, barycentrics) on the
 //                   scene as it is now (point_update.comp)
-//   "point-light"   direct light at every point from the frame's shadow maps, half floats (point_light.comp)
+//   "point-light"   direct light at every point from the frame's shadow maps, half floats (point_light.comp);
+//                   in a scene with a glossy material, what each point's glossy lobe needs as well
+//                   (point_cloud.glsl's `glossy`, compiled in with GLOSSY_POINTS)
 //   "relight"       direct + the diffuse light gathered at the points' representatives (bounces > 1)
 #pragma once
 
@@ -55,6 +57,11 @@ public:
     // The radius of a point's disc, sqrt(area / pi), over the cloud (all points carry the same area).
     float discRadius() const { return discRadius_; }
     const Buffer& radiance() const { return radiance_; }
+    // The scene has a glossy material: the points carry their glossy lobes (SSBO_POINT_GLOSSY), and every
+    // program that reads the points is compiled with defines(), which says so (GLOSSY_POINTS).
+    bool glossy() const { return glossy_; }
+    const Buffer& glossyLobes() const { return glossyLobes_; } // uvec4 per point where glossy()
+    std::vector<Define> defines() const;
     const Buffer& surfels() const { return surfels_; }
 
 private:
@@ -62,8 +69,9 @@ private:
     double totalArea_ = 0.0;
     float discRadius_ = 0.0f;
     bool keepDirect_ = false;
+    bool glossy_ = false;
     bool punctual_ = false, area_ = false;
-    Buffer samples_, surfels_, radiance_, direct_;
+    Buffer samples_, surfels_, radiance_, direct_, glossyLobes_;
     Program update_, light_, relight_;
     void makeLightProgram(const GpuScene& scene);
 };

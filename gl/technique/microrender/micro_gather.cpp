@@ -51,6 +51,7 @@ Program MicroGather::makeProgram(Frame& frame, const PointHierarchy& hierarchy, 
     if (!settings_.warp) d.push_back({"NO_WARP", "1"});
     if (atPoints) d.push_back({"GATHER_AT_POINTS", "1"});
     for (const Define& k : lightKindDefines(frame.gpuScene())) d.push_back(k);
+    for (const Define& k : hierarchy.defines()) d.push_back(k);
     return Program::compute(atPoints ? "microrender.bounceGather" : "microrender.gather",
                             "technique/microrender/gather.comp", d);
 }

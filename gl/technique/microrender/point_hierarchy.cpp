@@ -14,15 +14,19 @@ static_assert(sizeof(GpuMicroNode) == 48, "hierarchy.glsl's MicroNode");
 
 PointHierarchy::PointHierarchy(const PointCloud& cloud)
     : leaves_(cloud.count()),
-      leavesProgram_(Program::compute("microrender.hierarchyLeaves", "technique/microrender/hierarchy_leaves.comp")),
-      levelProgram_(Program::compute("microrender.hierarchyLevel", "technique/microrender/hierarchy_level.comp"))
+      glossy_(cloud.glossy()),
+      defines_(cloud.defines()),
+      leavesProgram_(
+          Program::compute("microrender.hierarchyLeaves", "technique/microrender/hierarchy_leaves.comp", defines_)),
+      levelProgram_(
+          Program::compute("microrender.hierarchyLevel", "technique/microrender/hierarchy_level.comp", defines_))
 {
     levels_ = core::exactLog2(std::uint64_t(leaves_));
     if (levels_ < 0)
         throw std::invalid_argument("micro-rendering's hierarchy needs a power-of-two point count, not " +
                                     std::to_string(leaves_));
     // Heap order: node 0 unused, 1 the root, leaves at [n, 2n).
-    nodes_ = Buffer("microrender.hierarchy", std::size_t(2 * leaves_) * sizeof(GpuMicroNode));
+    nodes_ = Buffer("microrender.hierarchy", std::size_t(2 * leaves_) * nodeBytes());
 }
 
 void PointHierarchy::bind() const

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -14,7 +15,8 @@
 
 namespace bounce::gl {
 
-// std430 mirror of hierarchy.glsl's MicroNode.
+// std430 mirror of hierarchy.glsl's MicroNode without its glossy lobe: a cloud with glossy lobes
+// (PointCloud::glossy) has 16 bytes more per node (nodeBytes()).
 struct GpuMicroNode {
     glm::vec4 sphere;
     glm::vec4 cone;
@@ -34,10 +36,15 @@ public:
 
     int leafCount() const { return leaves_; }
     int levels() const { return levels_; } // log2(leafCount): the root is level 0, the leaves level `levels`
+    std::size_t nodeBytes() const { return glossy_ ? sizeof(GpuMicroNode) + 16 : sizeof(GpuMicroNode); }
+    // The cloud's defines (GLOSSY_POINTS), for every program that reads the nodes.
+    const std::vector<Define>& defines() const { return defines_; }
     const Buffer& nodes() const { return nodes_; }
 
 private:
     int leaves_ = 0, levels_ = 0;
+    bool glossy_ = false;
+    std::vector<Define> defines_;
     Buffer nodes_;
     Program leavesProgram_, levelProgram_;
 };

@@ -23,6 +23,7 @@ ProjectionGather::ProjectionGather(const PointCloud& cloud, const ProjectionSett
     if (32 - keyIndexBits_ < 8)
         throw std::invalid_argument("point projection's 32-bit (depth, point) key holds at most 2^24 points");
     texelSolidAngles_ = Buffer::fromVector("pointproj.texelSolidAngles", core::hemiOctTexelSolidAngles(kResolution));
+    defines_ = cloud.defines();
     pixels_ = makeProgram(false);
     if (atPoints) points_ = makeProgram(true);
 }
@@ -40,6 +41,7 @@ Program ProjectionGather::makeProgram(bool atPoints) const
         {"SPLAT_FIXED", std::to_string(settings_.fixedSplat)},
     };
     if (atPoints) d.push_back({"GATHER_AT_POINTS", "1"});
+    for (const Define& k : defines_) d.push_back(k);
     return Program::compute(atPoints ? "pointproj.bounceGather" : "pointproj.gather", "technique/pointproj/gather.comp",
                             d);
 }

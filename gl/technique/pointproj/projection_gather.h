@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 #include "gl/frame/frame.h"
 #include "gl/frame/points/adaptive_pixels.h"
@@ -51,6 +52,7 @@ public:
 private:
     ProjectionSettings settings_;
     int keyIndexBits_ = 0;
+    std::vector<Define> defines_; // the cloud's (GLOSSY_POINTS)
     Buffer texelSolidAngles_, stats_;
     Program pixels_, points_;
     Program makeProgram(bool atPoints) const;

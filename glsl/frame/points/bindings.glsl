@@ -12,5 +12,6 @@
 #define SSBO_POINT_GATHERED 12       //   diffuse light gathered at every stride-th point (bounces > 1)
 #define SSBO_GATHER_TARGETS 13       // gather_target.glsl: the flattened-buffer texels to gather at
 #define SSBO_GATHER_COUNT 14         //   how many
+#define SSBO_POINT_GLOSSY 22         //   what each point's glossy lobe needs (GLOSSY_POINTS)
 
 #endif

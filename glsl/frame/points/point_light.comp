@@ -2,9 +2,11 @@
 // "point-light": direct light at every point from the frame's shadow maps, stored as half floats
 // (micro-rendering §4, "One-Bounce Indirect Illumination": "directly lighting the point hierarchy, e.g.
 // using shadow mapping techniques"; point projection §4, "Primary Lights"). With bounces > 1 the direct
-// part is kept apart too, for point_relight.comp to add gathered light to.
+// part is kept apart too, for point_relight.comp to add gathered light to. GLOSSY_POINTS: what the glossy
+// lobes need as well (point_cloud.glsl's `glossy`).
 #define POINT_SURFELS
 #define POINT_RADIANCE
+#define POINT_GLOSSY
 #include "frame/points/point_cloud.glsl"
 #include "frame/points/point_light.glsl"
 
@@ -19,7 +21,19 @@ void main()
     uint i = gl_GlobalInvocationID.x;
     if (i >= pointCount) return;
     PointSurfel s = pointSurfels[i];
-    uvec2 h = packRadiance(pointDirectRadiance(s.position, s.normal, unpackUnorm4x8(s.diffuse).rgb));
+    vec4 diffuseWeight = unpackUnorm4x8(s.diffuse);
+#ifdef GLOSSY_POINTS
+    // Every point: a metal's diffuse colour is black, and its glossy lobe is all it sends.
+    PointLight pl = pointDirectLight(s.position, s.normal, diffuseWeight.rgb);
+    vec3 e = clamp(pl.irradiance * diffuseWeight.a, vec3(0.0), vec3(kHalfMax));
+    vec4 material = unpackUnorm4x8(pointGlossy[i].w); // F0, sqrt(alpha) of the surface (point_update.comp)
+    float alpha = widenedAlpha(material.a * material.a, pl.spread2);
+    pointGlossy[i] = uvec4(packUnitVector(pl.direction), packHalf2x16(e.rg), packHalf2x16(vec2(e.b, 0.0)),
+                           packGlossyMaterial(material.rgb, alpha));
+    uvec2 h = packRadiance(pl.radiance);
+#else
+    uvec2 h = packRadiance(pointDirectRadiance(s.position, s.normal, diffuseWeight.rgb));
+#endif
     pointRadiance[i] = h;
 #ifdef KEEP_DIRECT
     pointDirect[i] = h;

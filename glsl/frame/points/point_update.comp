@@ -2,12 +2,14 @@
 // "point-update": every point's surfel from its (triangle, barycentrics) on the scene as it is now
 // (micro-rendering §2.1, "Deforming and Moving Geometry"; point projection §4 "Scene Points": "we simply
 // update them using their bary coords"): position, interpolated normal, and the diffuse colour of its
-// material times its base-colour texture at the interpolated uv, as the G-buffer computes it.
+// material times its base-colour texture at the interpolated uv, as the G-buffer computes it, and
+// (GLOSSY_POINTS) the glossy lobe's F0 and roughness.
 #define SCENE_GEOMETRY
 #include "common/brdf.glsl"
 #include "common/scene.glsl"
 #define POINT_SAMPLES
 #define POINT_SURFELS
+#define POINT_GLOSSY
 #include "frame/points/point_cloud.glsl"
 
 layout(local_size_x = 64) in;
@@ -36,6 +38,10 @@ void main()
     o.position = sceneTrianglePoint(tri, b);
     o.areaM2 = s.areaM2;
     o.normal = sceneTriangleNormal(tri, b);
-    o.diffuse = packUnorm4x8(vec4(clamp(p.diffuse, 0.0, 1.0), 1.0));
+    // The fourth byte: the glossy lobe's weight w (point_light.comp folds it into the glossy irradiance).
+    o.diffuse = packUnorm4x8(vec4(clamp(p.diffuse, 0.0, 1.0), clamp(p.weight, 0.0, 1.0)));
     pointSurfels[i] = o;
+#ifdef GLOSSY_POINTS
+    pointGlossy[i].w = packGlossyMaterial(p.f0, p.alpha);
+#endif
 }

@@ -15,9 +15,12 @@
 //   3. rays (RAY_CAST, §2.2 "On-demand Ray Casting"): leaves still larger than a micro-pixel go to the
 //      post-traversal list instead; when it is not empty, one ray per micro-pixel through the frame's GPU
 //      ray casting (common/raycast.glsl); a hit nearer than the pixel's node takes the pixel, with the
-//      radiance of the listed leaf whose disc holds the hit, else the lights' at the hit;
+//      radiance of the listed leaf whose disc holds the hit, else the lights' at the hit (GLOSSY_POINTS:
+//      every lobe of the hit's BRDF towards the sample);
 //   4. convolution: each micro-pixel's radiance times f cos Omega at its direction (Omega from the warp's
 //      Jacobian), summed: with the warp proportional to f this is rho times the mean of the micro-pixels.
+// GLOSSY_POINTS: a node sends its glossy lobe's direct light too, evaluated towards the sample
+// (hierarchy.glsl's nodeRadiance), so that light -> glossy -> receiver paths are gathered.
 // Results: the diffuse part without the receiver's diffuse colour and the glossy part (gather_target.glsl).
 // Defines: MICRO_RES (8, 16, 24), MICRO_GROUP (64), WARP_BINS, KEY_INDEX_BITS, LIST_CAP, RAY_CAST,
 // GATHER_AT_POINTS, PUNCTUAL_LIGHTS / AREA_LIGHTS (the lights at ray hits), MICRO_STAGES (4; fewer runs
@@ -134,6 +137,11 @@ bool cutVisit(CutFrame f, uint node)
         else // what its surfels subtend: at most their area over d^2, at most the sphere's solid angle
             omega = min(2.0 * kConeAll * (1.0 - sqrt(1.0 - r * r / d2)), nd.areaM2 / d2);
         bool large = omega > cutScale * warpPixelSolidAngle(wl);
+#ifdef GLOSSY_POINTS
+        // An interior node sends its glossy lobe about its cone's axis: only a node whose normals stay within
+        // the lobe's width (its roughness, sqrt(alpha), in radians) may stand for its points' lobes.
+        large = large || (!isLeaf && glossyTooWide(nd));
+#endif
         if (large && !isLeaf) {
             descend = true;
         } else if (h >= 0.0) {
@@ -293,7 +301,7 @@ void main()
             }
         }
         if (best == 0u) continue;
-        vec3 radiance = unpackRadiance(microNodes[best].radiance);
+        vec3 radiance = nodeRadiance(microNodes[best], -dir);
         scratch[3 * p] = floatBitsToUint(radiance.r);
         scratch[3 * p + 1] = floatBitsToUint(radiance.g);
         scratch[3 * p + 2] = floatBitsToUint(radiance.b);
@@ -332,10 +340,16 @@ void main()
                 }
             }
             if (best != 0u) {
-                radiance = unpackRadiance(microNodes[best].radiance);
+                radiance = nodeRadiance(microNodes[best], -dir);
             } else {
                 Material m = materials[sceneTriangleMaterial(hit.triangle)];
+#ifdef GLOSSY_POINTS
+                BrdfParams b = brdfParams(m.baseColorMetallic.rgb, m.baseColorMetallic.a, m.emissionRoughness.a,
+                                          m.specularColorSpecular.a, m.specularColorSpecular.rgb);
+                radiance = surfaceDirectRadiance(hp, hn, -dir, b);
+#else
                 radiance = pointDirectRadiance(hp, hn, m.baseColorMetallic.rgb * (1.0 - m.baseColorMetallic.a));
+#endif
             }
         }
         scratch[3 * p] = floatBitsToUint(radiance.r);
@@ -360,12 +374,13 @@ void main()
             continue;
         }
 #ifdef RAY_CAST
-        vec3 radiance = key == kRayKey ? uintBitsToFloat(uvec3(scratch[3 * p], scratch[3 * p + 1], scratch[3 * p + 2]))
-                                       : unpackRadiance(microNodes[key & kIndexMask].radiance);
-#else
-        vec3 radiance = unpackRadiance(microNodes[key & kIndexMask].radiance);
-#endif
         vec3 wi = tangent * wl.x + bitangent * wl.y + n * wl.z;
+        vec3 radiance = key == kRayKey ? uintBitsToFloat(uvec3(scratch[3 * p], scratch[3 * p + 1], scratch[3 * p + 2]))
+                                       : nodeRadiance(microNodes[key & kIndexMask], -wi);
+#else
+        vec3 wi = tangent * wl.x + bitangent * wl.y + n * wl.z;
+        vec3 radiance = nodeRadiance(microNodes[key & kIndexMask], -wi);
+#endif
         float cs = warpCosineSolidAngle(wl);
         vec3 fd, fg;
         brdfEvalLobes(g.brdf, n, g.wo, wi, fd, fg);

@@ -3,6 +3,7 @@
 // recompute the leaf nodes' positions and normals").
 #define POINT_SURFELS
 #define POINT_RADIANCE
+#define POINT_GLOSSY
 #include "frame/points/point_cloud.glsl"
 #include "technique/microrender/hierarchy.glsl"
 
@@ -21,5 +22,8 @@ void main()
     n.radiance = pointRadiance[j];
     n.areaM2 = s.areaM2;
     n.pad = 0.0;
+#ifdef GLOSSY_POINTS
+    n.glossy = pointGlossy[j];
+#endif
     microNodes[leafCount + j] = n;
 }

@@ -2,7 +2,6 @@
 // "hierarchy", one dispatch per level, bottom up (§2.1: "we recompute the minimum bounding sphere and cone
 // of normals, containing the two child-nodes' bounding spheres and normals ... by successively merging two
 // nodes at a time, yielding a total of O(n) operations"): nodes [first, 2 first) from their children.
-#include "frame/points/point_cloud.glsl"
 #include "technique/microrender/hierarchy.glsl"
 
 layout(local_size_x = 64) in;
@@ -22,5 +21,8 @@ void main()
     float wa = n.areaM2 > 0.0 ? a.areaM2 / n.areaM2 : 0.5;
     n.radiance = packRadiance(wa * unpackRadiance(a.radiance) + (1.0 - wa) * unpackRadiance(b.radiance));
     n.pad = 0.0;
+#ifdef GLOSSY_POINTS
+    n.glossy = mergeGlossy(a.glossy, b.glossy, wa);
+#endif
     microNodes[i] = n;
 }

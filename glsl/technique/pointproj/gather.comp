@@ -15,12 +15,15 @@
 //      32-bit (depth, point) key with atomicMin in shared memory (the paper's 64-bit colour + depth words
 //      do not exist here); each texel's radiance times f_r cos Omega_texel, summed.
 // A point facing away from the shading point is projected (it casts indirect shadows, §3.2) but
-// reflects nothing towards it (one-sided surfaces). PROJ_MODE 1 draws uniformly (every p_k equal: Fig. 9's
-// "random projection"), 2 projects every point with its own area (the brute-force reference of Fig. 9).
+// reflects nothing towards it (one-sided surfaces). GLOSSY_POINTS: a point sends its glossy lobe's direct
+// light too, evaluated towards the shading point (point_cloud.glsl's pointGlossyRadiance). PROJ_MODE 1
+// draws uniformly (every p_k equal: Fig. 9's "random projection"), 2 projects every point with its own
+// area (the brute-force reference of Fig. 9).
 // SPLAT_FIXED n > 0: every splat n x n texels (Fig. 7's non-adaptive splats).
 #include "common/bindings.glsl"
 #define POINT_SURFELS
 #define POINT_RADIANCE
+#define POINT_GLOSSY
 #include "frame/points/gather_target.glsl"
 #include "technique/pointproj/bindings.glsl"
 #include "technique/pointproj/projection.glsl"
@@ -208,6 +211,9 @@ void main()
         PointSurfel s = pointSurfels[j];
         if (dot(s.normal, gx - s.position) <= 0.0) continue; // its back: black
         vec3 radiance = unpackRadiance(pointRadiance[j]);
+#ifdef GLOSSY_POINTS
+        radiance += pointGlossyRadiance(pointGlossy[j], s.normal, normalize(gx - s.position));
+#endif
         vec3 wi = gt * wl.x + gb * wl.y + gn * wl.z;
         vec3 fd, fg;
         brdfEvalLobes(g.brdf, gn, g.wo, wi, fd, fg);
