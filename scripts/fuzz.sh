@@ -3,7 +3,7 @@
 # the fuzz target, under AddressSanitizer and UBSan), then fuzzes from the seed corpus with the dictionary.
 #
 #   scripts/fuzz.sh                    build, then fuzz for 10 minutes
-#   scripts/fuzz.sh --time 3600        ... for an hour (the test gltf_fuzz runs --time 60)
+#   scripts/fuzz.sh --time 3600        ... for an hour (the test gltf_fuzz runs --time 45)
 #   scripts/fuzz.sh --build            build only
 #   scripts/fuzz.sh --time 600 -- -jobs=2 -workers=2    anything after -- goes to libFuzzer
 #
