@@ -1,5 +1,7 @@
 #include "gl/resource/dispatch.h"
 
+#include <algorithm>
+#include <climits>
 #include <string>
 
 #include "gl/gl.h"
@@ -45,6 +47,15 @@ void dispatchCompute(const Program& program, glm::ivec3 size, glm::ivec3 localSi
     }
     program.use();
     glDispatchCompute(GLuint(groups.x), GLuint(groups.y), GLuint(groups.z));
+}
+
+void dispatchRows(const Program& program, std::size_t groups, int localSize)
+{
+    if (groups == 0) return;
+    const std::size_t row = std::min(groups, kMaxRowGroups), rows = (groups + row - 1) / row;
+    if (rows > std::size_t(INT_MAX))
+        throw DispatchError("compute dispatch of " + std::to_string(groups) + " groups: too many rows");
+    dispatchCompute(program, {int(row) * localSize, int(rows), 1}, {localSize, 1, 1});
 }
 
 } // namespace bounce::gl

@@ -4,6 +4,7 @@
 // (any(greaterThanEqual(gl_GlobalInvocationID, size))).
 #pragma once
 
+#include <cstddef>
 #include <stdexcept>
 
 #include <glm/glm.hpp>
@@ -24,5 +25,16 @@ glm::ivec3 computeGroupCount(glm::ivec3 size, glm::ivec3 localSize);
 // declared local_size (GL_COMPUTE_WORK_GROUP_SIZE), or when a group count exceeds
 // GL_MAX_COMPUTE_WORK_GROUP_COUNT on its axis. The caller still issues the memory barrier it needs.
 void dispatchCompute(const Program& program, glm::ivec3 size, glm::ivec3 localSize);
+
+// The most work groups dispatchRows puts in one row: the least GL_MAX_COMPUTE_WORK_GROUP_COUNT a driver may
+// have on an axis (GL 4.5, Table 23.75).
+constexpr std::size_t kMaxRowGroups = 65535;
+
+// Dispatches `groups` work groups of a one-dimensional program (local size localSize x 1 x 1) in rows of at
+// most kMaxRowGroups groups, as many rows as it takes, so that a dispatch of millions of groups stays within
+// every driver's limits; the shader finds its group with glsl/common/dispatch_rows.glsl's rowGroup() and
+// returns past `groups` (the last row is filled up). Nothing when groups is 0. Throws DispatchError as
+// dispatchCompute.
+void dispatchRows(const Program& program, std::size_t groups, int localSize);
 
 } // namespace bounce::gl

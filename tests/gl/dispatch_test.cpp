@@ -1,6 +1,9 @@
-// The compute-dispatch helper (gl/resource/dispatch.h): every invocation inside the size runs once, the
-// partial groups hold exactly the remainder, bad sizes are refused before GL sees them.
+// The compute-dispatch helpers (gl/resource/dispatch.h): every invocation inside the size runs once, the
+// partial groups hold exactly the remainder, a dispatch in rows reaches every group past one axis's limit,
+// bad sizes are refused before GL sees them.
+#include <algorithm>
 #include <climits>
+#include <cstddef>
 #include <string>
 #include <utility>
 #include <vector>
@@ -68,6 +71,27 @@ TEST_F(DispatchTest, EveryInvocationInsideOnceNothingElse)
         const glm::ivec3 launched = ((size + local - 1) / local) * local;
         EXPECT_EQ(outside, std::uint32_t(launched.x * launched.y * launched.z - size.x * size.y * size.z))
             << size.x << "x" << size.y << "x" << size.z;
+    }
+}
+
+// dispatchRows: 5 groups in one row, 2 x 65,535 + 3 groups in three rows (past the least per-axis limit a
+// driver may have), none: every group inside once, and the rest of the last row exactly what runs past it.
+TEST_F(DispatchTest, RowsReachEveryGroupOncePastOneAxisLimit)
+{
+    gl::Program prog = gl::Program::compute("test.dispatchRows", "test/dispatch_rows.comp");
+    for (const std::size_t groups : {std::size_t(5), 2 * gl::kMaxRowGroups + 3, std::size_t(0)}) {
+        gl::Buffer buffer = gl::Buffer::fromVector("test.dispatch.rows", std::vector<std::uint32_t>(groups + 1, 0u));
+        buffer.bindBase(GL_SHADER_STORAGE_BUFFER, 0);
+        prog.set("groups", unsigned(groups));
+        gl::dispatchRows(prog, groups, 1);
+        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+        const std::vector<std::uint32_t> all = buffer.download<std::uint32_t>();
+        std::size_t wrong = 0;
+        for (std::size_t g = 1; g < all.size(); ++g) wrong += all[g] != 1u;
+        EXPECT_EQ(wrong, 0u) << groups << " groups: groups not run exactly once";
+        const std::size_t row = std::min(std::max(groups, std::size_t(1)), gl::kMaxRowGroups);
+        const std::size_t launched = groups == 0 ? 0 : (groups + row - 1) / row * row;
+        EXPECT_EQ(all.front(), std::uint32_t(launched - groups)) << groups << " groups: runs past the count";
     }
 }
 

@@ -70,10 +70,7 @@ void PixelGather::upsample(Frame& frame, PassTimers& timers)
 
 void dispatchPerTarget(const Program& program, int count, int localSize)
 {
-    if (count <= 0) return;
-    constexpr int kMaxX = 65535;
-    const int x = std::min(count, kMaxX), y = (count + kMaxX - 1) / kMaxX;
-    dispatchCompute(program, {x * localSize, y, 1}, {localSize, 1, 1});
+    if (count > 0) dispatchRows(program, std::size_t(count), localSize);
 }
 
 } // namespace bounce::gl

@@ -8,6 +8,7 @@
 #include "gl/context/context.h"
 #include "gl/gl.h"
 #include "gl/probe/machine_probe.h"
+#include "gl/resource/dispatch.h"
 #include "gl/resource/pass_state.h"
 #include "gl/technique/isr/bindings.h"
 #include "gl/technique/isr/vpl_gather.h"
@@ -209,16 +210,13 @@ double MultiresGather::gatherAsList(Frame& frame, Program& program, int draws,
     // The list, and the VPLs and clusters written by compute passes, before the gather reads them.
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_UNIFORM_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     illumination_.bindImage(0, GL_READ_WRITE);
-    // Each dispatch covers the longest list there can be; invocations past its count return at once. Rows
-    // of at most 65,535 groups (valid_list.glsl: listInvocation), the least a driver allows per axis.
+    // Each dispatch covers the longest list there can be; invocations past its count return at once. In
+    // rows of groups (valid_list.glsl: listInvocation).
     const std::size_t groups =
         (std::size_t(width) * std::size_t(height) * std::size_t(std::max(invocationsPerFragment, 1)) + 63) / 64;
-    const std::size_t row = std::min<std::size_t>(groups, 65535);
-    const std::size_t rows = (groups + row - 1) / row;
     for (int i = 0; i < draws; ++i) {
         if (setupDraw) setupDraw(program, i);
-        program.use();
-        glDispatchCompute(GLuint(row), GLuint(rows), 1);
+        dispatchRows(program, groups, 64);
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT); // the next dispatch adds to what this one wrote
     }
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT); // the upsampling samples the buffer

@@ -11,9 +11,7 @@ namespace bounce::gl {
 
 void dispatchLinear(const Program& program, std::uint32_t count)
 {
-    constexpr std::uint32_t row = 1u << 21; // kLinearRow
-    const std::uint32_t rows = (count + row - 1) / row;
-    dispatchCompute(program, {int(std::min(count, row)), int(std::max(rows, 1u)), 1}, {64, 1, 1});
+    dispatchRows(program, std::max<std::size_t>((std::size_t(count) + 63) / 64, 1), 64);
 }
 
 PhotonTree::PhotonTree(int leafPhotons)

@@ -19,7 +19,7 @@
 namespace bounce::gl {
 
 // Dispatches `count` invocations of a 64-wide `program` that reads its index from linearInvocation()
-// (glsl/technique/photon/linear_dispatch.glsl): rows of 2^21 invocations, as many rows as it takes.
+// (glsl/technique/photon/linear_dispatch.glsl): groups of 64 in rows (gl/resource/dispatch.h: dispatchRows).
 void dispatchLinear(const Program& program, std::uint32_t count);
 
 // std430 mirror of PhotonNode in photon_tree.glsl.

@@ -15,6 +15,7 @@
 // Included before any #if: the shader preprocessor takes each file once, also inside an inactive branch.
 #include "common/bindings.glsl"
 #include "common/brdf.glsl"
+#include "common/dispatch_rows.glsl"
 #ifdef GATHER_AT_POINTS
 #define POINT_SURFELS
 #endif
@@ -105,7 +106,7 @@ void storeGather(GatherSample g, uint k, vec3 diffuse, vec3 glossy)
 }
 #endif
 
-// The gather's target of this work group (one group per target; the dispatch may be 2D past 65535 groups).
-uint gatherTargetIndex() { return gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x; }
+// The gather's target of this work group (one group per target, in rows: dispatchPerTarget).
+uint gatherTargetIndex() { return rowGroup(); }
 
 #endif

@@ -3,6 +3,7 @@
 #ifndef BOUNCE_VALID_LIST_GLSL
 #define BOUNCE_VALID_LIST_GLSL
 
+#include "common/dispatch_rows.glsl"
 #include "technique/isr/bindings.glsl"
 
 // Groups of 64 along x (MultiresGather::gather's group count).
@@ -20,12 +21,8 @@ bool listedFragmentAt(uint i, out ivec2 at)
     return true;
 }
 
-// This invocation's index: the dispatch is laid out in rows of at most 65,535 groups
-// (MultiresGather::gather), the least GL_MAX_COMPUTE_WORK_GROUP_COUNT a driver may have per axis.
-uint listInvocation()
-{
-    return (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * 64u + gl_LocalInvocationIndex;
-}
+// This invocation's index: the dispatch is laid out in rows (MultiresGather::gather: dispatchRows).
+uint listInvocation() { return rowGroup() * gl_WorkGroupSize.x + gl_LocalInvocationIndex; }
 
 // This invocation's fragment of the flattened buffer; false past the end of the list.
 bool listedFragment(out ivec2 at) { return listedFragmentAt(listInvocation(), at); }
