@@ -9,6 +9,7 @@
 #define BOUNCE_BRDF_GLSL
 
 const float kPi = 3.14159265358979323846;
+const vec3 kLuminance = vec3(0.2126, 0.7152, 0.0722); // Rec. 709 weights of linear RGB
 
 struct BrdfParams {
     vec3 diffuse;    // c_diff = baseColor (1 - metallic)

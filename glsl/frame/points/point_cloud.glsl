@@ -67,6 +67,19 @@ uvec2 packRadiance(vec3 l)
 vec3 unpackRadiance(uvec2 h) { return vec3(unpackHalf2x16(h.x), unpackHalf2x16(h.y).x); }
 
 #ifdef GLOSSY_POINTS
+// A lobe's words (above): the direction, the irradiance times w, and the material word.
+uvec4 packGlossy(vec3 direction, vec3 irradiance, uint material)
+{
+    irradiance = clamp(irradiance, vec3(0.0), vec3(kHalfMax));
+    return uvec4(packUnitVector(direction), packHalf2x16(irradiance.rg), packHalf2x16(vec2(irradiance.b, 0.0)),
+                 material);
+}
+vec3 glossyIrradiance(uvec4 g) { return vec3(unpackHalf2x16(g.y), unpackHalf2x16(g.z).x); }
+
+// The material word: F0 and sqrt(alpha) as unorm8 (an alpha of 0.0025, polished metal, keeps 2 digits).
+uint packGlossyMaterial(vec3 f0, float alpha) { return packUnorm4x8(vec4(f0, sqrt(alpha))); }
+float glossyAlpha(vec4 material) { return max(material.a * material.a, 1e-3); }
+
 // The direct light a point's (or a hierarchy node's) glossy lobe `g` sends towards wo, its normal n:
 // f_glossy(wo, wi) E with the weight already in E. Zero below either horizon.
 vec3 pointGlossyRadiance(uvec4 g, vec3 n, vec3 wo)
@@ -76,13 +89,9 @@ vec3 pointGlossyRadiance(uvec4 g, vec3 n, vec3 wo)
     b.diffuse = vec3(0.0);
     b.f0 = m.rgb;
     b.weight = 1.0;
-    b.alpha = max(m.a * m.a, 1e-3);
-    vec3 irradiance = vec3(unpackHalf2x16(g.y), unpackHalf2x16(g.z).x);
-    return brdfGlossy(b, n, wo, unpackUnitVector(g.x)) * irradiance;
+    b.alpha = glossyAlpha(m);
+    return brdfGlossy(b, n, wo, unpackUnitVector(g.x)) * glossyIrradiance(g);
 }
-
-// g's material word: F0 and sqrt(alpha) as unorm8 (an alpha of 0.0025, polished metal, keeps 2 digits).
-uint packGlossyMaterial(vec3 f0, float alpha) { return packUnorm4x8(vec4(f0, sqrt(alpha))); }
 #endif
 
 #endif

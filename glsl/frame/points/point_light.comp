@@ -25,11 +25,9 @@ void main()
 #ifdef GLOSSY_POINTS
     // Every point: a metal's diffuse colour is black, and its glossy lobe is all it sends.
     PointLight pl = pointDirectLight(s.position, s.normal, diffuseWeight.rgb);
-    vec3 e = clamp(pl.irradiance * diffuseWeight.a, vec3(0.0), vec3(kHalfMax));
     vec4 material = unpackUnorm4x8(pointGlossy[i].w); // F0, sqrt(alpha) of the surface (point_update.comp)
     float alpha = widenedAlpha(material.a * material.a, pl.spread2);
-    pointGlossy[i] = uvec4(packUnitVector(pl.direction), packHalf2x16(e.rg), packHalf2x16(vec2(e.b, 0.0)),
-                           packGlossyMaterial(material.rgb, alpha));
+    pointGlossy[i] = packGlossy(pl.direction, pl.irradiance * diffuseWeight.a, packGlossyMaterial(material.rgb, alpha));
     uvec2 h = packRadiance(pl.radiance);
 #else
     uvec2 h = packRadiance(pointDirectRadiance(s.position, s.normal, diffuseWeight.rgb));

@@ -36,7 +36,7 @@ void addPointLight(inout PointLight pl, inout PointLightSums sums, Light l, vec3
     vec3 e = irradiance * shadowVisibility(l, p, n);
     pl.radiance += diffuse * (1.0 / kPi) * e;
     pl.irradiance += e;
-    float w = dot(e, vec3(0.2126, 0.7152, 0.0722));
+    float w = dot(e, kLuminance);
     sums.weight += w;
     sums.direction += wi * w;
     sums.extent2 += m * w;

@@ -56,25 +56,21 @@ bool glossyTooWide(MicroNode nd)
 {
     vec4 m = unpackUnorm4x8(nd.glossy.w);
     if (nd.cone.w <= m.a) return false;
-    const vec3 lum = vec3(0.2126, 0.7152, 0.0722);
-    vec3 e = vec3(unpackHalf2x16(nd.glossy.y), unpackHalf2x16(nd.glossy.z).x);
-    float alpha = max(m.a * m.a, 1e-3);
-    float peak = dot(m.rgb, lum) * dot(e, lum) / (4.0 * kConeAll * alpha * alpha);
-    return peak > dot(unpackRadiance(nd.radiance), lum);
+    float alpha = glossyAlpha(m);
+    float peak = dot(m.rgb, kLuminance) * dot(glossyIrradiance(nd.glossy), kLuminance) / (4.0 * kPi * alpha * alpha);
+    return peak > dot(unpackRadiance(nd.radiance), kLuminance);
 }
 
 // Two nodes' glossy lobes as one (above); wa the first's share of the area.
 uvec4 mergeGlossy(uvec4 a, uvec4 b, float wa)
 {
-    vec3 ea = vec3(unpackHalf2x16(a.y), unpackHalf2x16(a.z).x), eb = vec3(unpackHalf2x16(b.y), unpackHalf2x16(b.z).x);
-    vec3 e = wa * ea + (1.0 - wa) * eb;
-    const vec3 lum = vec3(0.2126, 0.7152, 0.0722);
-    float la = wa * dot(ea, lum), lb = (1.0 - wa) * dot(eb, lum);
+    vec3 ea = glossyIrradiance(a), eb = glossyIrradiance(b);
+    float la = wa * dot(ea, kLuminance), lb = (1.0 - wa) * dot(eb, kLuminance);
     float ta = la + lb > 0.0 ? la / (la + lb) : 0.5;
     vec3 direction = ta * unpackUnitVector(a.x) + (1.0 - ta) * unpackUnitVector(b.x);
     direction = dot(direction, direction) > 1e-12 ? normalize(direction) : unpackUnitVector(a.x);
     vec4 material = ta * unpackUnorm4x8(a.w) + (1.0 - ta) * unpackUnorm4x8(b.w);
-    return uvec4(packUnitVector(direction), packHalf2x16(e.rg), packHalf2x16(vec2(e.b, 0.0)), packUnorm4x8(material));
+    return packGlossy(direction, wa * ea + (1.0 - wa) * eb, packUnorm4x8(material));
 }
 #endif
 
