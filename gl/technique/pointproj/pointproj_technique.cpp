@@ -75,6 +75,7 @@ public:
             {"gatherPixels", double(stats_.targets)},
             {"pointsProjectedPerPixel", double(stats_.projected) / targets},
             {"emptyTexelsPerPixel", double(stats_.emptyTexels) / targets},
+            {"filledTexelsPerPixel", double(stats_.filledTexels) / targets},
             {"uniformFallbacks", double(stats_.uniformFallbacks)},
             {"clampedSplats", double(stats_.clampedSplats)},
             {"accumulatedFrames", double(steps_)},
@@ -126,6 +127,12 @@ TechniqueInfo pointprojTechniqueInfo()
             "which points are projected: by importance, uniformly (Fig. 9's random), or every point (brute force)"),
         choiceParam("splat", {"adaptive", "1", "2", "3"}, 0,
                     "splat size: Eq. 5's adaptive size, or fixed texels (Fig. 7)"),
+        choiceParam("splatShare", {"drawn", "expected"}, 0,
+                    "the share of its cluster a splat stands for: 1 / (N_rnd + n_k), the points drawn from it, or the "
+                    "paper's 1 / (N_s p_k)"),
+        {"holeFill", ParamType::Int, 4, 0, 16,
+         "passes of the micro-buffer's hole fill (an empty texel with most neighbours covered takes the farthest); "
+         "0: none, as the paper"},
         {"adaptive", ParamType::Bool, 1, 0, 1, "image-space adaptive sampling (§3.3); 0: gather at every pixel"},
         {"epsilon", ParamType::Float, 0.3, 0, 100, "the coherence threshold of the first refinement, doubled per level",
          false, ParamUpdate::Uniform},
@@ -152,6 +159,8 @@ TechniqueInfo pointprojTechniqueInfo()
                                               : ProjectionSettings::Mode::Importance;
         const std::string splat = v.getChoice(decls, "splat");
         s.projection.fixedSplat = splat == "adaptive" ? 0 : std::stoi(splat);
+        s.projection.shareDrawn = v.getChoice(decls, "splatShare") == "drawn";
+        s.projection.holeFill = v.getInt("holeFill");
         s.adaptive.adaptive = v.getBool("adaptive");
         s.adaptive.epsilon = float(v.get("epsilon"));
         s.adaptive.lambda = float(v.get("lambda"));

@@ -39,6 +39,8 @@ Program ProjectionGather::makeProgram(bool atPoints) const
         {"KEY_INDEX_BITS", std::to_string(std::max(keyIndexBits_, 1))},
         {"PROJ_MODE", std::to_string(int(settings_.mode))},
         {"SPLAT_FIXED", std::to_string(settings_.fixedSplat)},
+        {"SPLAT_SHARE_DRAWN", settings_.shareDrawn ? "1" : "0"},
+        {"HOLE_FILL", std::to_string(settings_.holeFill)},
     };
     if (atPoints) d.push_back({"GATHER_AT_POINTS", "1"});
     for (const Define& k : defines_) d.push_back(k);

@@ -24,6 +24,10 @@ struct ProjectionSettings {
     int samples = 2048;       // N_s: (2 + 4) x 512 = 3K points projected in all (§4)
     enum class Mode { Importance, Uniform, All } mode = Mode::Importance; // Fig. 9: importance, random, brute force
     int fixedSplat = 0; // Fig. 7: 0 adaptive (Eq. 5), else n x n texels
+    // Eq. 3's share of its cluster's area a point stands for: true, 1 / (N_rnd + n_k), the points drawn from
+    // the cluster (random ones included); false, the paper's 1 / (N_s p_k) (random points 1 / N_rnd).
+    bool shareDrawn = true;
+    int holeFill = 4; // passes of the micro-buffer's hole fill; 0: none (the paper)
 };
 
 struct ProjectionStats {
@@ -32,7 +36,8 @@ struct ProjectionStats {
     std::uint32_t emptyTexels = 0;
     std::uint32_t uniformFallbacks = 0; // targets whose p_k were all zero
     std::uint32_t clampedSplats = 0;
-    std::uint32_t pad[3] = {0, 0, 0};
+    std::uint32_t filledTexels = 0; // holes the fill covered
+    std::uint32_t pad[2] = {0, 0};
 };
 
 class ProjectionGather {

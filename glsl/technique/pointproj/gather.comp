@@ -30,7 +30,8 @@
 
 layout(local_size_x = PROJ_GROUP) in;
 layout(std430, binding = SSBO_PROJ_TEXEL_SOLID_ANGLES) readonly buffer TexelSolidAngles { float texelSolidAngles[]; };
-// 0 targets, 1 points projected, 2 texels left empty, 3 targets whose p_k were all zero, 4 splats clamped
+// 0 targets, 1 points projected, 2 texels left empty, 3 targets whose p_k were all zero, 4 splats clamped,
+// 5 texels the hole fill covered
 layout(std430, binding = SSBO_PROJ_STATS) buffer ProjStats { uint projStats[8]; };
 
 uniform uint pointCount;
@@ -67,6 +68,25 @@ float random01(inout uint state)
 {
     state = hashU(state + 0x9e3779b9u);
     return float(state >> 8) * (1.0 / 16777216.0);
+}
+
+// The r-th of n draws from a cluster: uniform in the r-th of n equal runs of its points. A cluster is a run
+// of the median-split order, so its sub-runs are compact patches: n draws spread over the cluster's surface
+// instead of falling on each other and leaving gaps (every point still equally likely).
+uint stratifiedDraw(uint r, uint n, float u)
+{
+    float t = (float(r) + u) / float(max(n, 1u));
+    return min(uint(t * float(clusterSize)), clusterSize - 1u);
+}
+
+// Eq. 3's area for a point drawn as `share` of its cluster's draws: the cluster's area |C_k| (its points' count
+// times this point's area) times the share, but never less than the point's own disc. A near cluster drawn
+// more often than it has points gets each point several times, and at the bare share every copy would
+// be splatted a fraction of the point's size, at the same place: the rest of the cluster's solid angle
+// stayed empty (whole octants of the micro-buffer next to a wall).
+float shareArea(float pointArea, float share)
+{
+    return pointArea * max(float(clusterSize) * share, 1.0);
 }
 
 vec3 gx = vec3(0.0), gn = vec3(0.0, 0.0, 1.0), gt = vec3(1.0, 0.0, 0.0), gb = vec3(0.0, 1.0, 0.0); // the shading point (lifted), its frame
@@ -121,19 +141,22 @@ void main()
 #if PROJ_MODE == 2
         for (uint j = lid; j < pointCount; j += uint(PROJ_GROUP)) splat(j, pointSurfels[j].areaM2);
 #else
-        // 1. Exploration: N_rnd random points per cluster, Eq. 4, projected at once.
+        // 1. Exploration: N_rnd random points per cluster, Eq. 4. SPLAT_SHARE_DRAWN: they are projected after
+        // the allocation, sized for their share of all the points drawn from their cluster; else at once.
         for (uint c = lid; c < uint(CLUSTERS); c += uint(PROJ_GROUP)) {
             uint state = hashU(seed ^ (c * 0x85ebca6bu));
             float importance = 0.0;
             for (int r = 0; r < RANDOM_PER_CLUSTER; ++r) {
-                uint j = c * clusterSize + min(uint(random01(state) * float(clusterSize)), clusterSize - 1u);
+                uint j = c * clusterSize + stratifiedDraw(uint(r), uint(RANDOM_PER_CLUSTER), random01(state));
                 PointSurfel s = pointSurfels[j];
                 vec3 v = s.position - gx;
                 float d2 = dot(v, v);
                 float d = sqrt(max(d2, 1e-30));
                 float f = dot(brdfEval(g.brdf, gn, g.wo, v / d), vec3(0.2126, 0.7152, 0.0722));
                 importance += pointImportance(dot(gn, v) / d, dot(s.normal, v) / d, d2, s.areaM2) * f;
-                splat(j, float(clusterSize) * s.areaM2 / float(RANDOM_PER_CLUSTER));
+#if !SPLAT_SHARE_DRAWN
+                splat(j, shareArea(s.areaM2, 1.0 / float(RANDOM_PER_CLUSTER)));
+#endif
             }
 #if PROJ_MODE == 1
             importance = 1.0;
@@ -175,6 +198,17 @@ void main()
             clusterStart[CLUSTERS] = assigned;
         }
         barrier();
+#if SPLAT_SHARE_DRAWN
+        // The random points again (the same draws), each standing for 1 / (N_rnd + n_k) of its cluster.
+        for (uint c = lid; c < uint(CLUSTERS); c += uint(PROJ_GROUP)) {
+            uint state = hashU(seed ^ (c * 0x85ebca6bu));
+            float share = 1.0 / float(RANDOM_PER_CLUSTER + int(clusterStart[c + 1u] - clusterStart[c]));
+            for (int r = 0; r < RANDOM_PER_CLUSTER; ++r) {
+                uint j = c * clusterSize + stratifiedDraw(uint(r), uint(RANDOM_PER_CLUSTER), random01(state));
+                splat(j, shareArea(pointSurfels[j].areaM2, share));
+            }
+        }
+#endif
         // 3. Exploitation: sample i belongs to the cluster whose run of counts holds it.
         float total = importanceTotal;
         for (uint i = lid; i < uint(SAMPLES); i += uint(PROJ_GROUP)) {
@@ -187,15 +221,60 @@ void main()
                     hi = mid;
             }
             uint state = hashU(seed ^ (i * 0xc2b2ae35u) ^ 0x165667b1u);
-            uint j = uint(lo) * clusterSize + min(uint(random01(state) * float(clusterSize)), clusterSize - 1u);
-            float p = total > 0.0 ? clusterImportance[lo] / total : 1.0 / float(CLUSTERS);
+            uint n = clusterStart[lo + 1] - clusterStart[lo];
+            uint j = uint(lo) * clusterSize + stratifiedDraw(i - clusterStart[lo], n, random01(state));
+#if SPLAT_SHARE_DRAWN
+            // The cluster's area shared by the N_rnd + n_k points drawn from it.
+            float share = 1.0 / float(RANDOM_PER_CLUSTER + int(n));
+#else
             // Eq. 3's area: the cluster's, shared by the N_s p_k samples expected from it.
-            float area = float(clusterSize) * pointSurfels[j].areaM2 / max(float(SAMPLES) * p, 1e-30);
-            splat(j, area);
+            float p = total > 0.0 ? clusterImportance[lo] / total : 1.0 / float(CLUSTERS);
+            float share = 1.0 / max(float(SAMPLES) * p, 1e-30);
+#endif
+            splat(j, shareArea(pointSurfels[j].areaM2, share));
         }
 #endif
     }
     barrier();
+
+#if HOLE_FILL > 0
+    // 3b. Holes (not in the paper; gl/technique/pointproj/README.md): an empty texel more than half of whose
+    // neighbours are covered takes the key of the farthest of them, HOLE_FILL times over. A gap between
+    // splats closes from its rim inwards; the straight edge of an open direction (3 of 8 neighbours covered)
+    // does not move. The farthest, because a gap at a silhouette is most often the far surface's: its splats
+    // are the small ones.
+    for (int pass = 0; pass < HOLE_FILL; ++pass) {
+        uint fill[(kTexels + PROJ_GROUP - 1) / PROJ_GROUP];
+        for (int p = int(lid), n = 0; p < kTexels; p += PROJ_GROUP, ++n) {
+            fill[n] = kEmptyKey;
+            if (projKeys[p] != kEmptyKey) continue;
+            ivec2 t = ivec2(p % PROJ_RES, p / PROJ_RES);
+            uint farthest = 0u;
+            int neighbours = 0, covered = 0;
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dx = -1; dx <= 1; ++dx) {
+                    ivec2 q = t + ivec2(dx, dy);
+                    if ((dx == 0 && dy == 0) || any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, ivec2(PROJ_RES))))
+                        continue;
+                    ++neighbours;
+                    uint key = projKeys[q.y * PROJ_RES + q.x];
+                    if (key == kEmptyKey) continue;
+                    ++covered;
+                    farthest = max(farthest, key);
+                }
+            if (2 * covered > neighbours) fill[n] = farthest;
+        }
+        barrier();
+        uint filled = 0u;
+        for (int p = int(lid), n = 0; p < kTexels; p += PROJ_GROUP, ++n)
+            if (fill[n] != kEmptyKey) {
+                projKeys[p] = fill[n];
+                ++filled;
+            }
+        if (filled > 0u) atomicAdd(groupStats[5], filled);
+        barrier();
+    }
+#endif
 
     // 4. Resolve: each texel's nearest point, its radiance times f_r cos Omega_texel.
     vec3 sumDiffuse = vec3(0.0), sumGlossy = vec3(0.0);
