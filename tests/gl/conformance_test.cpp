@@ -8,7 +8,7 @@
 //     debug message (the fixture fails the test on either);
 //   - its indirect light is finite and non-negative at every pixel;
 //   - it times the frame's passes and every pass it declares that runs with the defaults, and no pass it
-//     does not declare (TechniqueInfo::passes);
+//     does not declare (TechniqueInfo::passes), each with the work its shader does (PassCost);
 //   - its counters are finite and non-negative, and a technique with passes of its own reports some;
 //   - in the furnace (every surface albedo rho, emission L_e, Lambertian) its indirect light stays under
 //     the closed form of its light paths: one bounce of indirect light at most rho L_e (the second
@@ -226,6 +226,10 @@ TEST_P(Conformance, Technique)
                 EXPECT_TRUE(declared.count(p)) << "pass '" << p << "' is timed but not declared";
             for (const std::string& p : required)
                 EXPECT_TRUE(timed.count(p)) << "declared pass '" << p << "' was not timed";
+            // Every timed scope says what its shader does per invocation (PassCost), or the roofline has no
+            // bound for the pass (app/roofline.h).
+            for (const gl::PassStat& p : r->timers().stats())
+                EXPECT_TRUE(p.work.costDeclared) << "pass '" << p.pass << "' is timed with no PassCost";
 
             const std::vector<gl::Counter> counters = r->counters();
             for (const gl::Counter& c : counters)

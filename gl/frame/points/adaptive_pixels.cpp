@@ -13,6 +13,60 @@ namespace {
 
 constexpr int kCoarseGrid = 4; // §3.3: "starting with pixels on an initial 4 x 4 sampling grid"
 
+// Pixels of a width x height image on the grid of spacing s (x % s == 0 and y % s == 0).
+double gridPixels(int width, int height, int s)
+{
+    return double((width + s - 1) / s) * double((height + s - 1) / s);
+}
+
+// The pixels a level tests (adaptive.glsl): the first level's grid, else those on the spacing / 2 grid
+// off the spacing grid.
+double candidates(int width, int height, int firstGrid, int spacing)
+{
+    if (firstGrid > 0) return gridPixels(width, height, firstGrid);
+    return gridPixels(width, height, spacing / 2) - gridPixels(width, height, spacing);
+}
+
+// adaptive_select.comp past its grid tests, per scope: each candidate reads its geometry texel and stores
+// its state (a bound: every candidate on geometry); above the first level it also reads its four parents'
+// geometry, diffuse colour and two light texels for the coherence metric; each target taken adds an
+// atomic and an 8-byte entry. The first level clears the two light images and the states.
+PassCost selectWork(double pixels, double tested, bool firstLevel, double taken)
+{
+    PassCost w;
+    w.flopsFixed = tested * (firstLevel ? 2 : 370);
+    w.fetchesFixed = tested * (firstLevel ? 1 : 1 + 4 * 4);
+    w.bytesFixed = tested * ((firstLevel ? 8 : 8 + 4 * (8 + 8 + 16 + 16)) + 1) + taken * (8 + 8) + 4 + 4;
+    if (firstLevel) w.bytesFixed += pixels * (16 + 16 + 1);
+    return w;
+}
+
+// adaptive_mean.comp, run inside "adaptive-select" on level 1, per scope: per pixel its diffuse-light
+// texel and the group sum; per gathered pixel its glossy-light texel, diffuse colour and luminance; one
+// partial per 16 x 16 tile, summed by one group, and 16 bytes read back.
+PassCost meanWork(int width, int height, double gathered)
+{
+    const double pixels = double(width) * height, tiles = double((width + 15) / 16) * double((height + 15) / 16);
+    PassCost w;
+    w.flopsFixed = pixels * 2 + gathered * 12 + tiles * 2;
+    w.fetchesFixed = pixels + gathered * 2 + tiles;
+    w.bytesFixed = pixels * 16 + gathered * (16 + 8) + tiles * 2 * 16 + 16 + 16;
+    return w;
+}
+
+// adaptive_interpolate.comp past its grid tests, per scope: each candidate reads its state; each pixel
+// interpolated (a bound: every candidate not taken) reads its geometry, and per parent of nonzero
+// bilinear weight (8/3 on average: two on an edge of the cell, four at its centre) its geometry and two
+// light texels, and writes its two light texels.
+PassCost interpolateWork(double tested, double interpolated)
+{
+    PassCost w;
+    w.flopsFixed = interpolated * (70 + 8.0 / 3.0 * 80);
+    w.fetchesFixed = tested + interpolated * (1 + 8.0 / 3.0 * 3);
+    w.bytesFixed = tested + interpolated * (8 + 8.0 / 3.0 * (8 + 2 * 16) + 2 * 16);
+    return w;
+}
+
 } // namespace
 
 AdaptivePixels::AdaptivePixels(Frame& frame, const AdaptiveSettings& settings)
@@ -51,7 +105,14 @@ void AdaptivePixels::setCommon(Frame& frame, Program& program, int spacing)
 int AdaptivePixels::select(Frame& frame, int level, PassTimers& timers)
 {
     if (frame.width() != width_ || frame.height() != height_) allocate(frame.width(), frame.height());
-    auto t = timers.scope("adaptive-select");
+    // Level l >= 1 refines the grid of spacing 4 / 2^(l - 1): its candidates lie on the grid half as wide.
+    const int spacing = level == 0 ? 0 : kCoarseGrid >> (level - 1);
+    const int firstGrid = level == 0 ? (settings_.adaptive ? kCoarseGrid : 1) : 0;
+    // adaptive_select.comp (and on level 1 adaptive_mean.comp) per invocation: the bounds and grid tests;
+    // the rest is per scope (selectWork, meanWork), from the grids and the targets read back.
+    PassCost cost;
+    cost.flops = 6;
+    auto t = timers.scope("adaptive-select", cost);
     if (level == 0) {
         const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
         diffuse_.clear(0, zero);
@@ -61,13 +122,14 @@ int AdaptivePixels::select(Frame& frame, int level, PassTimers& timers)
     }
     count_.clearToZero();
     frame.bindGBuffer();
-    // Level l >= 1 refines the grid of spacing 4 / 2^(l - 1): its candidates lie on the grid half as wide.
-    const int spacing = level == 0 ? 0 : kCoarseGrid >> (level - 1);
     setCommon(frame, select_, spacing);
-    select_.set("firstGrid", level == 0 ? (settings_.adaptive ? kCoarseGrid : 1) : 0);
+    select_.set("firstGrid", firstGrid);
     select_.set("epsilon", settings_.epsilon * float(1 << std::max(level - 1, 0)));
     select_.set("lambda", settings_.lambda);
-    if (level == 1) radianceScale_ = meanSampledLuminance(frame);
+    if (level == 1) {
+        radianceScale_ = meanSampledLuminance(frame);
+        t.addWork(meanWork(width_, height_, sampled_)); // sampled_: the first level's targets
+    }
     select_.set("radianceScale", radianceScale_ > 0.0f ? 1.0f / radianceScale_ : 0.0f);
     state_.bindImage(0, GL_READ_WRITE, 0, GL_R8UI);
     diffuse_.bindImage(1, GL_READ_ONLY, 0, GL_RGBA32F);
@@ -79,7 +141,9 @@ int AdaptivePixels::select(Frame& frame, int level, PassTimers& timers)
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
     std::uint32_t n = 0;
     count_.download(0, sizeof(n), &n);
+    selected_ = int(n);
     sampled_ = level == 0 ? int(n) : sampled_ + int(n);
+    t.addWork(selectWork(double(width_) * height_, candidates(width_, height_, firstGrid, spacing), level == 0, n));
     return int(n);
 }
 
@@ -137,10 +201,16 @@ void AdaptivePixels::bindForGather(Frame& frame, Program& program)
 
 void AdaptivePixels::interpolate(Frame& frame, int level, PassTimers& timers)
 {
-    auto t = timers.scope("interpolate");
+    // adaptive_interpolate.comp per pixel: the bounds and grid tests; the candidates' work per scope below.
+    PassCost cost;
+    cost.flops = 6;
+    auto t = timers.scope("interpolate", cost);
     if (level == 0) return;
+    const int spacing = kCoarseGrid >> (level - 1);
+    const double tested = candidates(width_, height_, 0, spacing);
+    t.addWork(interpolateWork(tested, std::max(tested - selected_, 0.0)));
     frame.bindGBuffer();
-    setCommon(frame, interpolate_, kCoarseGrid >> (level - 1));
+    setCommon(frame, interpolate_, spacing);
     state_.bindImage(0, GL_READ_ONLY, 0, GL_R8UI);
     diffuse_.bindImage(1, GL_READ_WRITE, 0, GL_RGBA32F);
     glossy_.bindImage(2, GL_READ_WRITE, 0, GL_RGBA32F);
@@ -151,7 +221,16 @@ void AdaptivePixels::interpolate(Frame& frame, int level, PassTimers& timers)
 
 void AdaptivePixels::compose(Frame& frame, float newWeight, PassTimers& timers)
 {
-    auto t = timers.scope("compose");
+    // adaptive_compose.comp per pixel: its geometry texel, and on geometry (a bound: every pixel) its diffuse
+    // colour and two light texels, the product and sum; in progressive mode the running mean's texel and
+    // mix; two RGBA32F stores.
+    const bool progressive = newWeight < 1.0f;
+    PassCost cost;
+    cost.flops = 8 + (progressive ? 9 : 0);
+    cost.fetches = 4 + (progressive ? 1 : 0);
+    cost.bytesRead = 8 + 8 + 2 * 16 + (progressive ? 16 : 0);
+    cost.bytesWritten = 2 * 16;
+    auto t = timers.scope("compose", cost);
     frame.bindGBuffer();
     setCommon(frame, compose_, 1);
     compose_.set("newWeight", newWeight);

@@ -65,6 +65,7 @@ private:
     Texture state_, diffuse_, glossy_, accumulated_, partials_;
     Buffer targets_, count_;
     int sampled_ = 0;
+    int selected_ = 0;           // targets of the last select(), its level's alone
     float radianceScale_ = 0.0f; // the mean outgoing luminance of the first level's samples
     void allocate(int width, int height);
     void setCommon(Frame& frame, Program& program, int spacing);

@@ -9,6 +9,36 @@
 
 namespace bounce::gl {
 
+namespace {
+
+// gather_select.comp past its first level test, per scope: a texel of level l tests l more levels (one
+// outside every level all of them) and reads its patch state (8 bytes: gGeometry or mrNormal) and below
+// the coarsest level its parent's (a bound: every patch continuous); each valid fragment adds an atomic
+// and an 8-byte entry, and one above level 0 its ranges (24 bytes) and its eight neighbours' states and
+// ranges (a bound: min(valid, the pyramid's patches) of them above level 0). The two images are cleared.
+PassCost selectWork(const MultiresPyramid& pyramid, int valid)
+{
+    const int top = pyramid.coarsestLevel();
+    PassCost w;
+    double inLevels = 0.0, coarse = 0.0;
+    for (int l = 0; l <= top; ++l) {
+        const glm::ivec4 r = pyramid.levelRect(l);
+        const double texels = double(r.z) * r.w;
+        inLevels += texels;
+        if (l > 0) coarse += texels;
+        w.flopsFixed += texels * l * 6;
+        w.fetchesFixed += texels * (l < top ? 2 : 1);
+    }
+    const glm::ivec2 f = pyramid.flattenedSize();
+    const double flattened = double(f.x) * f.y, above = std::min(double(valid), coarse);
+    w.flopsFixed += (flattened - inLevels) * top * 6 + above * 8 * 30;
+    w.bytesFixed = w.fetchesFixed * 8 + valid * (8 + 8) + above * (24 + 8 * (2 * 8 + 24)) + flattened * 2 * 16 + 4 + 4;
+    w.fetchesFixed += above * (3 + 8 * (2 + 3));
+    return w;
+}
+
+} // namespace
+
 PixelGather::PixelGather(Frame& frame, const MultiresSettings& settings)
     : pyramid_(frame.width(), frame.height(), settings),
       select_(Program::compute("points.gatherSelect", "frame/points/gather_select.comp")),
@@ -30,7 +60,11 @@ int PixelGather::select(Frame& frame, PassTimers& timers)
 {
     if (pyramid_.resize(frame.width(), frame.height())) allocate();
     pyramid_.build(frame, timers);
-    auto t = timers.scope("gather-select");
+    // gather_select.comp per texel of the flattened buffer: the bounds test and level 0's; the rest is per
+    // scope (selectWork), from the pyramid's layout and the valid fragments read back.
+    PassCost cost;
+    cost.flops = 8;
+    auto t = timers.scope("gather-select", cost);
     const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
     diffuse_.clear(0, zero); // alpha 0: no valid fragment (what the upsampling reads)
     glossy_.clear(0, zero);
@@ -47,6 +81,7 @@ int PixelGather::select(Frame& frame, PassTimers& timers)
     std::uint32_t n = 0;
     count_buffer_.download(0, sizeof(n), &n);
     count_ = int(n);
+    t.addWork(selectWork(pyramid_, count_));
     return count_;
 }
 

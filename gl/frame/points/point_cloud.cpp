@@ -1,5 +1,6 @@
 #include "gl/frame/points/point_cloud.h"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <mutex>
@@ -25,6 +26,26 @@ struct GpuSurfel {
 };
 static_assert(sizeof(GpuSurfel) == 32, "point_cloud.glsl's PointSurfel");
 static_assert(sizeof(GpuPointSample) == 16, "point_cloud.glsl's PointSample");
+
+// point_light.comp per point: its surfel; per punctual light the irradiance, per emitting triangle the
+// polygon form factor and extent, each with its shadow view and (r+1)^2 textureGathers of four depths
+// (r: the PCF radius, 0 in still frames) and the weighted sums (a bound: every point lit by every light);
+// the radiance halves out, the direct too when kept, and where glossy the lobe.
+PassCost pointLightCost(const Frame& frame, bool keepDirect, bool glossy)
+{
+    const double punctual = frame.gpuScene().punctualLightCount();
+    const double area = frame.shadowMaps().lightCount() - punctual;
+    const int r = frame.shadowMaps().stillFrame() > 0 ? 0 : frame.settings().pcfRadius;
+    const double texels = 4.0 * (r + 1) * (r + 1);
+    const double shadowFlops = 75 + 3.5 * texels; // cube face, view transform, the gathers' weights
+    PassCost c;
+    c.flops = 40 + punctual * (75 + shadowFlops) + area * (420 + shadowFlops) + (glossy ? 50 : 0);
+    c.fetches = (punctual + area) * texels;
+    c.bytesRead = 32 + (glossy ? 4 : 0) + (punctual + area) * texels * 4;
+    c.bytesWritten = 8 + (keepDirect ? 8 : 0) + (glossy ? 16 : 0);
+    c.uniformWords = punctual * (16 + 24) + area * (16 + 12 + 24); // Light, its triangle, its shadow view
+    return c;
+}
 
 } // namespace
 
@@ -123,7 +144,17 @@ void PointCloud::bind() const
 
 void PointCloud::update(Frame& frame, PassTimers& timers)
 {
-    auto t = timers.scope("point-update");
+    // point_update.comp per point: its sample, three indices, the three vertices' positions and normals and
+    // the material word, the point, unit normal and BRDF parameters (materials stay in cache); with
+    // textures the three uvs and one bilinear sample (a bound: every material textured); one 32-byte
+    // surfel out, and where glossy the lobe's material word.
+    const bool textured = frame.gpuScene().hasTextures();
+    PassCost cost;
+    cost.flops = 90 + (textured ? 16 : 0) + (glossy_ ? 8 : 0);
+    cost.fetches = textured ? 4 : 0;
+    cost.bytesRead = 16 + 3 * 4 + 3 * (12 + 12) + 4 + (textured ? 3 * 8 + 4 * 4 : 0);
+    cost.bytesWritten = sizeof(GpuSurfel) + (glossy_ ? 4 : 0);
+    auto t = timers.scope("point-update", cost);
     if (count_ == 0) return;
     frame.bindSceneData();
     bind();
@@ -134,7 +165,7 @@ void PointCloud::update(Frame& frame, PassTimers& timers)
 
 void PointCloud::light(Frame& frame, PassTimers& timers)
 {
-    auto t = timers.scope("point-light");
+    auto t = timers.scope("point-light", pointLightCost(frame, keepDirect_, glossy_));
     if (count_ == 0) return;
     const GpuScene& scene = frame.gpuScene();
     // The demo may add or remove a kind of light (setLights): the program follows, as the direct pass's.
@@ -151,7 +182,13 @@ void PointCloud::light(Frame& frame, PassTimers& timers)
 
 void PointCloud::relight(const Buffer& gathered, int stride, PassTimers& timers)
 {
-    auto t = timers.scope("relight");
+    // point_relight.comp per point: its representative's gathered vec4 (one per `stride` points), its
+    // diffuse word and direct halves, one multiply-add; its radiance halves out.
+    PassCost cost;
+    cost.flops = 20;
+    cost.bytesRead = 16.0 / std::max(stride, 1) + 4 + 8;
+    cost.bytesWritten = 8;
+    auto t = timers.scope("relight", cost);
     if (count_ == 0 || !keepDirect_) return;
     bind();
     gathered.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_POINT_GATHERED);

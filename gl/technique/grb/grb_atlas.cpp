@@ -44,7 +44,21 @@ void GrbAtlas::bind() const
 void GrbAtlas::fill(const Frame& frame, PassTimers& timers)
 {
     {
-        auto t = timers.scope("atlas");
+        // atlas_fill.frag per fragment of a triangle's quad: its three corners, the inside test, and at most
+        // (a bound: every fragment outside the triangle and kept) the nearest point on the edges, then the
+        // triangle's indices, positions, normals, uvs, material (64 bytes) and chart, the normals and point,
+        // with textures one bilinear base-colour sample, three RGBA32F out and the depth test. Per scope the
+        // clears, and atlas_fill.vert's six corners per scene triangle, each reading its three atlas corners.
+        const double texels = double(atlas_.width) * atlas_.height, triangles = double(atlas_.triangleCount());
+        const bool textured = frame.gpuScene().hasTextures();
+        PassCost cost;
+        cost.flops = 25 + 75 + 110;
+        cost.fetches = textured ? 4 : 0;
+        cost.bytesRead = 3 * 8 + 3 * (4 + 12 + 12 + 8) + 4 + 64 + 4 + (textured ? 4 * 4 : 0) + 4;
+        cost.bytesWritten = 3 * 16 + 4;
+        cost.bytesFixed = texels * (3 * 16 + 4) + 6.0 * triangles * 3 * 8;
+        cost.triangles = 2 * triangles;
+        auto t = timers.scope("atlas", cost);
         PassState s = PassState::fullscreen(fbo_, atlas_.width, atlas_.height);
         s.depthTest = true; // the nearest triangle owns a texel (atlas_fill.frag)
         s.apply();

@@ -55,7 +55,17 @@ void GrbDisplay::gatherFinalGlossy(const Frame& frame, const GrbAtlas& atlas, co
 {
     if (!finalGlossy_) return;
     if (frame.width() != width_ || frame.height() != height_) allocate(frame);
-    auto t = timers.scope("final-glossy");
+    // final_glossy.frag per pixel: its G-buffer texels (geometry, diffuse, specular) and camera block (12
+    // words); where glossy (a bound: every pixel) the view direction, bundleSender, one sender's radiance, the
+    // lobe, and the RGBA32F sum blended (read and written).
+    const PassCost sender = kbuffer.bundleSenderCost(false), sent = radiance.senderRadianceCost();
+    PassCost cost;
+    cost.flops = 42 + 11 + 95 + sender.flops + sent.flops;
+    cost.fetches = 3 + sender.fetches + sent.fetches;
+    cost.bytesRead = 3 * 8 + 16 + sender.bytesRead + sent.bytesRead;
+    cost.bytesWritten = 16;
+    cost.uniformWords = 12;
+    auto t = timers.scope("final-glossy", cost);
     PassState s = PassState::fullscreen(glossyFbo_, width_, height_);
     s.blend = true; // sums over directions, the count in alpha
     s.apply();
@@ -75,7 +85,20 @@ void GrbDisplay::gatherFinalGlossy(const Frame& frame, const GrbAtlas& atlas, co
 void GrbDisplay::display(Frame& frame, const GrbAtlas& atlas, const RadianceAtlases& radiance, PassTimers& timers)
 {
     if (frame.width() != width_ || frame.height() != height_) allocate(frame);
-    auto t = timers.scope("display");
+    // display.frag per fragment of the scene from the camera: its G-buffer texels and camera block (12 words),
+    // the view direction, four texels of the indirect atlas (showEmitted: and of the direct one) weighted
+    // bilinearly, the transmission, with finalGlossy the pixel's glossy sum; one RGBA32F out, the depth test.
+    // Per scope the clears, and display.vert per corner its index, position and atlas corner.
+    const double pixels = double(width_) * height_, triangles = double(atlas.layout().triangleCount());
+    PassCost cost;
+    cost.flops = 42 + 11 + 8 + 4 * 16 + 35 + (showEmitted_ ? 4 * 3 : 0) + (finalGlossy_ ? 7 : 0);
+    cost.fetches = 3 + 4 + (showEmitted_ ? 4 : 0) + (finalGlossy_ ? 1 : 0);
+    cost.bytesRead = 3 * 8 + 4 * 16 + (showEmitted_ ? 4 * 16 : 0) + (finalGlossy_ ? 16 : 0) + 4;
+    cost.bytesWritten = 16 + 4;
+    cost.uniformWords = 12;
+    cost.bytesFixed = pixels * (16 + 4) + 3.0 * triangles * (4 + 12 + 8);
+    cost.triangles = triangles;
+    auto t = timers.scope("display", cost);
     displayFbo_.attach(GL_COLOR_ATTACHMENT0, frame.indirect());
     displayFbo_.checkComplete();
     PassState s = PassState::fullscreen(displayFbo_, width_, height_);
@@ -110,7 +133,17 @@ KBufferStats::KBufferStats(const KBuffer& kbuffer)
 
 void KBufferStats::count(const KBuffer& kbuffer, const BundleView& view, PassTimers& timers)
 {
-    auto t = timers.scope("kbuffer-stats");
+    // kbuffer_stats.frag per k-buffer pixel: its count or stencil; Stencil and Peel each of its k entries
+    // (Atomic: the count again); up to four atomics on the shared counters (a bound: every pixel occupied and
+    // overflowing).
+    const bool atomic = kbuffer.capture() == KBufferCapture::Atomic;
+    const double k = kbuffer.k();
+    PassCost cost;
+    cost.flops = 6 + (atomic ? 0 : 3 * k);
+    cost.fetches = 1 + (atomic ? 1 : k);
+    cost.bytesRead = 4 + (atomic ? 4 : 8 * k) + 4 * 4;
+    cost.bytesWritten = 4 * 4;
+    auto t = timers.scope("kbuffer-stats", cost);
     PassState::fullscreen(fbo_, kbuffer.size(), kbuffer.size()).apply();
     kbuffer.bindForRead();
     stats_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_GRB_STATS);

@@ -43,6 +43,65 @@ std::vector<std::uint32_t> readUint(const Texture& t)
     return out;
 }
 
+// capture.vert per corner: its index, position and atlas corner (4 + 12 + 8 bytes); `draws` draws of the
+// scene along a bundle.
+PassCost sceneAlongBundle(const GrbAtlas& atlas, double draws)
+{
+    const double triangles = double(atlas.layout().triangleCount());
+    PassCost c;
+    c.triangles = draws * triangles;
+    c.bytesFixed = draws * 3.0 * triangles * (4 + 12 + 8);
+    return c;
+}
+
+// What a capture does, known before it runs (Peel's: peelWork). Fragments of the scene along the bundle are
+// counted at k per pixel where they are not the driver's invocations: only the GPU knows how many there are,
+// and k bounds them where no pixel overflows.
+PassCost captureCost(const KBuffer& kb, const GrbAtlas& atlas)
+{
+    const double pixels = double(kb.size()) * kb.size(), k = kb.k(), samples = kb.samples(), slices = kb.slices();
+    PassCost c;
+    switch (kb.capture()) {
+    case KBufferCapture::Atomic:
+        // capture.frag (CAPTURE_ATOMIC) per fragment: its entry (atlas texel, depth), the pixel's counter
+        // incremented (an image atomic), the 8-byte entry stored in its slot (none beyond k); the counter's clear.
+        c = sceneAlongBundle(atlas, 1);
+        c.flops = 8;
+        c.fetches = 1;
+        c.bytesRead = 4;
+        c.bytesWritten = 4 + 8;
+        c.bytesFixed += pixels * 4;
+        break;
+    case KBufferCapture::Stencil:
+        // Two shaders with nothing in common, all per scope. Per slice: the colour clear (8 bytes per entry),
+        // stencil_init.frag per pixel and sample one stencil (4 bytes, D24S8), capture.frag per fragment its
+        // entry and all S stencils read and decremented (k per pixel), each of the slice's entries written once.
+        c = sceneAlongBundle(atlas, slices);
+        c.flopsFixed = slices * k * pixels * 6;
+        c.bytesFixed += slices * (pixels * samples * (8 + 4 + 8) + k * pixels * samples * (4 + 4));
+        break;
+    case KBufferCapture::Peel: break;
+    }
+    return c;
+}
+
+// Depth peeling, once it ran (L layers peeled): 2 L + 1 draws of the scene (the last finds nothing or marks
+// the overflow); capture.frag per fragment (k per pixel) at most: the previous layer's texel (8 bytes), the
+// depth test (4) and a depth write or the texel's MIN blend (8 read, 8 written); peel_compose.frag per pixel
+// and layer: one texel in, two entries out; the clears of the k-buffer, its copy, the overflow marks, and per
+// layer tried the peel's texel and depth.
+PassCost peelWork(const KBuffer& kb, const GrbAtlas& atlas)
+{
+    const double pixels = double(kb.size()) * kb.size(), k = kb.k(), layers = kb.peeledLayers();
+    const double draws = 2 * layers + 1, tried = layers + (layers < k ? 1 : 0), fragments = draws * k * pixels;
+    PassCost c = sceneAlongBundle(atlas, draws);
+    c.flopsFixed = fragments * 12 + layers * pixels * 2;
+    c.fetchesFixed = fragments + layers * pixels;
+    c.bytesFixed += fragments * (8 + 4 + 8 + 8) + layers * pixels * (8 + 2 * 8) + pixels * (k * 8 + 8 + 4) +
+                    tried * pixels * (8 + 4);
+    return c;
+}
+
 } // namespace
 
 std::string kbufferCaptureName(KBufferCapture c)
@@ -145,6 +204,18 @@ void KBuffer::setBundleUniforms(Program& p, const BundleView& v)
     p.set("bundleViewProj", v.viewProj);
 }
 
+PassCost KBuffer::bundleSenderCost(bool charts) const
+{
+    // About 100 flops before the entries (two projections, the plane's depth, the tolerances); per entry
+    // two 8-byte reads and about 14 flops, and with charts an RGBA32F texel of the atlas and 4.
+    const double k = k_;
+    PassCost c;
+    c.flops = 100 + k * (14 + (charts ? 4 : 0));
+    c.fetches = 1 + k * (2 + (charts ? 1 : 0));
+    c.bytesRead = 4 + k * (2 * 8 + (charts ? 16 : 0));
+    return c;
+}
+
 void KBuffer::bindForRead() const
 {
     entries_.bind(UNIT_GRB_KBUFFER);
@@ -166,13 +237,16 @@ void KBuffer::drawScene(Program& program, const GrbAtlas& atlas, const BundleVie
 
 void KBuffer::capture(const Frame& frame, const GrbAtlas& atlas, const BundleView& view, PassTimers& timers)
 {
-    auto t = timers.scope("capture");
+    auto t = timers.scope("capture", captureCost(*this, atlas));
     frame.bindSceneData();
     atlas.bind();
     switch (settings_.capture) {
     case KBufferCapture::Stencil: captureStencil(atlas, view); break;
     case KBufferCapture::Atomic: captureAtomic(atlas, view); break;
-    case KBufferCapture::Peel: capturePeel(atlas, view); break;
+    case KBufferCapture::Peel:
+        capturePeel(atlas, view);
+        t.addWork(peelWork(*this, atlas));
+        break;
     }
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
 }
@@ -334,7 +408,15 @@ bool KBuffer::sameEntries(const Pixel& a, const Pixel& b)
 DepthComplexity measureDepthComplexity(const Frame& frame, const GrbAtlas& atlas, int size, int directions,
                                        PassTimers& timers)
 {
-    auto t = timers.scope("depth-complexity");
+    // capture.frag (CAPTURE_COUNT) per fragment: the pixel's counter incremented (an image atomic); per
+    // direction the counter's clear and read-back, and one draw of the scene.
+    PassCost cost = sceneAlongBundle(atlas, directions);
+    cost.flops = 3;
+    cost.fetches = 1;
+    cost.bytesRead = 4;
+    cost.bytesWritten = 4;
+    cost.bytesFixed += double(directions) * size * size * (4 + 4);
+    auto t = timers.scope("depth-complexity", cost);
     Texture counter = Texture::create2D("grb.depthComplexity.counter", GL_R32UI, size, size);
     Framebuffer fbo("grb.depthComplexity.fbo");
     fbo.setDefaultSize(size, size);

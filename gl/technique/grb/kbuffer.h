@@ -51,6 +51,11 @@ public:
     std::vector<Define> readerDefines() const;
     // The bundle's uniforms of bundle.glsl.
     static void setBundleUniforms(Program& program, const BundleView& view);
+    // kbuffer.glsl's bundleSender for one receiver, counted (part of the PassCost of "transfer" and
+    // "final-glossy"): the projection and the plane's depth, the count or stencil, two passes over k entries
+    // (Stencil, Peel: all k; Atomic: at most k, the count only the GPU knows), with `charts` the chart of each
+    // entry near the receiver's depth (at most k: a bound).
+    PassCost bundleSenderCost(bool charts) const;
 
     // Every pixel's entries as kbuffer.glsl reads them (row-major, pixel y * size + x), sorted by depth,
     // with the count (Atomic: the fragments; Peel, Stencil: the entries, plus one when it overflowed).

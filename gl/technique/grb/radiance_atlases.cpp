@@ -8,6 +8,64 @@
 
 namespace bounce::gl {
 
+namespace {
+
+// shadow.glsl's shadowVisibility for one light, counted as gl/frame/points/point_cloud.cpp counts it: the
+// shadow view (24 words) and its transform, (r+1)^2 textureGathers of four depths (r: the PCF radius, 0 in
+// still frames) and their weights.
+PassCost shadowLookupCost(const Frame& frame)
+{
+    const int r = frame.shadowMaps().stillFrame() > 0 ? 0 : frame.settings().pcfRadius;
+    const double texels = 4.0 * (r + 1) * (r + 1);
+    PassCost c;
+    c.flops = 75 + 3.5 * texels;
+    c.fetches = texels;
+    c.bytesRead = texels * 4;
+    c.uniformWords = 24;
+    return c;
+}
+
+// transfer.frag per atlas texel: its position (empty ones stop there). Per filled texel (the atlas counted
+// them): its normal, chart, base colour, material and both sender sums, bundleSender with charts, one
+// sender's radiance (a bound: every receiver finds one), brdfParams and the transmission, two RGBA32F out;
+// GLOSSY (a bound: every texel glossy) the lobe towards the next direction and an RGBA16F out, with
+// AREA_GLOSSY per emitting triangle 16 points (about 2500 flops, its light and polygon) and a shadow lookup
+// (the shader's is per mesh: a bound), with PUNCTUAL_LIGHTS per light the irradiance, the lobe, its light
+// and a shadow lookup.
+PassCost transferCost(const RadianceAtlases& radiance, const Frame& frame, const GrbAtlas& atlas,
+                      const KBuffer& kbuffer)
+{
+    const RadianceSettings& s = radiance.settings();
+    const PassCost sender = kbuffer.bundleSenderCost(true), sent = radiance.senderRadianceCost();
+    const PassCost shadow = shadowLookupCost(frame);
+    const double punctual = s.punctual ? frame.gpuScene().punctualLightCount() : 0.0;
+    const double area = s.areaGlossy ? frame.shadowMaps().lightCount() - frame.gpuScene().punctualLightCount() : 0.0;
+    PassCost r; // per filled texel
+    r.flops = 95 + sender.flops + sent.flops;
+    r.fetches = 5 + sender.fetches + sent.fetches;
+    r.bytesRead = 5 * 16 + 64 + sender.bytesRead + sent.bytesRead;
+    r.bytesWritten = 2 * 16;
+    if (s.glossy) {
+        r.flops += 110 + area * 2500 + punctual * 125 + (area + punctual) * shadow.flops;
+        r.fetches += (area + punctual) * shadow.fetches;
+        r.bytesRead += (area + punctual) * shadow.bytesRead;
+        r.bytesWritten += 8;
+        r.uniformWords = area * (16 + 12) + punctual * 16 + (area + punctual) * shadow.uniformWords;
+    }
+    const double filled = double(atlas.filledTexels());
+    PassCost c;
+    c.flops = 1;
+    c.fetches = 1;
+    c.bytesRead = 16;
+    c.flopsFixed = filled * r.flops;
+    c.fetchesFixed = filled * r.fetches;
+    c.bytesFixed = filled * (r.bytesRead + r.bytesWritten);
+    c.uniformWordsFixed = filled * r.uniformWords;
+    return c;
+}
+
+} // namespace
+
 RadianceAtlases::RadianceAtlases(const GrbAtlas& atlas, const KBuffer& kbuffer, const RadianceSettings& settings)
     : settings_(settings),
       width_(atlas.width()),
@@ -73,12 +131,38 @@ void RadianceAtlases::bindSender() const
     if (settings_.glossy) glossy_[current_].bind(UNIT_GRB_SENDER_GLOSSY);
 }
 
+PassCost RadianceAtlases::senderRadianceCost() const
+{
+    // Its position, normal and base colour (RGBA32F) and material (64 bytes), the face normal unpacked and
+    // brdfParams; interleaved, the transmission and the seed, direct and indirect sums (and the glossy
+    // transfer texel, RGBA16F); one bounce, the transmission and the seed alone.
+    const bool interleaved = settings_.interleaved, glossy = interleaved && settings_.glossy;
+    PassCost c;
+    c.flops = 60 + (interleaved ? 42 : 32) + (glossy ? 3 : 0);
+    c.fetches = 3 + (interleaved ? 3 : 1) + (glossy ? 1 : 0);
+    c.bytesRead = 3 * 16 + 64 + (interleaved ? 3 * 16 : 16) + (glossy ? 8 : 0);
+    return c;
+}
+
 void RadianceAtlases::seed(const Frame& frame, const GrbAtlas& atlas, PassTimers& timers)
 {
     const float zero[4] = {0, 0, 0, 0};
     seed_.clear(0, zero);
     if (!settings_.punctual) return;
-    auto t = timers.scope("seed");
+    // direct_seed.frag per atlas texel: its position (empty ones stop there); per filled texel (the atlas
+    // counted them) its normal, base colour and material, brdfParams, and per punctual light the irradiance,
+    // the transmission and a shadow lookup (a bound: every texel lit by every light), one RGBA32F out.
+    const double filled = double(atlas.filledTexels()), lights = frame.gpuScene().punctualLightCount();
+    const PassCost shadow = shadowLookupCost(frame);
+    PassCost cost;
+    cost.flops = 1;
+    cost.fetches = 1;
+    cost.bytesRead = 16;
+    cost.flopsFixed = filled * (32 + lights * (65 + shadow.flops));
+    cost.fetchesFixed = filled * (2 + lights * shadow.fetches);
+    cost.bytesFixed = filled * (2 * 16 + 64 + lights * shadow.bytesRead + 16);
+    cost.uniformWordsFixed = filled * lights * (16 + shadow.uniformWords);
+    auto t = timers.scope("seed", cost);
     PassState::fullscreen(seedFbo_, width_, height_).apply();
     frame.bindSceneData();
     atlas.bind();
@@ -94,7 +178,7 @@ void RadianceAtlases::seed(const Frame& frame, const GrbAtlas& atlas, PassTimers
 void RadianceAtlases::transfer(const Frame& frame, const GrbAtlas& atlas, const KBuffer& kbuffer,
                                const BundleView& view, const glm::vec3& next, PassTimers& timers)
 {
-    auto t = timers.scope("transfer");
+    auto t = timers.scope("transfer", transferCost(*this, frame, atlas, kbuffer));
     const int receiver = 1 - current_;
     PassState::fullscreen(fbo_[receiver], width_, height_).apply();
     frame.bindSceneData();

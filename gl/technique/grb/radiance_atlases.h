@@ -42,6 +42,9 @@ public:
                   const glm::vec3& next, PassTimers& timers);
     // The seed and the current sender atlases at their units (radiance.glsl).
     void bindSender() const;
+    // radiance.glsl's senderRadiance for one sender texel, counted (part of the PassCost of "transfer" and
+    // "final-glossy", which look up at most one sender per receiver).
+    PassCost senderRadianceCost() const;
     std::vector<Define> defines() const;
 
     const Texture& seedAtlas() const { return seed_; }

@@ -13,6 +13,87 @@ namespace {
 
 constexpr int kWarpBins = 32;
 
+// Flops of the functions gather.comp calls per node, micro-pixel and ray, counted from their source
+// (technique/microrender/warp.glsl, common/brdf.glsl, common/raycast.glsl).
+constexpr double kFlopsWarpBin = 30;                    // warpBin: atan, sqrt, a division, bin and fraction
+constexpr double kFlopsToDirection = 60;                // warpToDirection: two 5-step searches, sin, cos, sqrt
+constexpr double kFlopsSolidAngle = kFlopsWarpBin + 10; // warpCosineSolidAngle
+constexpr double kFlopsBrdfLobes = 125;                 // brdfEvalLobes: two transmissions, GGX D, Smith Vis
+constexpr double kFlopsBrdfDiffuse = 65;                // the same for a diffuse-only sample (weight 0)
+constexpr double kFlopsGlossyNode = 90;                 // nodeRadiance's pointGlossyRadiance
+constexpr double kFlopsRaySetup = 200;                  // bvhRay: six corrected divisions
+constexpr double kFlopsBox = 25, kFlopsTriangle = 100;  // bvhHitBox, bvhHitTriangle
+constexpr double kBoxBytes = 32, kTriangleBytes = 48;   // core::BvhNode, core::BvhTriangle
+constexpr double kHitBytes = 3 * 4 + 3 * 12 + 4 + 64;   // indices, vertex normals, material index, Material
+
+// gather.comp per gather sample (one work group), beyond what each of its invocations does alike: the
+// micro-buffer cleared, the cut's nodes (read, culled or judged; the rasterised ones warped and keyed),
+// the rays (direction, BVH walk, shading where they take the pixel), every micro-pixel convolved, the
+// group's sums and the store; micro-buffer keys count 4 bytes each (shared memory). Nodes visited and rays
+// are known only on the GPU: per sample as in the last pixel gather's counters (`last`, read back after
+// it; none before the first); a ray's walk is estimated at 2 x the BVH's depth boxes and two full leaves.
+PassCost sampleWork(Frame& frame, const MicroGatherSettings& s, const MicroStats& last, const PointHierarchy& hierarchy,
+                    const RayCaster& caster, bool atPoints)
+{
+    const double pixels = double(s.resolution) * s.resolution, nodeBytes = double(hierarchy.nodeBytes());
+    const bool glossy = hierarchy.nodeBytes() > sizeof(GpuMicroNode);
+    const double samples = std::max<double>(last.samples, 1.0);
+    PassCost w;
+    w.bytesFixed = pixels * 4 + (atPoints ? 16 : 24 + 2 * 16) + 8 * 4; // clear, G-buffer texels, store, counters
+    w.flopsFixed = 6.0 * MicroGather::kGroup;                          // the group's sums
+    if (s.stages >= 2) { // the cut: per node visited, and per node rasterised
+        w.flopsFixed += last.visited / samples * 120 + last.rasterised / samples * (kFlopsWarpBin + 20);
+        w.bytesFixed += last.visited / samples * nodeBytes + last.rasterised / samples * 4;
+    }
+    if (s.rayCast && s.stages >= 3) {
+        const double rays = last.rays / samples, taken = last.rayPixels / samples;
+        w.flopsFixed += rays * (kFlopsToDirection + 20);
+        w.bytesFixed += rays * 4 + taken * (12 + 4); // the pixel's key read; its radiance and key written
+        if (!s.rayDiscs) {
+            const double boxes = 2.0 * caster.bvh().depth(), triangles = 2.0 * core::Bvh::kMaxLeafSize;
+            w.flopsFixed += rays * (kFlopsRaySetup + boxes * kFlopsBox + triangles * kFlopsTriangle);
+            w.bytesFixed += rays * (boxes * kBoxBytes + triangles * kTriangleBytes);
+            // The hit's normal and material, and the lights at it as the direct pass (frame.cpp) counts them.
+            const FrameSettings& fs = frame.settings();
+            const double taps = double((2 * fs.pcfRadius + 1) * (2 * fs.pcfRadius + 1)) * (fs.pcfLinear ? 4.0 : 1.0);
+            const double punctual = frame.gpuScene().punctualLightCount(),
+                         area = frame.shadowMaps().lightCount() - punctual;
+            w.flopsFixed += taken * (40 + punctual * (60 + 10 * taps) + area * (250 + 10 * taps));
+            w.fetchesFixed += taken * (punctual + area) * taps;
+            w.bytesFixed += taken * (kHitBytes + (punctual + area) * taps * 4);
+        }
+    }
+    if (s.stages >= 4) { // the convolution, every micro-pixel
+        w.flopsFixed += pixels * (kFlopsToDirection + 40 + kFlopsSolidAngle +
+                                  (atPoints ? kFlopsBrdfDiffuse : kFlopsBrdfLobes) + (glossy ? kFlopsGlossyNode : 0));
+        w.bytesFixed += pixels * (4 + nodeBytes);
+    }
+    return w;
+}
+
+// gather.comp per invocation, alike in a sample's group: the target (its G-buffer texels, or its point's
+// surfel read at the group's address), its local frame and jitter, the GGX table's alpha search, and a 64th
+// of the warp's build (16 of the 32 x 32 bins mixed from the tables, the row CDFs, the normalisation).
+PassCost invocationCost(bool atPoints, std::size_t alphas)
+{
+    PassCost c;
+    c.flops = (atPoints ? 120 : 200) + 165;
+    c.fetches = atPoints ? 0 : 3;
+    c.bytesRead = double(kWarpBins * kWarpBins / MicroGather::kGroup) * 4;
+    c.uniformWords = atPoints ? 8 : 2 + 2.0 * double(alphas);
+    return c;
+}
+
+// The whole scope: per invocation, plus per sample times the samples.
+PassCost gatherCost(const PassCost& perInvocation, const PassCost& perSample, int samples)
+{
+    PassCost c = perInvocation;
+    c.bytesFixed = perSample.bytesFixed * samples;
+    c.flopsFixed = perSample.flopsFixed * samples;
+    c.fetchesFixed = perSample.fetchesFixed * samples;
+    return c;
+}
+
 } // namespace
 
 MicroGather::MicroGather(Frame& frame, const MicroGatherSettings& settings, const PointHierarchy& hierarchy,
@@ -89,7 +170,10 @@ void MicroGather::gatherPixels(Frame& frame, PixelGather& targets, const PointCl
 {
     statsBuffer_.clearToZero();
     {
-        auto t = timers.scope("gather");
+        // gather.comp per invocation (the target, its frame, a 64th of the warp) and per sample (sampleWork).
+        auto t = timers.scope("gather", gatherCost(invocationCost(false, cpuTables_.alphas.size()),
+                                                   sampleWork(frame, settings_, stats_, hierarchy, caster, false),
+                                                   targets.count()));
         bindCommon(frame, cloud, hierarchy, caster);
         targets.bindForGather(frame, pixels_);
         setUniforms(pixels_, frame, cloud, hierarchy);
@@ -103,10 +187,13 @@ void MicroGather::gatherPixels(Frame& frame, PixelGather& targets, const PointCl
 void MicroGather::gatherPoints(Frame& frame, const PointCloud& cloud, const PointHierarchy& hierarchy,
                                const RayCaster& caster, int stride, Buffer& gathered, PassTimers& timers)
 {
-    auto t = timers.scope("bounce-gather");
+    const int count = cloud.count() / stride;
+    // gather.comp per invocation (the point, its frame, a 64th of the warp) and per sample (sampleWork).
+    auto t =
+        timers.scope("bounce-gather", gatherCost(invocationCost(true, 0),
+                                                 sampleWork(frame, settings_, stats_, hierarchy, caster, true), count));
     bindCommon(frame, cloud, hierarchy, caster);
     gathered.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_POINT_GATHERED);
-    const int count = cloud.count() / stride;
     setUniforms(points_, frame, cloud, hierarchy);
     points_.set("gatherStride", unsigned(stride));
     points_.set("targetCount", unsigned(count));

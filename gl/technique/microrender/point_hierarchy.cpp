@@ -36,7 +36,16 @@ void PointHierarchy::bind() const
 
 void PointHierarchy::build(const PointCloud& cloud, PassTimers& timers)
 {
-    auto t = timers.scope("hierarchy");
+    // hierarchy_leaves.comp per point and hierarchy_level.comp per interior node: one node written. The rest
+    // per scope, the two kernels apart: a leaf reads its surfel and radiance (and glossy lobe), takes a
+    // sqrt; an interior node reads its two children and merges their spheres, cones, areas and radiance
+    // (and lobes: mergeGlossy).
+    const double leaves = leaves_, interior = leaves_ - 1.0;
+    PassCost cost;
+    cost.bytesWritten = double(nodeBytes());
+    cost.bytesFixed = leaves * (32 + 8 + (glossy_ ? 16 : 0)) + interior * 2.0 * double(nodeBytes());
+    cost.flopsFixed = leaves * 4 + interior * (glossy_ ? 245 : 125);
+    auto t = timers.scope("hierarchy", cost);
     cloud.bind();
     bind();
     leavesProgram_.set("leafCount", unsigned(leaves_));

@@ -1,6 +1,7 @@
 #include "gl/technique/photon/final_gather.h"
 
 #include <algorithm>
+#include <bit>
 #include <string>
 #include <vector>
 
@@ -42,7 +43,12 @@ void FinalGather::gather(const Frame& frame, const RayCaster& caster, const Phot
                          const IlluminationCut& cut, const ShadingClusters& clusters, float sceneSize, Buffer& counters,
                          PassTimers& timers)
 {
-    auto t = timers.scope("gather");
+    // photon_gather.comp per invocation (256 per cluster): its cluster read, the rays' rotation hashed, the
+    // group's sums reduced in shared memory (8 steps); its rays are added below.
+    PassCost cost;
+    cost.flops = 70;
+    cost.bytesRead = sizeof(GpuCluster);
+    auto t = timers.scope("gather", cost);
     const std::uint32_t zero[2] = {0, 0};
     counters.update((kCounterFirst + 1) * 4, sizeof zero, zero);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
@@ -74,6 +80,37 @@ void FinalGather::gather(const Frame& frame, const RayCaster& caster, const Phot
     counters.download((kCounterFirst + 1) * 4, sizeof hits, hits);
     fallback_ = hits[0];
     uncovered_ = hits[1];
+    t.addWork(rayWork(frame, caster, tree, cut, double(clusters.nonEmpty()) * std::max(settings_.rays, 1)));
+}
+
+PassCost FinalGather::rayWork(const Frame& frame, const RayCaster& caster, const PhotonTree& tree,
+                              const IlluminationCut& cut, double rays) const
+{
+    // Per ray of the clusters with a sample, each taken to hit (a bound): its cosine direction, a BVH walk,
+    // then photon_gather.glsl reads the triangle's indices, vertices and material (152 bytes; a bilinear
+    // base-colour sample where the scene has textures), its direct light from every light (a record of
+    // shared words, one shadow tap: 2x2 texels when filtered), the irradiance there, the BRDF.
+    const double taps = frame.settings().pcfLinear && frame.shadowMaps().stillFrame() == 0 ? 4 : 1;
+    const double punctual = frame.gpuScene().punctualLightCount(), area = frame.shadowMaps().lightCount() - punctual;
+    PassCost w = bvhWalkWork(caster.bvh(), rays);
+    w.flopsFixed += rays * (215 + punctual * (60 + 10 * taps) + area * (250 + 10 * taps));
+    w.fetchesFixed = rays * ((frame.gpuScene().hasTextures() ? 4 : 0) + (punctual + area) * taps);
+    w.bytesFixed += rays * (152 + (punctual + area) * 4 * taps);
+    w.uniformWordsFixed = rays * (16 * punctual + 28 * area);
+    if (settings_.fullPhotonMap) {
+        const PassCost density = nearestPhotonsWork(tree, settings_.densityPhotons, rays);
+        w.flopsFixed += density.flopsFixed;
+        w.bytesFixed += density.bytesFixed;
+        return w;
+    }
+    // cut_lookup.glsl per hit: taken as 2 x log2(cut size) nodes visited, each its box, flags and, in the
+    // cut, its kernel (64 bytes, 20 flops; an estimate: the walk's length is known only on the GPU); again
+    // at twice the radius for the hits no kernel reached.
+    const double visits = 2.0 * std::max(double(std::bit_width(cut.size())), 1.0),
+                 lookups = rays + double(fallback_) + double(uncovered_);
+    w.flopsFixed += lookups * visits * 20;
+    w.bytesFixed += lookups * visits * 64;
+    return w;
 }
 
 Interpolation::Interpolation(bool asCompute)
@@ -91,7 +128,24 @@ bool Interpolation::defaultAsCompute()
 void Interpolation::run(Frame& frame, const ShadingClusters& clusters, float maxError, bool ownSampleOnly,
                         PassTimers& timers, bool writeIrradiance)
 {
-    auto t = timers.scope("interpolate");
+    // photon_interpolate.comp or .frag per pixel: its surface, cluster index, own cluster, diffuse and
+    // specular texels read, Ward's weight to its own sample, the split-sum albedo, its radiance written.
+    PassCost cost;
+    cost.flops = 120;
+    cost.fetches = 3;
+    cost.bytesRead = 8 + 4 + sizeof(GpuCluster) + 2 * 8;
+    cost.bytesWritten = 16;
+    auto t = timers.scope("interpolate", cost);
+    if (!ownSampleOnly) {
+        // The walk of the tree of samples per pixel (a bound: every pixel has geometry), taken as two nodes
+        // per level, a box test each above the leaves and a sample's weight at them (an estimate: the walk's
+        // length is known only on the GPU).
+        const double pixels = double(frame.width()) * frame.height(), boxes = 2.0 * clusters.pointTreeDepth();
+        PassCost walk;
+        walk.flopsFixed = pixels * (20 * boxes + 2 * 30);
+        walk.bytesFixed = pixels * (sizeof(GpuPointNode) * boxes + 2 * (sizeof(GpuPointNode) + sizeof(GpuCluster)));
+        t.addWork(walk);
+    }
     if (!asCompute_ && attached_ != frame.indirect().id()) {
         framebuffer_ = Framebuffer("photon.interpolate");
         framebuffer_.attach(GL_COLOR_ATTACHMENT0, frame.indirect());

@@ -39,6 +39,10 @@ private:
     FinalGatherSettings settings_;
     Program program_;
     std::uint32_t fallback_ = 0, uncovered_ = 0;
+
+    // The work of the gather's `rays` (per-scope work: their number, their walks and lookups).
+    PassCost rayWork(const Frame& frame, const RayCaster& caster, const PhotonTree& tree, const IlluminationCut& cut,
+                     double rays) const;
 };
 
 class Interpolation {

@@ -2,21 +2,29 @@
 // compaction, and segmented versions of them"), as GL 4.5 compute passes:
 //   GpuScan    exclusive prefix sum of a uint array, in place, its total into a counter slot;
 //   RadixSort  stable LSD radix sort of (key, value) uint pairs, 4 bits per pass.
-// Both are deterministic: integer sums, and a scatter that walks contiguous runs in order.
+// Both are deterministic: integer sums, and a scatter that walks contiguous runs in order. Each gives the
+// work of a run (work()) for the timed scope that runs it (PassTimers::Scope::addWork).
 #pragma once
 
 #include <cstdint>
 
 #include "gl/resource/buffer.h"
 #include "gl/resource/program.h"
+#include "gl/resource/timer.h"
 
 namespace bounce::gl {
+
+// `count` times the per-invocation work `each` (a kernel's invocations, or the items its loops visit), as
+// per-scope work: how a scope that runs several different kernels declares each one's share.
+PassCost kernelWork(double count, const PassCost& each);
 
 class GpuScan {
 public:
     GpuScan();
     // data[0..count) := exclusive prefix sums; counters (a uint array) [totalSlot] := the total.
     void run(const Buffer& data, std::uint32_t count, const Buffer& counters, std::uint32_t totalSlot);
+    // What run() does for `count` words, as per-scope work.
+    static PassCost work(std::uint32_t count);
 
 private:
     Program program_;
@@ -31,6 +39,8 @@ public:
     // at `scratchSlot`.
     void sort(const Buffer& keys, const Buffer& values, const Buffer& keysTmp, const Buffer& valuesTmp,
               std::uint32_t count, int bits, const Buffer& counters, std::uint32_t scratchSlot);
+    // What sort() does for `count` pairs and `bits`, as per-scope work (its passes and their scans).
+    static PassCost work(std::uint32_t count, int bits);
     std::size_t bytes() const { return counts_.bytes(); }
 
 private:

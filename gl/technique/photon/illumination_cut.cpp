@@ -11,6 +11,17 @@
 
 namespace bounce::gl {
 
+PassCost nearestPhotonsWork(const PhotonTree& tree, int k, double searches)
+{
+    // density.glsl per search: about 2 x depth nodes (96 bytes, a box distance each) and 2k photons
+    // examined (64 bytes: a distance, the normal test, the heap of k), then the k found read for their sums.
+    const double nodes = 2.0 * std::max(tree.depth(), 1);
+    PassCost w;
+    w.flopsFixed = searches * (15 * nodes + 35 * 2.0 * k + 15.0 * k);
+    w.bytesFixed = searches * (sizeof(GpuPhotonNode) * nodes + 64 * 3.0 * k);
+    return w;
+}
+
 IlluminationCut::IlluminationCut()
     : emin_(Program::compute("photon.cutEmin", "technique/photon/cut_emin.comp")),
       select_(Program::compute("photon.cutSelect", "technique/photon/cut_select.comp")),
@@ -25,8 +36,13 @@ void IlluminationCut::bind() const
     nodes_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_PHOTON_CUT);
 }
 
-std::uint32_t IlluminationCut::compact(const PhotonTree& tree, Buffer& counters)
+std::uint32_t IlluminationCut::compact(const PhotonTree& tree, Buffer& counters, PassTimers::Scope& t)
 {
+    // cut_flags.comp per node: its flags read, its mark written; the scan of the marks; cut_list.comp per
+    // node: its flags read and, in the cut, its position read and its index written.
+    t.addWork(kernelWork(nodeCount_, {.flops = 3, .bytesRead = 4, .bytesWritten = 4}));
+    t.addWork(GpuScan::work(nodeCount_));
+    t.addWork(kernelWork(nodeCount_, {.flops = 3, .bytesRead = 8, .bytesWritten = 4}));
     bind();
     marks_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_PHOTON_SCAN);
     tree.bind(flags_);
@@ -68,7 +84,18 @@ void IlluminationCut::build(const PhotonTree& tree, const Buffer& photons, const
     bind();
     tree.bind(select_);
     const int firstLevel = std::clamp(s.eminLevel, 0, std::max(tree.depth() - 1, 0));
-    select_.set("lastLevel", std::min(firstLevel + 1, tree.depth()));
+    const int lastLevel = std::min(firstLevel + 1, tree.depth());
+    select_.set("lastLevel", lastLevel);
+    // Every kernel's work from the counts known here (the tree's nodes: its heap slots less slot 0).
+    // cut_emin.comp: the nodes of E_min's two levels (96 bytes each), then its 256 invocations' reduction;
+    // cut_select.comp per node: the node, its children's flags and E_min read, its centre, normal and
+    // incoming direction, six vec4 written; cut_mark.comp per node: its, its parent's flags and its photon
+    // count read, its flags written.
+    const double nodes = double(nodeCount_) - 1;
+    t.addWork(kernelWork(double((2u << lastLevel) - (1u << firstLevel)), {.flops = 2, .bytesRead = 96}));
+    t.addWork(kernelWork(256, {.flops = 16}));
+    t.addWork(kernelWork(nodes, {.flops = 40, .bytesRead = 96 + 8, .bytesWritten = 96, .uniformWords = 1}));
+    t.addWork(kernelWork(nodes, {.flops = 6, .bytesRead = 12, .bytesWritten = 4}));
     for (int level = tree.depth(); level >= 0; --level) {
         select_.set("level", level);
         dispatchLinear(select_, 1u << level);
@@ -85,7 +112,7 @@ void IlluminationCut::build(const PhotonTree& tree, const Buffer& photons, const
         refineK_ = s.densityPhotons;
     }
     for (int iteration = 0; iteration <= s.iterations; ++iteration) {
-        size_ = compact(tree, counters);
+        size_ = compact(tree, counters, t);
         if (iteration == 0) coarseSize_ = size_;
         const bool split = iteration < s.iterations;
         const std::uint32_t zero = 0;
@@ -103,17 +130,30 @@ void IlluminationCut::build(const PhotonTree& tree, const Buffer& photons, const
             refine_.set("iteration", unsigned(iteration + 1));
             dispatchCompute(refine_, {int(size_), 1, 1}, {64, 1, 1});
             glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+            // cut_refine.comp per cut node: its list entry, node and flags read; a node entering the cut (all
+            // of them at first, then at most two per split of the last iteration) searches its k nearest
+            // photons and writes E_p and its ratio.
+            const double entering = iteration == 0 ? size_ : std::min(double(size_), 2.0 * splits_.back());
+            t.addWork(kernelWork(size_, {.flops = 5, .bytesRead = 4 + 96 + 8}));
+            t.addWork(nearestPhotonsWork(tree, s.densityPhotons, entering));
+            t.addWork(kernelWork(entering, {.flops = 30, .bytesWritten = 24}));
         }
         if (!split) break;
         std::uint32_t splits = 0;
         counters.download(kCounterCutSplits * 4, 4, &splits);
         splits_.push_back(splits);
+        // Per split: the node's flags and the counter written, its children's photon counts and flags read,
+        // their flags and generations written.
+        t.addWork(kernelWork(splits, {.bytesRead = 16, .bytesWritten = 4 + 4 + 16}));
         if (splits == 0) { // nothing changed: the last pass has nothing new to evaluate
-            size_ = compact(tree, counters);
+            size_ = compact(tree, counters, t);
             break;
         }
     }
 
+    // cut_influence.comp per node: its flags and its kernel, or its children's four boxes (128 bytes, the
+    // larger), read; its boxes written.
+    t.addWork(kernelWork(nodes, {.flops = 12, .bytesRead = 4 + 128, .bytesWritten = 56}));
     bind();
     tree.bind(influence_);
     for (int level = tree.depth(); level >= 0; --level) {

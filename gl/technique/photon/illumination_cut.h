@@ -47,6 +47,10 @@ struct IlluminationCutSettings {
     int densityPhotons = 32; // k of the nearest-photon estimate
 };
 
+// `searches` k-nearest-photon searches of glsl/technique/photon/density.glsl in `tree`, as per-scope work.
+// A search's length is known only on the GPU: it is estimated from the tree's depth and k.
+PassCost nearestPhotonsWork(const PhotonTree& tree, int k, double searches);
+
 class IlluminationCut {
 public:
     IlluminationCut();
@@ -75,7 +79,7 @@ private:
     float eMin_ = 0.0f;
     std::vector<std::uint32_t> splits_;
 
-    std::uint32_t compact(const PhotonTree& tree, Buffer& counters);
+    std::uint32_t compact(const PhotonTree& tree, Buffer& counters, PassTimers::Scope& t);
 };
 
 } // namespace bounce::gl

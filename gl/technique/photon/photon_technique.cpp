@@ -51,8 +51,10 @@ public:
         gather_.gather(frame, caster_, tree_, tracer_.photons(), cut_, clusters_, sceneSize_, counters_, timers);
         const bool everyPixel = settings_.clusters.everyPixel;
         if (!everyPixel && clusters_.count() > 0) {
+            // The tree of samples: its kernels' work from the cluster count (ShadingClusters::addPointTreeWork).
             auto t = timers.scope("interpolate");
             clusters_.buildPointTree(true, counters_);
+            clusters_.addPointTreeWork(t);
         }
         interpolation_.run(frame, clusters_, settings_.interpolationError, everyPixel, timers);
     }

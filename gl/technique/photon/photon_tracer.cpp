@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numeric>
 
+#include "gl/context/context.h"
 #include "gl/frame/bindings.h"
 #include "gl/gl.h"
 #include "gl/resource/dispatch.h"
@@ -37,6 +38,20 @@ glm::vec3 emittedPower(const LightSource& light, float directionalArea)
         return float(pi * 0.5 * double(glm::length(c))) * light.intensity;
     }
     }
+}
+
+PassCost bvhWalkWork(const core::Bvh& bvh, double walks)
+{
+    // raycast.glsl per walk: the ray's shear and inverse direction (six divisions), about 2 x depth boxes
+    // (32 bytes, 24 flops each) and two leaves of kMaxLeafSize triangles (48 bytes, 60 flops each), and the
+    // hit's division. A division is one flop where the driver divides as IEEE 754 does (llvmpipe), else
+    // about 85 (rayDivide's correction).
+    const double division = softwareRasterizer() ? 1.0 : 85.0;
+    const double boxes = 2.0 * std::max(bvh.depth(), 1), triangles = 2.0 * core::Bvh::kMaxLeafSize;
+    PassCost w;
+    w.flopsFixed = walks * (20 + 7 * division + 24 * boxes + 60 * triangles);
+    w.bytesFixed = walks * (sizeof(core::BvhNode) * boxes + sizeof(core::BvhTriangle) * triangles);
+    return w;
 }
 
 PhotonTracer::PhotonTracer(const PhotonTracerSettings& settings)
@@ -201,7 +216,14 @@ void PhotonTracer::trace(const Frame& frame, const RayCaster& caster, Buffer& co
 {
     const auto paths = std::uint32_t(std::max(settings_.photons, 0));
     {
-        auto t = timers.scope("photon-trace");
+        // photon_trace.comp per path: its emitter found (a binary search) and read, the emission (a
+        // Hammersley point, direction and power), the emitted power and the path's photon count written;
+        // its surfaces are added below.
+        PassCost cost;
+        cost.flops = 150;
+        cost.bytesRead = sizeof(PhotonEmitter) + 16;
+        cost.bytesWritten = 16 + 4;
+        auto t = timers.scope("photon-trace", cost);
         buildEmitters(frame, caster);
         const bool directional = !projections_.empty();
         if (!trace_ || traceDirectional_ != directional) {
@@ -210,6 +232,7 @@ void PhotonTracer::trace(const Frame& frame, const RayCaster& caster, Buffer& co
             trace_ = Program::compute("photon.trace", "technique/photon/photon_trace.comp", defines);
             traceDirectional_ = directional;
         }
+        double surfaces = 0.0, written = 0.0;
         for (;;) {
             const std::uint32_t zero[3] = {0, 0, 0};
             counters.update(0, sizeof zero, zero);
@@ -233,6 +256,8 @@ void PhotonTracer::trace(const Frame& frame, const RayCaster& caster, Buffer& co
             std::uint32_t staged = 0;
             counters.download(kCounterStaged * 4, 4, &staged);
             stored_ = staged;
+            surfaces += double(paths) + double(staged);
+            written += double(std::min(staged, std::uint32_t(capacity_)));
             if (staged <= std::uint32_t(capacity_)) break;
             // Out of space: double until it fits (section 5's dynamic arrays), and trace again.
             int grown = capacity_;
@@ -240,10 +265,33 @@ void PhotonTracer::trace(const Frame& frame, const RayCaster& caster, Buffer& co
             allocate(grown);
             ++grown_;
         }
+        // The surfaces photons reach, taken as every path's first and every stored photon's (an estimate:
+        // misses and unstored ends past the first surface are left out): a BVH walk each, then
+        // photon_trace.comp reads the triangle's indices, vertices and material (152 bytes; a bilinear
+        // base-colour sample where the scene has textures) and samples the BRDF; a stored photon is written
+        // with its counter. A directional light's path reads its projection cell; the emitters and cells
+        // are uploaded.
+        PassCost work = bvhWalkWork(caster.bvh(), surfaces);
+        work.flopsFixed += 400 * surfaces;
+        work.fetchesFixed = (frame.gpuScene().hasTextures() ? 4 : 0) * surfaces;
+        for (const PhotonEmitter& e : emitters_)
+            if (int(e.positionType.w) == kLightDirectional) work.fetchesFixed += e.range.y;
+        work.bytesFixed +=
+            152 * surfaces + (sizeof(GpuPhoton) + 4) * written + double(emitterBuffer_.bytes() + cells_.bytes());
+        t.addWork(work);
     }
+    // Every count is known here: the scan of the paths' photon counts; photon_place.comp per photon (its
+    // path's offset and the photon read, its Hilbert index, the photon, key and value written); the radix
+    // sort of the 30-bit keys; photon_permute.comp per photon (its index and the photon read and written).
     auto t = timers.scope("photon-sort");
-    if (paths > 0) scan_.run(pathCounts_, paths, counters, kCounterStored);
+    if (paths > 0) {
+        scan_.run(pathCounts_, paths, counters, kCounterStored);
+        t.addWork(GpuScan::work(paths));
+    }
     if (stored_ == 0) return;
+    t.addWork(kernelWork(stored_, {.flops = 200, .bytesRead = 64 + 4, .bytesWritten = 64 + 4 + 4}));
+    t.addWork(RadixSort::work(stored_, 30));
+    t.addWork(kernelWork(stored_, {.bytesRead = 4 + 64, .bytesWritten = 64}));
     staging_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_PHOTON_STAGING);
     pathCounts_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_PHOTON_PATHS);
     sorted_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_PHOTONS);

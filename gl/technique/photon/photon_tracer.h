@@ -68,6 +68,10 @@ struct PhotonTracerSettings {
     bool projectionMap = true;
 };
 
+// `walks` closest-hit walks of glsl/common/raycast.glsl through `bvh`, as per-scope work. A walk's length
+// is known only on the GPU: it is estimated from the tree's depth (photon_tracer.cpp).
+PassCost bvhWalkWork(const core::Bvh& bvh, double walks);
+
 // A directional light's projection map: the square photons may leave from (across the light, behind the
 // scene, as wide as the scene's bounding sphere) in gridSize^2 cells, and the cells they leave from.
 struct ProjectionMap {

@@ -37,12 +37,24 @@ void PhotonTree::bind(Program& program) const
 
 void PhotonTree::build(const Buffer& photons, std::uint32_t count, float minRadius, PassTimers& timers)
 {
-    auto t = timers.scope("photon-tree");
+    // tree_leaves.comp and tree_reduce.comp per node: its sums finished (r_p, the mean normal, Eq. 3's
+    // estimate) and the node written; what each kernel reads is added below.
+    PassCost cost;
+    cost.flops = 25;
+    cost.bytesWritten = sizeof(GpuPhotonNode);
+    auto t = timers.scope("photon-tree", cost);
     count_ = count;
     minRadius_ = minRadius;
     // The least depth whose leaves hold at most leafPhotons photons.
     depth_ = 0;
     while ((std::uint64_t(count) + (1ull << depth_) - 1) >> depth_ > std::uint64_t(leafPhotons_)) ++depth_;
+    // The leaves read every photon once (64 bytes: its luminance, box and weighted sums, 31 flops); each
+    // node above them reads its two children (20 flops).
+    const double inner = double((1u << depth_) - 1);
+    PassCost reads;
+    reads.flopsFixed = 31.0 * count + 20.0 * inner;
+    reads.bytesFixed = 64.0 * count + 2.0 * sizeof(GpuPhotonNode) * inner;
+    t.addWork(reads);
     const std::size_t bytes = std::size_t(nodeCount()) * sizeof(GpuPhotonNode);
     if (!nodes_ || nodes_.bytes() < bytes) nodes_ = Buffer("photon.treeNodes", bytes);
     photons.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_PHOTONS);

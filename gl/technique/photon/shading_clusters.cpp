@@ -21,6 +21,13 @@ Program compute(const char* name, const char* file, const std::vector<Define>& d
 // each, smaller ones one invocation each.
 constexpr int kQuadGroupSpan = 16, kQuadGroup = 256;
 
+// The work the kernels share (per-scope work, kernelWork): gbufferSurface (common/gbuffer.glsl) fetches
+// one RG32UI texel, rebuilds the position from the eye depth and decodes the octahedral normal;
+// clusterError is Eq. 2. The kernels' buffers by their std430 sizes.
+constexpr double kSurfaceFlops = 40, kSurfaceBytes = 8, kErrorFlops = 26;
+constexpr double kClusterBytes = sizeof(GpuCluster), kQuadNodeBytes = sizeof(GpuQuadNode),
+                 kPointNodeBytes = sizeof(GpuPointNode);
+
 } // namespace
 
 ShadingClusters::ShadingClusters(const ShadingClusterSettings& settings)
@@ -92,7 +99,7 @@ void ShadingClusters::bindPointTree(Program& program) const
     program.set("pointTreeDepth", pointDepth_);
 }
 
-void ShadingClusters::buildQuadtree(bool onlyUnclassified)
+void ShadingClusters::buildQuadtree(bool onlyUnclassified, PassTimers::Scope& t)
 {
     quad_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_CLUSTER_QUADTREE);
     clusterOfPixel_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_CLUSTER_OF_PIXEL);
@@ -118,9 +125,27 @@ void ShadingClusters::buildQuadtree(bool onlyUnclassified)
         }
     }
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    // quad_leaves.comp per pixel of the padded square: its surface (and its previous cluster) read, its
+    // node written. Per level above: quad_reduce.comp per node, four children read (the level's offset
+    // summed for each index) and the node written; quad_error.comp per node, the node read and eps_q
+    // written, per member pixel its surface and Eq. 2 error (a bound: every pixel a member), and for nodes
+    // of a work group the group's sum.
+    const double pixels = double(width_) * height_, classify = onlyUnclassified ? 4 : 0;
+    t.addWork(kernelWork(
+        double(quadSize_) * quadSize_,
+        {.flops = kSurfaceFlops, .fetches = 1, .bytesRead = kSurfaceBytes + classify, .bytesWritten = kQuadNodeBytes}));
+    for (int level = 1; level <= quadLevels_; ++level) {
+        const double nodes = double(quadSize_ >> level) * (quadSize_ >> level);
+        t.addWork(kernelWork(
+            nodes, {.flops = 28 + 15.0 * level, .bytesRead = 4 * kQuadNodeBytes, .bytesWritten = kQuadNodeBytes}));
+        t.addWork(kernelWork(nodes, {.flops = 20 + 3.0 * level, .bytesRead = kQuadNodeBytes, .bytesWritten = 4}));
+        t.addWork(kernelWork(
+            pixels, {.flops = kSurfaceFlops + kErrorFlops, .fetches = 1, .bytesRead = kSurfaceBytes + classify}));
+        if ((1 << level) > kQuadGroupSpan) t.addWork(kernelWork(nodes * kQuadGroup, {.flops = 16}));
+    }
 }
 
-void ShadingClusters::placeSeeds(std::uint32_t first, std::uint32_t count, Buffer& counters)
+void ShadingClusters::placeSeeds(std::uint32_t first, std::uint32_t count, Buffer& counters, PassTimers::Scope& t)
 {
     quad_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_CLUSTER_QUADTREE);
     seedsBuffer_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_CLUSTER_SEEDS);
@@ -139,6 +164,20 @@ void ShadingClusters::placeSeeds(std::uint32_t first, std::uint32_t count, Buffe
     dispatchCompute(seedWrite_, {width_, height_, 1}, {8, 8, 1});
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
     counters.download(kCounterSeeds * 4, 4, &seeds_);
+    // seed_distribute.comp per node, top-down: its seeds read and, above the pixels, its four children
+    // read, its seeds shared out among them (the water-filling) and written; seed_write.comp per pixel: its
+    // seeds read, and per seed placed the pixel's surface read and a cluster written.
+    for (int level = quadLevels_; level >= 0; --level) {
+        const double nodes = double(quadSize_ >> level) * (quadSize_ >> level);
+        if (level == 0)
+            t.addWork(kernelWork(nodes, {.flops = 4, .bytesRead = 8}));
+        else
+            t.addWork(kernelWork(
+                nodes, {.flops = 100 + 15.0 * level, .bytesRead = 8 + 4 * kQuadNodeBytes, .bytesWritten = 4 * 8}));
+    }
+    t.addWork(kernelWork(double(width_) * height_, {.flops = 4, .bytesRead = 8}));
+    t.addWork(kernelWork(
+        seeds_, {.flops = kSurfaceFlops, .fetches = 1, .bytesRead = kSurfaceBytes, .bytesWritten = kClusterBytes}));
 }
 
 void ShadingClusters::buildPointTree(bool useSamples, Buffer& counters)
@@ -171,7 +210,21 @@ void ShadingClusters::buildPointTree(bool useSamples, Buffer& counters)
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }
 
-void ShadingClusters::assign(bool onlyClassify)
+void ShadingClusters::addPointTreeWork(PassTimers::Scope& t) const
+{
+    // point_keys.comp per leaf: its cluster read, its Morton code, key and value written; the radix sort of
+    // the keys; point_leaves.comp per leaf: key, value, the point and its normal read, the leaf written;
+    // point_reduce.comp per node above: two children (and R_j of leaves' clusters) read, the boxes merged
+    // and packed, the node written.
+    const double leaves = double(1u << pointDepth_);
+    t.addWork(kernelWork(leaves, {.flops = 40, .bytesRead = kClusterBytes, .bytesWritten = 8}));
+    t.addWork(RadixSort::work(1u << pointDepth_, 32));
+    t.addWork(kernelWork(leaves, {.flops = 12, .bytesRead = 8 + 32, .bytesWritten = kPointNodeBytes}));
+    t.addWork(
+        kernelWork(leaves - 1, {.flops = 40, .bytesRead = 2 * kPointNodeBytes + 8, .bytesWritten = kPointNodeBytes}));
+}
+
+void ShadingClusters::assign(bool onlyClassify, PassTimers::Scope& t)
 {
     bind();
     clusterOfPixel_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_CLUSTER_OF_PIXEL);
@@ -185,15 +238,27 @@ void ShadingClusters::assign(bool onlyClassify)
     assign_.set("errorSlack", settings_.errorSlack);
     dispatchCompute(assign_, {width_, height_, 1}, {8, 8, 1});
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    // kmeans_assign.comp per pixel: its surface and previous cluster read and Eq. 2 to that centre, then
+    // the walk of the tree of centres, taken as two nodes per level (a box bound each) and two leaves'
+    // centres (an estimate: the walk's length is known only on the GPU; bruteForce: every centre);
+    // cluster, key and value written.
+    const double boxes = settings_.bruteForce ? 0.0 : 2.0 * pointDepth_,
+                 centres = 1.0 + (settings_.bruteForce ? double(count_) : 2.0);
+    t.addWork(
+        kernelWork(double(width_) * height_, {.flops = kSurfaceFlops + 35 * boxes + kErrorFlops * centres,
+                                              .fetches = 1,
+                                              .bytesRead = kSurfaceBytes + 4 + kPointNodeBytes * boxes + 32 * centres,
+                                              .bytesWritten = 12}));
 }
 
-void ShadingClusters::sortByCluster(Buffer& counters)
+void ShadingClusters::sortByCluster(Buffer& counters, PassTimers::Scope& t)
 {
     const auto pixels = std::uint32_t(width_ * height_);
     sort_.sort(keys_, values_, keysTmp_, valuesTmp_, pixels, std::bit_width(count_ + 1), counters, kCounterScratch);
+    t.addWork(RadixSort::work(pixels, std::bit_width(count_ + 1)));
 }
 
-void ShadingClusters::runSegments()
+void ShadingClusters::runSegments(PassTimers::Scope& t)
 {
     bind();
     keys_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_SORT_KEYS);
@@ -201,10 +266,15 @@ void ShadingClusters::runSegments()
     segments_.set("clusterCount", count_);
     dispatchCompute(segments_, {width_ * height_, 1, 1}, {64, 1, 1});
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    // kmeans_segments.comp per sorted pixel: its key and its neighbours' read; each segment's ends written.
+    t.addWork(kernelWork(double(width_) * height_, {.flops = 4, .bytesRead = 12}));
+    t.addWork(kernelWork(count_, {.bytesWritten = 8}));
 }
 
 void ShadingClusters::cluster(const Frame& frame, float sceneSize, Buffer& counters, PassTimers& timers)
 {
+    // No work is common to all its kernels' invocations: each step adds its kernels' work, from the counts
+    // known here (pixels, clusters, seeds, the trees' depths).
     auto t = timers.scope("kmeans");
     allocate(frame.width(), frame.height());
     const core::Bounds& b = frame.gpuScene().bounds();
@@ -220,6 +290,10 @@ void ShadingClusters::cluster(const Frame& frame, float sceneSize, Buffer& count
         setCommon(perPixel_);
         dispatchCompute(perPixel_, {width_, height_, 1}, {8, 8, 1});
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+        // clusters_per_pixel.comp per pixel: its surface read, its cluster and cluster index written.
+        t.addWork(kernelWork(
+            double(width_) * height_,
+            {.flops = kSurfaceFlops + 4, .fetches = 1, .bytesRead = kSurfaceBytes, .bytesWritten = kClusterBytes + 4}));
         count_ = std::uint32_t(width_ * height_);
         nonEmpty_ = count_;
         seeds_ = survivors_ = 0;
@@ -230,9 +304,10 @@ void ShadingClusters::cluster(const Frame& frame, float sceneSize, Buffer& count
     if (settings_.temporal && havePrevious_ && count_ > 0) {
         // Temporal reuse: the previous centres, fixed, take the points within their largest error.
         buildPointTree(false, counters);
-        assign(true);
-        sortByCluster(counters);
-        runSegments();
+        addPointTreeWork(t);
+        assign(true, t);
+        sortByCluster(counters, t);
+        runSegments(t);
         bind();
         marksBuffer_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_PHOTON_SCAN);
         marks_.set("clusterCount", count_);
@@ -248,11 +323,17 @@ void ShadingClusters::cluster(const Frame& frame, float sceneSize, Buffer& count
         dispatchCompute(survivorsProgram_, {int(count_), 1, 1}, {64, 1, 1});
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
         counters.download(kCounterFirst * 4, 4, &survivors_);
-        buildQuadtree(true);
+        // kmeans_marks.comp per previous cluster: its members' range read, its mark written; the scan of the
+        // marks; kmeans_survivors.comp per previous cluster: it and its position read, a survivor written.
+        t.addWork(kernelWork(count_, {.flops = 1, .bytesRead = 16, .bytesWritten = 4}));
+        t.addWork(GpuScan::work(count_));
+        t.addWork(kernelWork(count_, {.bytesRead = kClusterBytes + 4}));
+        t.addWork(kernelWork(survivors_, {.bytesWritten = kClusterBytes}));
+        buildQuadtree(true, t);
     } else {
-        buildQuadtree(false);
+        buildQuadtree(false, t);
     }
-    placeSeeds(survivors_, k > survivors_ ? k - survivors_ : 0, counters);
+    placeSeeds(survivors_, k > survivors_ ? k - survivors_ : 0, counters, t);
     count_ = survivors_ + seeds_;
     if (count_ == 0) {
         nonEmpty_ = 0;
@@ -260,11 +341,13 @@ void ShadingClusters::cluster(const Frame& frame, float sceneSize, Buffer& count
         return;
     }
 
+    const double pixels = double(width_) * height_;
     for (int it = 0; it < settings_.iterations; ++it) {
         buildPointTree(false, counters);
-        assign(false);
-        sortByCluster(counters);
-        runSegments();
+        addPointTreeWork(t);
+        assign(false, t);
+        sortByCluster(counters, t);
+        runSegments(t);
         bind();
         values_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_SORT_VALUES);
         setCommon(update_);
@@ -272,11 +355,16 @@ void ShadingClusters::cluster(const Frame& frame, float sceneSize, Buffer& count
         update_.set("fixedClusters", survivors_);
         dispatchCompute(update_, {int(count_), 1, 1}, {64, 1, 1});
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+        // kmeans_update.comp per cluster: its record read, its centre, normal and members written; per
+        // member (a bound: every pixel) its index and surface read and summed.
+        t.addWork(kernelWork(count_, {.flops = 15, .bytesRead = kClusterBytes, .bytesWritten = 48}));
+        t.addWork(kernelWork(pixels, {.flops = kSurfaceFlops + 10, .fetches = 1, .bytesRead = 4 + kSurfaceBytes}));
     }
     buildPointTree(false, counters);
-    assign(false);
-    sortByCluster(counters);
-    runSegments();
+    addPointTreeWork(t);
+    assign(false, t);
+    sortByCluster(counters, t);
+    runSegments(t);
     const std::uint32_t zero = 0;
     counters.update(kCounterClusters * 4, 4, &zero);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
@@ -287,6 +375,13 @@ void ShadingClusters::cluster(const Frame& frame, float sceneSize, Buffer& count
     sample_.set("clusterCount", count_);
     dispatchCompute(sample_, {int(count_), 1, 1}, {64, 1, 1});
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+    // kmeans_sample.comp per cluster: its record and its sample's surface read, the record and the counter
+    // written; per member (a bound: every pixel) its index and surface read and its Eq. 2 error.
+    t.addWork(kernelWork(
+        count_,
+        {.flops = kSurfaceFlops + 5, .fetches = 1, .bytesRead = kClusterBytes + kSurfaceBytes, .bytesWritten = 60}));
+    t.addWork(
+        kernelWork(pixels, {.flops = kSurfaceFlops + kErrorFlops + 6, .fetches = 1, .bytesRead = 4 + kSurfaceBytes}));
     counters.download(kCounterClusters * 4, 4, &nonEmpty_);
     havePrevious_ = true;
 }

@@ -81,6 +81,8 @@ public:
     // Builds the tree of the clusters' samples (useSamples) or centres at SSBO_POINT_TREE; the tree's
     // depth goes to `program`'s pointTreeDepth with bindPointTree.
     void buildPointTree(bool useSamples, Buffer& counters);
+    // The last buildPointTree's work, added to the scope that ran it.
+    void addPointTreeWork(PassTimers::Scope& t) const;
     void bindPointTree(Program& program) const;
     const Buffer& pointTree() const { return pointTree_; }
     int pointTreeDepth() const { return pointDepth_; }
@@ -110,11 +112,12 @@ private:
     bool havePrevious_ = false;
 
     void allocate(int width, int height);
-    void buildQuadtree(bool onlyUnclassified);
-    void placeSeeds(std::uint32_t first, std::uint32_t count, Buffer& counters);
-    void assign(bool onlyClassify);
-    void sortByCluster(Buffer& counters);
-    void runSegments();
+    // Each step adds its kernels' work to `t`, the "kmeans" scope.
+    void buildQuadtree(bool onlyUnclassified, PassTimers::Scope& t);
+    void placeSeeds(std::uint32_t first, std::uint32_t count, Buffer& counters, PassTimers::Scope& t);
+    void assign(bool onlyClassify, PassTimers::Scope& t);
+    void sortByCluster(Buffer& counters, PassTimers::Scope& t);
+    void runSegments(PassTimers::Scope& t);
     void setCommon(Program& p) const;
 };
 

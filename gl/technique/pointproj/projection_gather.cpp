@@ -12,6 +12,61 @@
 
 namespace bounce::gl {
 
+namespace {
+
+// Flops of the functions gather.comp calls per point and texel, counted from their source (common/brdf.glsl,
+// technique/pointproj/projection.glsl).
+constexpr double kFlopsBrdfLobes = 125;  // brdfEvalLobes: two transmissions, GGX D, Smith Vis
+constexpr double kFlopsBrdfDiffuse = 65; // the same for a diffuse-only target (the points: weight 0)
+constexpr double kFlopsGlossyPoint = 90; // pointGlossyRadiance: the lobe's words unpacked, brdfGlossy
+constexpr double kFlopsSplat = 95;       // splat: the direction, hemiOctEncode, Eq. 5, the side, the key
+constexpr double kSurfelBytes = 32;      // PointSurfel
+
+// gather.comp per gathered pixel (one work group of kGroup): the micro-buffer cleared; N_rnd random points
+// of every cluster read and weighed (Eq. 4), the carry rule, N_s samples found by a binary search over the
+// clusters, every point splatted (PROJ_MODE 2: every point of the cloud); HOLE_FILL passes over the
+// texels; every texel resolved (its point, radiance, f cos Omega); the group's sums and the store. Keys
+// count 4 bytes each (shared memory). An adaptive splat's texels are known only on the GPU: one each (the
+// side rounds to 1 below 2.25 texels, as for most of 3K splats over 32 x 32 texels; SPLAT_FIXED n: n^2).
+PassCost pixelWork(const ProjectionSettings& s, const PointCloud& cloud, int texels, bool atPoints)
+{
+    const double brdf = atPoints ? kFlopsBrdfDiffuse : kFlopsBrdfLobes;
+    const double randoms = double(s.clusters) * s.randomPerCluster;
+    const bool all = s.mode == ProjectionSettings::Mode::All;
+    const double splats = all ? double(cloud.count()) : randoms + s.samples;
+    const double splatTexels = s.fixedSplat > 0 ? double(s.fixedSplat) * s.fixedSplat : 1.0;
+    PassCost w;
+    w.bytesFixed = texels * 4.0 + (atPoints ? 16 : 24 + 2 * 16) + 8 * 4; // clear, G-buffer texels, store, counters
+    w.flopsFixed = 6.0 * ProjectionGather::kGroup;                       // the group's sums
+    if (!all) {
+        w.flopsFixed += randoms * (60 + brdf + 20) + s.clusters * 30.0 + s.samples * 45.0;
+        w.bytesFixed += randoms * kSurfelBytes;
+        if (s.shareDrawn) w.flopsFixed += randoms * 20; // the random draws again, after the allocation
+    }
+    w.flopsFixed += splats * kFlopsSplat;
+    w.bytesFixed += splats * (4 + kSurfelBytes + 4 + splatTexels * 4); // area, surfel, Omega_texel, keys
+    w.bytesFixed += s.holeFill * texels * 8.0; // each texel's key read, a fill written (holes' neighbours left out)
+    w.flopsFixed += texels * (15 + 8 + 6 + 15 + brdf + 20 + (cloud.glossy() ? kFlopsGlossyPoint : 0));
+    w.bytesFixed += texels * (4 + kSurfelBytes + 8 + 4 + (cloud.glossy() ? 16 : 0));
+    return w;
+}
+
+// gather.comp per invocation of a pixel's group, alike for all: the target (its G-buffer texels, or its
+// point's surfel read at the group's address), its frame and seed; the rest per pixel (pixelWork).
+PassCost gatherCost(const ProjectionSettings& s, const PointCloud& cloud, bool atPoints, int targets)
+{
+    const PassCost w = pixelWork(s, cloud, ProjectionGather::kResolution * ProjectionGather::kResolution, atPoints);
+    PassCost c;
+    c.flops = atPoints ? 60 : 85;
+    c.fetches = atPoints ? 0 : 3;
+    c.uniformWords = atPoints ? 8 : 2;
+    c.bytesFixed = w.bytesFixed * targets;
+    c.flopsFixed = w.flopsFixed * targets;
+    return c;
+}
+
+} // namespace
+
 ProjectionGather::ProjectionGather(const PointCloud& cloud, const ProjectionSettings& settings, bool atPoints)
     : settings_(settings), stats_("pointproj.stats", sizeof(ProjectionStats))
 {
@@ -66,7 +121,8 @@ void ProjectionGather::setUniforms(Program& program, Frame& frame, const PointCl
 void ProjectionGather::gatherPixels(Frame& frame, AdaptivePixels& pixels, int count, const PointCloud& cloud,
                                     std::uint32_t seed, PassTimers& timers)
 {
-    auto t = timers.scope("gather");
+    // gather.comp per invocation (the target, its frame) and per gathered pixel (pixelWork).
+    auto t = timers.scope("gather", gatherCost(settings_, cloud, false, count));
     pixels.bindForGather(frame, pixels_);
     setUniforms(pixels_, frame, cloud, seed);
     dispatchPerTarget(pixels_, count, kGroup);
@@ -76,8 +132,9 @@ void ProjectionGather::gatherPixels(Frame& frame, AdaptivePixels& pixels, int co
 void ProjectionGather::gatherPoints(Frame& frame, const PointCloud& cloud, int stride, Buffer& gathered,
                                     std::uint32_t seed, PassTimers& timers)
 {
-    auto t = timers.scope("bounce-gather");
     const int count = cloud.count() / stride;
+    // gather.comp per invocation (the point, its frame) and per gathered point (pixelWork).
+    auto t = timers.scope("bounce-gather", gatherCost(settings_, cloud, true, count));
     setUniforms(points_, frame, cloud, seed);
     gathered.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_POINT_GATHERED);
     points_.set("gatherStride", unsigned(stride));
