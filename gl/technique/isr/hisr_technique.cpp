@@ -215,6 +215,8 @@ TechniqueInfo hisrTechniqueInfo()
                                       float(v.get("lightDepthThreshold")), float(v.get("lightNormalThreshold")), level,
                                       multiresSettingsFrom(v), asFragments, lanes == "auto" ? 0 : std::stoi(lanes));
     };
+    // The RSM at 64^2 (from 256^2): the same passes, a sixteenth of the VPLs and RSM texels.
+    info.quickSets = {"rsmSize=64"};
     return info;
 }
 

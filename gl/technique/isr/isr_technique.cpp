@@ -119,6 +119,8 @@ TechniqueInfo isrTechniqueInfo()
         return std::make_unique<Isr>(frame, rsm, c, v.getBool("multires") ? &multires : nullptr,
                                      MultiresGather::gatherAsFragmentsFrom(v, isrTechniqueInfo().params));
     };
+    // The RSM at 64^2 (from 256^2): the same passes, a sixteenth of the VPLs and RSM texels.
+    info.quickSets = {"rsmSize=64"};
     return info;
 }
 

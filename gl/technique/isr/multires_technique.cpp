@@ -97,6 +97,8 @@ TechniqueInfo multiresGatherTechniqueInfo()
     info.params = multiresTechniqueParams();
     info.params.push_back(MultiresGather::gatherFormParam());
     info.create = [](Frame& frame, const ParamValues& v) { return createMultires(frame, v, false); };
+    // The RSM at 64^2 (from 256^2): the same passes, a sixteenth of the VPLs and RSM texels.
+    info.quickSets = {"rsmSize=64"};
     return info;
 }
 
@@ -119,6 +121,8 @@ TechniqueInfo multiresSplatTechniqueInfo()
                    "to them as points (what the stencil and the gather replace)";
     info.params = multiresTechniqueParams();
     info.create = [](Frame& frame, const ParamValues& v) { return createMultires(frame, v, true); };
+    // The RSM at 64^2 (from 256^2): the same passes, a sixteenth of the VPLs and RSM texels.
+    info.quickSets = {"rsmSize=64"};
     return info;
 }
 

@@ -58,6 +58,8 @@ TechniqueInfo rsmTechniqueInfo()
     info.create = [](Frame&, const ParamValues& v) -> std::unique_ptr<Technique> {
         return std::make_unique<RsmGather>(rsmSettingsFrom(v), v.getInt("vpls"));
     };
+    // The RSM at 64^2 (from 256^2): the same passes, a sixteenth of the VPLs and RSM texels.
+    info.quickSets = {"rsmSize=64"};
     return info;
 }
 
@@ -81,6 +83,8 @@ TechniqueInfo rsmFullTechniqueInfo()
         requireRsmSize("rsm-full", s.size, false, 1024);
         return std::make_unique<RsmGather>(s, -1);
     };
+    // The RSM at 64^2 (from 256^2): the same passes, a sixteenth of the VPLs and RSM texels.
+    info.quickSets = {"rsmSize=64"};
     return info;
 }
 
