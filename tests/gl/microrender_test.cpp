@@ -460,7 +460,7 @@ TEST_F(MicrorenderTest, HardCasesStayFinite)
         EXPECT_TRUE(allFiniteNonNegative(r.indirect));
     }
     const core::Scene scene = core::makeCornell("cornell-spot");
-    const testing::Sets base = {{"points", "16384"}, {"microBuffer", "8"}, {"bounceNodes", "256"}};
+    const testing::Sets base = {{"points", "4096"}, {"microBuffer", "8"}, {"bounceNodes", "256"}};
     testing::Sets two = base;
     two.push_back({"bounces", "2"});
     const PointRender one = renderPoints(scene, "microrender", base, 12, 12);
