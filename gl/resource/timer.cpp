@@ -37,6 +37,16 @@ PassTimers::Scope::~Scope()
     if (grouped_) glPopDebugGroup();
 }
 
+PassCost kernelWork(double count, const PassCost& each)
+{
+    PassCost w;
+    w.flopsFixed = count * each.flops;
+    w.fetchesFixed = count * each.fetches;
+    w.bytesFixed = count * (each.bytesRead + each.bytesWritten);
+    w.uniformWordsFixed = count * each.uniformWords;
+    return w;
+}
+
 void PassTimers::Scope::addWork(const PassCost& fixed)
 {
     if (!owner_) return;

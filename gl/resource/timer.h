@@ -40,6 +40,10 @@ struct PassCost {
     }
 };
 
+// `count` times the per-invocation work `each` (a kernel's invocations, or the items its loops visit), as
+// per-scope work: how a scope that runs several different kernels declares each one's share.
+PassCost kernelWork(double count, const PassCost& each);
+
 // The work a pass did in one frame: invocations from the driver, the rest from PassCost.
 struct PassWork {
     double fragmentInvocations = 0.0;

@@ -151,12 +151,8 @@ void MultiresGather::gather(Frame& frame, Program& program, PassTimers& timers, 
     auto t = timers.scope("gather", perInvocation);
     const double valid = asFragments_ ? gatherAsQuad(frame, program, draws, setupDraw)
                                       : gatherAsList(frame, program, draws, setupDraw, invocationsPerFragment);
-    PassCost work;
-    work.flopsFixed = valid * draws * perFragment.flops;
-    work.fetchesFixed = valid * draws * perFragment.fetches;
-    work.bytesFixed = valid * draws * (perFragment.bytesRead + perFragment.bytesWritten);
+    PassCost work = kernelWork(valid * draws, perFragment);
     if (!asFragments_) work.bytesFixed += valid * (4 + 4 * draws);
-    work.uniformWordsFixed = valid * draws * perFragment.uniformWords;
     t.addWork(work);
 }
 

@@ -26,16 +26,6 @@ SortPasses sortPasses(std::uint32_t count, int bits)
 
 } // namespace
 
-PassCost kernelWork(double count, const PassCost& each)
-{
-    PassCost w;
-    w.flopsFixed = count * each.flops;
-    w.fetchesFixed = count * each.fetches;
-    w.bytesFixed = count * (each.bytesRead + each.bytesWritten);
-    w.uniformWordsFixed = count * each.uniformWords;
-    return w;
-}
-
 GpuScan::GpuScan() : program_(Program::compute("photon.scan", "technique/photon/scan.comp"))
 {}
 

@@ -14,10 +14,6 @@
 
 namespace bounce::gl {
 
-// `count` times the per-invocation work `each` (a kernel's invocations, or the items its loops visit), as
-// per-scope work: how a scope that runs several different kernels declares each one's share.
-PassCost kernelWork(double count, const PassCost& each);
-
 class GpuScan {
 public:
     GpuScan();
