@@ -173,6 +173,85 @@ float cascadeSplit(float near, float far, int i, int n)
     return 0.5f * (near * std::pow(far / near, t) + near + (far - near) * t);
 }
 
+namespace {
+
+// The inner sides (n . x + w >= 0, |n| = 1) of the clip volume of viewProj without its far plane (Gribb &
+// Hartmann: row 3 plus or minus rows 0, 1, 2).
+void appendFrustumPlanes(const glm::mat4& viewProj, std::vector<glm::dvec4>& planes)
+{
+    const glm::dmat4 rows = glm::transpose(glm::dmat4(viewProj));
+    for (const glm::dvec4& p :
+         {rows[3] + rows[0], rows[3] - rows[0], rows[3] + rows[1], rows[3] - rows[1], rows[3] + rows[2]}) {
+        const double n = glm::length(glm::dvec3(p));
+        if (n > 0.0) planes.push_back(p / n);
+    }
+}
+
+// The vertices of the convex region on the inner side of every plane: the points where three planes meet
+// that no plane cuts away (by more than eps). Duplicates where more than three planes meet are harmless to
+// the bounding rectangles they feed.
+std::vector<glm::dvec3> halfSpaceVertices(const std::vector<glm::dvec4>& planes, double eps)
+{
+    std::vector<glm::dvec3> out;
+    const std::size_t n = planes.size();
+    for (std::size_t i = 0; i < n; ++i)
+        for (std::size_t j = i + 1; j < n; ++j)
+            for (std::size_t k = j + 1; k < n; ++k) {
+                const glm::dvec3 a(planes[i]), b(planes[j]), c(planes[k]);
+                const glm::dvec3 bc = glm::cross(b, c), ca = glm::cross(c, a), ab = glm::cross(a, b);
+                const double det = glm::dot(a, bc);
+                if (std::abs(det) < 1e-9) continue; // two of them parallel, or all through one line
+                const glm::dvec3 x = -(planes[i].w * bc + planes[j].w * ca + planes[k].w * ab) / det;
+                if (std::all_of(planes.begin(), planes.end(),
+                                [&](const glm::dvec4& p) { return glm::dot(glm::dvec3(p), x) + p.w >= -eps; }))
+                    out.push_back(x);
+            }
+    return out;
+}
+
+// The bounding rectangle's sides, in [-1, 1] units, of the points under viewProj (all in front of it).
+glm::dvec2 projectedExtent(const glm::mat4& viewProj, const std::vector<glm::dvec3>& points)
+{
+    glm::dvec2 lo(1.0), hi(-1.0);
+    const glm::dmat4 m(viewProj);
+    for (const glm::dvec3& p : points) {
+        const glm::dvec4 c = m * glm::dvec4(p, 1.0);
+        const glm::dvec2 q = glm::clamp(glm::dvec2(c) / std::max(c.w, 1e-30), -1.0, 1.0);
+        lo = glm::min(lo, q);
+        hi = glm::max(hi, q);
+    }
+    return glm::max(hi - lo, glm::dvec2(0.0));
+}
+
+} // namespace
+
+float footprintSide(const LightView& view, const ViewFit& fit, int height, const core::Bounds& b)
+{
+    if (b.empty() || height <= 0 || view.orthographic) return 0.0f;
+    std::vector<glm::dvec4> planes;
+    for (int a = 0; a < 3; ++a) {
+        glm::dvec4 lo(0.0), hi(0.0);
+        lo[a] = 1.0;
+        lo.w = -double(b.lo[a]);
+        hi[a] = -1.0;
+        hi.w = double(b.hi[a]);
+        planes.push_back(lo);
+        planes.push_back(hi);
+    }
+    const glm::mat4 camera = fit.camera.projection(fit.aspect) * fit.camera.view();
+    const glm::mat4 light = view.proj * view.view;
+    appendFrustumPlanes(camera, planes);
+    appendFrustumPlanes(light, planes);
+    // A tolerance in metres at the scale of the coordinates involved.
+    const double scale = glm::length(glm::dvec3(glm::max(glm::abs(b.lo), glm::abs(b.hi)))) +
+                         glm::length(glm::dvec3(fit.camera.position));
+    const std::vector<glm::dvec3> region = halfSpaceVertices(planes, 1e-6 * scale + 1e-9);
+    if (region.empty()) return 0.0f;
+    const glm::dvec2 screen = projectedExtent(camera, region) * 0.5 * glm::dvec2(fit.aspect * height, height);
+    const glm::dvec2 covered = glm::max(projectedExtent(light, region) * 0.5, glm::dvec2(1e-6));
+    return float(std::sqrt(screen.x * screen.y / (covered.x * covered.y)));
+}
+
 LightViews buildLightViews(const std::vector<LightSource>& lights, const core::Bounds& b,
                            const LightViewOptions& options)
 {

@@ -86,6 +86,13 @@ bool sliceLightRect(const ViewFit& fit, float d0, float d1, const core::Bounds& 
 // The practical split scheme (Zhang et al. 2006): distance i of n slices over [near, far], the mean of the
 // logarithmic and the uniform split.
 float cascadeSplit(float near, float far, int i, int n);
+// The side, in texels, at which a perspective light view's map has one texel per screen pixel over what
+// the camera sees of it (a spot or point light's shadow map sized from its screen footprint, issue 26):
+// the region the view, the camera's frustum (width/height pixels, fit.aspect = width / height) and the
+// box b have in common, whose bounding rectangle spans S_x x S_y pixels on screen and the fraction
+// L_x x L_y of the view's [-1, 1]^2; the side is sqrt(S_x S_y / (L_x L_y)), the texel density of the
+// screen averaged over the region. 0 when the camera sees nothing the view covers.
+float footprintSide(const LightView& view, const ViewFit& fit, int height, const core::Bounds& b);
 // An up vector for a light looking along d (any direction not parallel to it).
 glm::vec3 lightUpVector(const glm::vec3& d);
 // The six cube-face views around `origin`, in glsl/common/scene.glsl's cubeFace() order.

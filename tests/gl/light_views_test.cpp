@@ -1,7 +1,8 @@
 // The sun's cascades (gl/frame/light_views.h): each one's rectangle in light space holds every point of the
 // scene's box that its slice of the camera's frustum sees (found here by sampling, independently of the
 // clipping that computes the rectangle), no more than the box itself; a frustum that misses the box gets no
-// depth range; a directional light gets its cascades, then its view of the whole scene. CPU only.
+// depth range; a directional light gets its cascades, then its view of the whole scene. A spot's footprint
+// side (footprintSide) against the closed forms of a spot that sees what the camera sees. CPU only.
 #include <random>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -94,6 +95,82 @@ TEST(LightViews, FrustumThatMissesTheBoxHasNoDepthRange)
 {
     const gl::ViewFit away = fitFrom({-4.0f, 1.0f, 0.0f}, {-8.0f, 1.0f, 0.0f}, 3);
     EXPECT_EQ(gl::viewDepthRange(away, unitBox()), glm::vec2(0.0f));
+}
+
+// A spot at the camera's eye, looking where it looks with a square field of view fovRad, its one view.
+gl::LightView spotAtTheEye(const gl::ViewFit& f, float fovRad, const core::Bounds& b)
+{
+    gl::LightSource spot;
+    spot.type = gl::kLightSpot;
+    spot.position = f.camera.position;
+    spot.direction = f.camera.forward;
+    spot.outerConeRad = 0.5f * fovRad;
+    const gl::LightViews lv = gl::buildLightViews({spot}, b);
+    EXPECT_EQ(lv.views.size(), 1u);
+    return lv.views.at(0);
+}
+
+gl::ViewFit squareCamera(glm::vec3 position, glm::vec3 target, float fovRad)
+{
+    gl::ViewFit f = fitFrom(position, target, 0);
+    f.camera.yfovRad = fovRad;
+    f.aspect = 1.0f;
+    return f;
+}
+
+// A spot that sees exactly what the camera sees maps the region onto the same share of its view as of the
+// screen: its side is the image's height, whatever the region (here a box the frustum cuts at its sides),
+// with a viewport that is not a power of two.
+TEST(LightViews, FootprintOfASpotAtTheEyeIsTheImageHeight)
+{
+    const gl::ViewFit f = squareCamera({-3.0f, 1.0f, 0.5f}, {1.0f, 0.8f, -0.5f}, 0.9f);
+    const gl::LightView v = spotAtTheEye(f, 0.9f, unitBox());
+    EXPECT_NEAR(gl::footprintSide(v, f, 77, unitBox()), 77.0f, 0.01f);
+    EXPECT_NEAR(gl::footprintSide(v, f, 1000, unitBox()), 1000.0f, 0.1f);
+}
+
+// The camera inside a large box sees all of its frustum; a spot at the eye twice as wide covers the camera's
+// view with the share tan(fov_c / 2) / tan(fov_l / 2) of its side: it needs that much more side.
+TEST(LightViews, FootprintOfAWiderSpotGrowsWithItsShareOfTheView)
+{
+    core::Bounds room;
+    room.extend(glm::vec3(-50.0f));
+    room.extend(glm::vec3(50.0f));
+    const gl::ViewFit f = squareCamera({0.0f, 1.0f, 0.0f}, {4.0f, 1.5f, 1.0f}, 0.5f);
+    const gl::LightView v = spotAtTheEye(f, 1.0f, room);
+    const float expected = 256.0f * std::tan(0.5f) / std::tan(0.25f);
+    EXPECT_NEAR(gl::footprintSide(v, f, 256, room), expected, 1e-3f * expected);
+}
+
+// Hard cases: a spot facing away from what the camera sees needs nothing; a scene scaled by 1e4 or 1e-3
+// (camera, spot and box together) needs the same side; a flat scene (a floor of zero thickness) too.
+TEST(LightViews, FootprintHardCases)
+{
+    const gl::ViewFit f = squareCamera({-3.0f, 1.0f, 0.5f}, {1.0f, 0.8f, -0.5f}, 0.9f);
+    gl::ViewFit back = f;
+    back.camera.forward = -f.camera.forward;
+    EXPECT_EQ(gl::footprintSide(spotAtTheEye(back, 0.9f, unitBox()), f, 256, unitBox()), 0.0f);
+
+    const gl::ViewFit near = squareCamera({-0.5f, 1.0f, 0.5f}, {1.0f, 0.8f, -0.5f}, 0.6f);
+    const gl::LightView wide = spotAtTheEye(near, 1.2f, unitBox());
+    const float side = gl::footprintSide(wide, near, 256, unitBox());
+    EXPECT_GT(side, 256.0f);
+    for (float k : {1e4f, 1e-3f}) {
+        gl::ViewFit scaled = near;
+        scaled.camera.position *= k;
+        scaled.camera.znear *= k;
+        scaled.camera.zfar *= k;
+        core::Bounds box;
+        box.extend(unitBox().lo * k);
+        box.extend(unitBox().hi * k);
+        EXPECT_NEAR(gl::footprintSide(spotAtTheEye(scaled, 1.2f, box), scaled, 256, box), side, 1e-3f * side) << k;
+    }
+
+    core::Bounds floor;
+    floor.extend({-2.0f, 0.0f, -2.0f});
+    floor.extend({2.0f, 0.0f, 2.0f});
+    const gl::ViewFit above = squareCamera({0.0f, 3.0f, 0.0f}, {0.6f, 0.0f, 0.3f}, 0.7f);
+    EXPECT_NEAR(gl::footprintSide(spotAtTheEye(above, 0.7f, floor), above, 100, floor), 100.0f, 0.01f);
 }
 
 TEST(LightViews, SunGetsItsCascadesThenTheWholeScene)
