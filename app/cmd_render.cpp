@@ -167,6 +167,7 @@ int cmdRender(const Args& args)
                 height, frames, warmup);
     printPassTable(renderer, context->info().renderer);
     for (const gl::Counter& c : renderer.counters()) std::printf("  %s = %g\n", c.name.c_str(), c.value);
+    for (const gl::Counter& c : renderer.frameCounters()) std::printf("  %s = %g\n", c.name.c_str(), c.value);
     std::printf("wrote %s\n      %s\n      %s\n", exr.string().c_str(), png.string().c_str(), json.string().c_str());
     // The files are kept (they show where), but a run that wrote NaN or Inf failed.
     if (const std::size_t bad = record["nonFiniteValues"].get<std::size_t>(); bad > 0) {

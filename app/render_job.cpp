@@ -129,6 +129,9 @@ nlohmann::json runRecord(const gl::ContextInfo& ctx, const std::string& scene, g
     nlohmann::json counters = nlohmann::json::object();
     for (const gl::Counter& c : r.counters()) counters[c.name] = c.value;
     j["counters"] = counters;
+    nlohmann::json frameCounters = nlohmann::json::object();
+    for (const gl::Counter& c : r.frameCounters()) frameCounters[c.name] = c.value;
+    j["frameCounters"] = frameCounters;
     if (const nlohmann::json notes = r.notes(); !notes.is_null() && !notes.empty()) j["notes"] = notes;
     j["bytesAllocated"] = gl::Allocations::instance().byLabel();
     j["bytesAllocatedTotal"] = gl::Allocations::instance().totalBytes();

@@ -136,4 +136,13 @@ void Renderer::renderFrame(bool keepTimings)
     timers_.endFrame(keepTimings);
 }
 
+std::vector<Counter> Renderer::frameCounters() const
+{
+    const ShadowMaps& s = frame_->shadowMaps();
+    int largest = 0;
+    for (std::size_t i = 0; i < s.views().size(); ++i)
+        if (s.renders(i)) largest = std::max(largest, s.sides()[i]);
+    return {{"shadow.texels", s.renderedTexels()}, {"shadow.largestSide", double(largest)}};
+}
+
 } // namespace bounce::gl

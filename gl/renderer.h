@@ -66,6 +66,9 @@ public:
     const ParamValues& frameValues() const { return frameValues_; }
     PassTimers& timers() { return timers_; }
     std::vector<Counter> counters() const { return technique_->counters(); }
+    // The frame's own: the shadow-map texels drawn this frame and the largest side of a view (a spot's or
+    // point light's from its footprint on screen, gl/frame/shadow_maps.h).
+    std::vector<Counter> frameCounters() const;
     nlohmann::json notes() const { return technique_->notes(); }
     core::Image image() const { return frame_->read(frame_->result()); }
 

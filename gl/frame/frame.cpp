@@ -71,7 +71,7 @@ Frame::Frame(const core::Scene& scene, const FrameSettings& settings)
       settings_(settings),
       camera_(scene.camera),
       gpu_(scene, settings.textureSize),
-      shadows_(gpu_, settings.shadowMapSize, settings.shadowCascades),
+      shadows_(gpu_, settings.shadowMapSize, settings.shadowCascades, settings.shadowFootprint),
       gbufferFbo_("gbuffer.fbo"),
       directFbo_("direct.fbo"),
       compositeFbo_("composite.fbo"),
@@ -236,7 +236,7 @@ PassCost shadowCost(const GpuScene& scene, const ShadowMaps& shadows)
     c.bytesWritten = 4;
     const double views = double(shadows.renderedViewCount());
     c.triangles = views * double(scene.triangleCount());
-    c.bytesFixed = views * (double(shadows.size()) * shadows.size() * 4 + 3.0 * scene.triangleCount() * kVertexBytes);
+    c.bytesFixed = shadows.renderedTexels() * 4 + views * 3.0 * scene.triangleCount() * kVertexBytes;
     return c;
 }
 
@@ -244,7 +244,7 @@ PassCost shadowCost(const GpuScene& scene, const ShadowMaps& shadows)
 
 void Frame::renderShadowMaps(PassTimers& timers)
 {
-    shadows_.fitTo(camera_, float(settings_.width) / float(settings_.height));
+    shadows_.fitTo(camera_, settings_.width, settings_.height);
     shadows_.setStill(stillFrame_);
     auto t = timers.scope("shadow", shadowCost(gpu_, shadows_));
     shadows_.render(gpu_);

@@ -25,12 +25,13 @@ struct FrameSettings {
     int width = 512;
     int height = 512;
     int shadowMapSize = 1024;
-    int shadowCascades = 3; // a directional light's views fitted to the camera, beside its whole-scene view
-    int pcfRadius = 1;      // 0: one hard tap per pixel
-    bool pcfLinear = true;  // hardware 2x2 bilinear comparison
-    bool accumulate = true; // still frames jitter the pixel centre and are averaged (gl/renderer.h)
-    bool areaPcss = false;  // moving frames: area lights' penumbrae estimated by PCSS (else hard, centroid)
-    int textureSize = 512;  // base-colour textures are resampled to this size
+    int shadowCascades = 3;       // a directional light's views fitted to the camera, beside its whole-scene view
+    float shadowFootprint = 4.0f; // a spot's or point light's texels per screen pixel (ShadowMaps; 0: shadowMapSize)
+    int pcfRadius = 1;            // 0: one hard tap per pixel
+    bool pcfLinear = true;        // hardware 2x2 bilinear comparison
+    bool accumulate = true;       // still frames jitter the pixel centre and are averaged (gl/renderer.h)
+    bool areaPcss = false;        // moving frames: area lights' penumbrae estimated by PCSS (else hard, centroid)
+    int textureSize = 512;        // base-colour textures are resampled to this size
     // Profiling only (bench/sponza-gbuffer.json): the G-buffer pass with a fragment shader that writes
     // constants, to tell fragment work from vertex work and triangle setup. The images are wrong.
     bool gbufferConstantFragment = false;

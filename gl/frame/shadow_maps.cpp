@@ -1,6 +1,7 @@
 #include "gl/frame/shadow_maps.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -22,27 +23,50 @@ struct GpuShadowView {
 
 } // namespace
 
-ShadowMaps::ShadowMaps(const GpuScene& scene, int size, int cascades)
-    : size_(size), fbo_("shadow.fbo"), program_("shadow", "frame/shadow.vert", "frame/shadow.frag")
+ShadowMaps::ShadowMaps(const GpuScene& scene, int size, int cascades, float footprint)
+    : size_(size),
+      footprint_(footprint),
+      fbo_("shadow.fbo"),
+      program_("shadow", "frame/shadow.vert", "frame/shadow.frag")
 {
     fit_.cascades = cascades;
     program_.prepare(scene);
     update(scene);
 }
 
-void ShadowMaps::fitTo(const core::Camera& camera, float aspect)
+void ShadowMaps::fitTo(const core::Camera& camera, int width, int height)
 {
-    if (fit_.cascades == 0) return;
-    const bool directional = hasLightOfType(sources_, kLightDirectional);
+    const float aspect = float(width) / float(std::max(height, 1));
+    const bool cascades = fit_.cascades > 0 && hasLightOfType(sources_, kLightDirectional);
+    const bool footprints =
+        footprint_ > 0.0f && (hasLightOfType(sources_, kLightSpot) || hasLightOfType(sources_, kLightPoint));
     const core::Camera& c = fit_.camera;
     const bool same = fitted_ && c.position == camera.position && c.forward == camera.forward && c.up == camera.up &&
-                      c.yfovRad == camera.yfovRad && c.znear == camera.znear && fit_.aspect == aspect;
-    if (!directional || same) return;
+                      c.yfovRad == camera.yfovRad && c.znear == camera.znear && fit_.aspect == aspect &&
+                      height_ == height;
+    if ((!cascades && !footprints) || same) return;
     fit_.camera = camera;
     fit_.aspect = aspect;
+    height_ = height;
     fitted_ = true;
-    lightViews_ = buildLightViews(sources_, bounds_, {.fovMargin = 1.02f, .fit = fit_});
+    if (cascades) lightViews_ = buildLightViews(sources_, bounds_, {.fovMargin = 1.02f, .fit = fit_});
+    sides_ = footprintSides();
     upload();
+}
+
+std::vector<int> ShadowMaps::footprintSides() const
+{
+    std::vector<int> sides(lightViews_.views.size(), size_);
+    if (footprint_ <= 0.0f || !fitted_) return sides;
+    const int least = std::min(kMinFootprintSide, size_);
+    for (std::size_t i = 0; i < sides.size(); ++i) {
+        const LightView& v = lightViews_.views[i];
+        if (v.orthographic || v.areaCount > 0) continue;
+        float want = footprint_ * footprintSide(v, fit_, height_, bounds_);
+        want = std::isfinite(want) ? std::clamp(want, 1.0f, float(size_)) : float(size_); // a camera gone wrong: whole
+        sides[i] = std::clamp(int(std::bit_ceil(unsigned(std::ceil(want)))), least, size_);
+    }
+    return sides;
 }
 
 void ShadowMaps::buildViews(const GpuScene& scene)
@@ -51,6 +75,7 @@ void ShadowMaps::buildViews(const GpuScene& scene)
     bounds_ = scene.bounds();
     // 2% wider than the spot's cone so that PCF taps at its edge stay inside the map.
     lightViews_ = buildLightViews(sources_, bounds_, {.fovMargin = 1.02f, .fit = fit_});
+    sides_ = footprintSides();
     areaGroups_.clear();
     for (const LightView& l : lightViews_.views)
         if (l.areaCount > 0 && (areaGroups_.empty() || areaGroups_.back().x != l.areaFirst))
@@ -142,11 +167,11 @@ void ShadowMaps::upload()
                 v.far = far;
             }
         }
-        // A sub-texel shift of every view: Halton dimensions 4 and 5, less the texel's centre.
+        // A sub-texel shift of every view (of its own side): Halton dimensions 4 and 5, less the texel's centre.
         const glm::vec2 shift(float(core::halton(4, std::uint64_t(still_))) - 0.5f,
                               float(core::halton(5, std::uint64_t(still_))) - 0.5f);
-        for (LightView& v : lv)
-            v.proj = glm::translate(glm::mat4(1.0f), glm::vec3(2.0f * shift / float(size_), 0.0f)) * v.proj;
+        for (std::size_t i = 0; i < lv.size(); ++i)
+            lv[i].proj = glm::translate(glm::mat4(1.0f), glm::vec3(2.0f * shift / float(sides_[i]), 0.0f)) * lv[i].proj;
     }
     views_ = lv;
     int polygon = 0;
@@ -161,8 +186,16 @@ void ShadowMaps::upload()
     }
     gpuLights_ = lights;
     std::vector<GpuShadowView> gv;
-    for (const LightView& v : views_)
-        gv.push_back({v.proj * v.view, glm::vec4(v.origin, v.far), glm::vec4(v.texelSide(size_), 0, 0, 0)});
+    for (std::size_t i = 0; i < views_.size(); ++i) {
+        // A view of side s < size is rendered into the corner [0, s)^2 of its layer: its lookups map
+        // [-1, 1] to that corner's share of the layer (x -> scale x + scale - 1).
+        const LightView& v = views_[i];
+        const float scale = float(sides_[i]) / float(size_);
+        const glm::mat4 corner = glm::translate(glm::mat4(1.0f), glm::vec3(scale - 1.0f, scale - 1.0f, 0.0f)) *
+                                 glm::scale(glm::mat4(1.0f), glm::vec3(scale, scale, 1.0f));
+        gv.push_back(
+            {corner * v.proj * v.view, glm::vec4(v.origin, v.far), glm::vec4(v.texelSide(sides_[i]), scale, 0, 0)});
+    }
     if (gv.empty()) gv.push_back({});
     if (lights.empty()) lights.push_back({});
     // Still frames rewrite the same sizes in place.
@@ -206,7 +239,6 @@ void ShadowMaps::render(const GpuScene& scene)
     PassState state = PassState::fullscreen(fbo_, size_, size_);
     state.depthTest = true; // no culling: every surface blocks light from both sides
     state.polygonOffset = {1.0f, 1.0f};
-    state.apply();
     if (scene.hasAlphaMask()) { // shadow.frag cuts the masks' holes
         scene.materials().bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_MATERIALS);
         scene.baseColorTextures().bind(UNIT_BASE_COLOR);
@@ -217,6 +249,10 @@ void ShadowMaps::render(const GpuScene& scene)
         // from 32 to 117 ms (vertex work and binning, once per view), and the moving frame must not get
         // slower. Moving frames, and every other pass, read the whole-scene view.
         if (!renders(i)) continue;
+        // A view smaller than the layer: its corner only, cleared and drawn.
+        state.viewport = glm::ivec4(0, 0, sides_[i], sides_[i]);
+        state.scissor = sides_[i] < size_;
+        state.apply();
         fbo_.attachLayer(GL_DEPTH_ATTACHMENT, depth_, int(i));
         glNamedFramebufferDrawBuffer(fbo_.id(), GL_NONE);
         glClear(GL_DEPTH_BUFFER_BIT);
@@ -229,6 +265,13 @@ int ShadowMaps::renderedViewCount() const
 {
     int n = 0;
     for (std::size_t i = 0; i < views_.size(); ++i) n += renders(i) ? 1 : 0;
+    return n;
+}
+
+double ShadowMaps::renderedTexels() const
+{
+    double n = 0.0;
+    for (std::size_t i = 0; i < views_.size(); ++i) n += renders(i) ? double(sides_[i]) * sides_[i] : 0.0;
     return n;
 }
 

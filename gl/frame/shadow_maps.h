@@ -3,6 +3,13 @@
 // emitting mesh one shared cube at its centroid, a directional light one orthographic layer fitted to
 // the scene. Also owns the light SSBOs of glsl/common/scene.glsl. Only what the lights need is allocated.
 //
+// A spot's or point light's view is rendered at a side chosen from its footprint on screen (footprint > 0,
+// fitTo): `footprint` texels per pixel of what the camera sees of it (footprintSide), rounded up to a power
+// of two and clamped to [min(kMinFootprintSide, size), size], into the corner of its layer; the view's
+// lookup matrix maps into that corner and glsl/common/shadow.glsl keeps the taps inside it. A light far
+// away or off screen then costs a small map, one the camera sees close up the full size; the area lights'
+// cubes (moved in still frames) and the sun's views (cascades fit the camera already) stay whole.
+//
 // Still frames (Frame::setStill, index >= 1) sample what one map cannot hold, so that their mean converges:
 //   - every view is shifted by a sub-texel Halton offset (the taps' positions on the surfaces change), so
 //     that one nearest tap per frame averages to the exact hard shadow of a point light, spot or the sun;
@@ -34,11 +41,16 @@ struct SamplerDeleter {
 
 class ShadowMaps {
 public:
-    // cascades: a directional light's views fitted to the camera (fitTo), beside its whole-scene view.
-    ShadowMaps(const GpuScene& scene, int size, int cascades = 0);
-    // Fits a directional light's cascades to the camera (nothing to do without one, or when it has not
-    // moved).
-    void fitTo(const core::Camera& camera, float aspect);
+    // The smallest side a footprint chooses: points off screen (the lit point clouds, the ray-bundle atlases)
+    // read the same maps.
+    static constexpr int kMinFootprintSide = 256;
+    // size: the layers' side, the largest a view gets; cascades: a directional light's views fitted to the
+    // camera (fitTo), beside its whole-scene view; footprint: texels per screen pixel of a spot's or point
+    // light's views (0: every view at `size`).
+    ShadowMaps(const GpuScene& scene, int size, int cascades = 0, float footprint = 0.0f);
+    // Fits a directional light's cascades and the spots' and point lights' sides to the camera, a width x
+    // height image (nothing to do without such lights, or when it has not moved).
+    void fitTo(const core::Camera& camera, int width, int height);
     // Recomputes views and light buffers after lights moved (keeps the texture when the layer count holds).
     void update(const GpuScene& scene);
     void render(const GpuScene& scene);
@@ -73,10 +85,16 @@ public:
     const std::vector<LightView>& views() const { return views_; }
     const Texture& depth() const { return depth_; }
     int size() const { return size_; }
+    // Per view of views(): the side it is rendered at (size() unless its footprint chose less).
+    const std::vector<int>& sides() const { return sides_; }
+    // The texels render() draws this frame (the views it renders, each side^2).
+    double renderedTexels() const;
 
 private:
     int size_;
+    float footprint_;
     std::vector<LightView> views_;
+    std::vector<int> sides_;
     LightViews lightViews_;              // the plain views (setStill shifts and moves copies of them)
     std::vector<LightSource> sources_;   // the lights they were built for
     std::vector<glm::ivec2> areaGroups_; // per emitting mesh: first light, triangle count
@@ -85,6 +103,7 @@ private:
     bool areaViews_ = true;
     ViewFit fit_;
     bool fitted_ = false; // fit_.camera has been set
+    int height_ = 0;      // the image fit_ is for, in pixels
     std::vector<GpuLight> gpuLights_;
     Texture depth_;
     mutable Handle<SamplerDeleter> rawSampler_; // nearest, no comparison: the depths PCSS averages
@@ -94,6 +113,7 @@ private:
     bool linear_ = true;
     void buildViews(const GpuScene& scene);
     void upload(); // views_ and gpuLights_ for still_, into the SSBOs
+    std::vector<int> footprintSides() const;
 };
 
 } // namespace bounce::gl

@@ -44,7 +44,8 @@ void PassState::apply() const
     glPolygonOffset(polygonOffset.x, polygonOffset.y);
     enable(GL_MULTISAMPLE, multisample);
     enable(GL_SAMPLE_SHADING, sampleShading);
-    enable(GL_SCISSOR_TEST, false);
+    enable(GL_SCISSOR_TEST, scissor);
+    if (scissor) glScissor(viewport.x, viewport.y, viewport.z, viewport.w);
 }
 
 } // namespace bounce::gl

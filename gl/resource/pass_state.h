@@ -26,6 +26,7 @@ struct StencilState {
 struct PassState {
     unsigned framebuffer = 0;        // 0: the default framebuffer
     glm::ivec4 viewport{0, 0, 1, 1}; // x, y, width, height
+    bool scissor = false;            // the scissor test to the viewport (a clear then touches it only)
     bool depthTest = false;
     unsigned depthFunc = 0x0201; // GL_LESS
     bool depthWrite = true;

@@ -239,7 +239,12 @@ const std::vector<PassDecl>& framePasses()
 const std::vector<ParamDecl>& frameParams()
 {
     static const std::vector<ParamDecl> p = {
-        {"shadow.size", ParamType::Int, 1024, 16, 8192, "shadow-map resolution per view (texels per side)"},
+        {"shadow.size", ParamType::Int, 1024, 16, 8192,
+         "shadow-map resolution per view (texels per side); a spot's or point light's largest (shadow.footprint)"},
+        {"shadow.footprint", ParamType::Float, 4, 0, 64,
+         "a spot's or point light's shadow-map texels per screen pixel over what the camera sees of it: each "
+         "view's side from its footprint, a power of two between 256 and shadow.size (0: every view at "
+         "shadow.size). Raise shadow.size to let views the camera sees close up get more"},
         {"shadow.pcf", ParamType::Int, 1, 0, 4, "PCF kernel radius in texels (0: one tap)"},
         {"shadow.cascades", ParamType::Int, 3, 0, 6,
          "a directional light's shadow views fitted to slices of the camera's frustum (cascaded shadow maps; "
@@ -267,6 +272,7 @@ FrameSettings frameSettingsFrom(const ParamValues& v, int width, int height)
     s.shadowMapSize = v.getInt("shadow.size");
     s.pcfRadius = v.getInt("shadow.pcf");
     s.shadowCascades = v.getInt("shadow.cascades");
+    s.shadowFootprint = float(v.get("shadow.footprint"));
     s.pcfLinear = v.getBool("shadow.linear");
     s.textureSize = v.getInt("textures.size");
     s.accumulate = v.getBool("accumulate");

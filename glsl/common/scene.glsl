@@ -25,7 +25,8 @@ struct Light {
 struct ShadowView {
     mat4 viewProj;
     vec4 originFar;               // xyz light origin, w: far plane (perspective) or 0 (orthographic)
-    vec4 texelWorld;              // x: world size of one texel at distance 1 (perspective) or absolute (ortho)
+    vec4 texelWorld;              // x: world size of one texel at distance 1 (perspective) or absolute (ortho),
+                                  // y: the share of the layer's side the view is rendered at (1: all of it)
 };
 
 #include "common/bindings.glsl"

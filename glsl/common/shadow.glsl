@@ -162,7 +162,12 @@ float percentageCloserAt(int layer, vec3 p, vec3 n)
 {
     vec4 s = shadowCoordinates(layer, p, n);
     if (s.w == 0.0) return 1.0;
-    return percentageCloser(clamp(s.xy, vec2(0.0), vec2(1.0)), float(layer), s.z);
+    // A view rendered into the corner [0, scale]^2 of its layer (gl/frame/shadow_maps.h: a spot's or point
+    // light's side from its footprint on screen) keeps every tap inside it, pcfRadius + 1 texels from its
+    // edges; a whole layer keeps the sampler's clamp at its edges.
+    float scale = shadowViews[layer].texelWorld.y;
+    float margin = scale < 1.0 ? float(pcfRadius + 1) / float(textureSize(shadowMaps, 0).x) : 0.0;
+    return percentageCloser(clamp(s.xy, vec2(margin), vec2(scale - margin)), float(layer), s.z);
 }
 
 float shadowVisibility(Light l, vec3 p, vec3 n)

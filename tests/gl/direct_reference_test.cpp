@@ -97,7 +97,8 @@ core::Image renderGlDirect(int supersample)
     const core::Scene scene = core::makeCornell("cornell-spot");
     gl::ParamValues frameValues(gl::frameParams());
     frameValues.setValue("shadow.size", 2048);
-    frameValues.setValue("shadow.pcf", 0); // the path tracer's shadows are hard
+    frameValues.setValue("shadow.footprint", 0); // every view at 2048^2, not sized from a 32x32 image
+    frameValues.setValue("shadow.pcf", 0);       // the path tracer's shadows are hard
     frameValues.setValue("shadow.linear", 0);
     gl::Renderer r(scene, "direct", frameValues, gl::ParamValues(), kSize * supersample, kSize * supersample);
     r.renderFrame();
@@ -219,6 +220,7 @@ core::Image glDirect(const core::Scene& scene, int supersample)
 {
     gl::ParamValues frameValues(gl::frameParams());
     frameValues.setValue("shadow.size", 2048);
+    frameValues.setValue("shadow.footprint", 0); // every view at 2048^2, not sized from a 32x32 image
     frameValues.setValue("shadow.pcf", 0);
     frameValues.setValue("shadow.linear", 0);
     gl::Renderer r(scene, "direct", frameValues, gl::ParamValues(), kSmall * supersample, kSmall * supersample);

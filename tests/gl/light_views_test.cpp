@@ -3,6 +3,7 @@
 // clipping that computes the rectangle), no more than the box itself; a frustum that misses the box gets no
 // depth range; a directional light gets its cascades, then its view of the whole scene. A spot's footprint
 // side (footprintSide) against the closed forms of a spot that sees what the camera sees. CPU only.
+#include <cmath>
 #include <random>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -143,7 +144,8 @@ TEST(LightViews, FootprintOfAWiderSpotGrowsWithItsShareOfTheView)
 }
 
 // Hard cases: a spot facing away from what the camera sees needs nothing; a scene scaled by 1e4 or 1e-3
-// (camera, spot and box together) needs the same side; a flat scene (a floor of zero thickness) too.
+// (camera, spot and box together) needs the same side; a camera with NaN in it sees nothing; a flat scene
+// (a floor of zero thickness) is seen as a thick one.
 TEST(LightViews, FootprintHardCases)
 {
     const gl::ViewFit f = squareCamera({-3.0f, 1.0f, 0.5f}, {1.0f, 0.8f, -0.5f}, 0.9f);
@@ -165,6 +167,10 @@ TEST(LightViews, FootprintHardCases)
         box.extend(unitBox().hi * k);
         EXPECT_NEAR(gl::footprintSide(spotAtTheEye(scaled, 1.2f, box), scaled, 256, box), side, 1e-3f * side) << k;
     }
+
+    gl::ViewFit lost = near;
+    lost.camera.position.x = std::nanf("");
+    EXPECT_EQ(gl::footprintSide(wide, lost, 256, unitBox()), 0.0f) << "NaN in the camera: no region";
 
     core::Bounds floor;
     floor.extend({-2.0f, 0.0f, -2.0f});
