@@ -290,7 +290,7 @@ void PhotonTracer::trace(const Frame& frame, const RayCaster& caster, Buffer& co
     }
     if (stored_ == 0) return;
     t.addWork(kernelWork(stored_, {.flops = 200, .bytesRead = 64 + 4, .bytesWritten = 64 + 4 + 4}));
-    t.addWork(RadixSort::work(stored_, 30));
+    t.addWork(sort_.work(stored_, 30));
     t.addWork(kernelWork(stored_, {.bytesRead = 4 + 64, .bytesWritten = 64}));
     staging_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_PHOTON_STAGING);
     pathCounts_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_PHOTON_PATHS);

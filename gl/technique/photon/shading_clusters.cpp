@@ -218,7 +218,7 @@ void ShadingClusters::addPointTreeWork(PassTimers::Scope& t) const
     // and packed, the node written.
     const double leaves = double(1u << pointDepth_);
     t.addWork(kernelWork(leaves, {.flops = 40, .bytesRead = kClusterBytes, .bytesWritten = 8}));
-    t.addWork(RadixSort::work(1u << pointDepth_, 32));
+    t.addWork(sort_.work(1u << pointDepth_, 32));
     t.addWork(kernelWork(leaves, {.flops = 12, .bytesRead = 8 + 32, .bytesWritten = kPointNodeBytes}));
     t.addWork(
         kernelWork(leaves - 1, {.flops = 40, .bytesRead = 2 * kPointNodeBytes + 8, .bytesWritten = kPointNodeBytes}));
@@ -255,7 +255,7 @@ void ShadingClusters::sortByCluster(Buffer& counters, PassTimers::Scope& t)
 {
     const auto pixels = std::uint32_t(width_ * height_);
     sort_.sort(keys_, values_, keysTmp_, valuesTmp_, pixels, std::bit_width(count_ + 1), counters, kCounterScratch);
-    t.addWork(RadixSort::work(pixels, std::bit_width(count_ + 1)));
+    t.addWork(sort_.work(pixels, std::bit_width(count_ + 1)));
 }
 
 void ShadingClusters::runSegments(PassTimers::Scope& t)

@@ -13,12 +13,15 @@
 #define SSBO_PHOTON_NODES 14         // photon_tree.glsl: the photon tree, one PhotonNode per node
 #define SSBO_PHOTON_CUT 15           // illumination_cut.glsl: per node: cut state, generation, E_p
 #define SSBO_PHOTON_CUT_LIST 16      // illumination_cut.glsl: the cut's nodes, in heap order
-#define SSBO_PHOTON_SCAN 17          // scan.comp: the array a prefix sum runs over, in place
+#define SSBO_PHOTON_SCAN 17          // scan_*.comp: the array a prefix sum runs over, in place
 #define SSBO_SORT_KEYS 22            // radix_*.comp: keys and values in, then out (ping-pong)
 #define SSBO_SORT_VALUES 23
 #define SSBO_SORT_KEYS_OUT 24
 #define SSBO_SORT_VALUES_OUT 25
 #define SSBO_SORT_COUNTS 26          // radix_*.comp: digit counts per run, scanned into offsets
+// scan_*.comp: the block sums of every level of a scan. Every slot is taken, so the scan borrows the
+// sort's counts slot: nothing reads that slot across a scan but the sort, which binds it again after.
+#define SSBO_PHOTON_SCAN_SUMS SSBO_SORT_COUNTS
 #define SSBO_CLUSTER_QUADTREE 27     // shading_clusters.glsl: the screen-space quadtree's nodes
 #define SSBO_CLUSTER_CENTRES 28      // shading_clusters.glsl: centres, members and samples of the clusters
 #define SSBO_CLUSTER_OF_PIXEL 29     // shading_clusters.glsl: each shading point's cluster
