@@ -7,6 +7,7 @@
 #include "core/sampling.h"
 #include "gl/frame/bindings.h"
 #include "gl/frame/frame_budget.h"
+#include "gl/frame/shader_costs.h"
 #include "gl/gl.h"
 #include "gl/resource/dispatch.h"
 #include "gl/resource/pass_state.h"
@@ -336,17 +337,15 @@ void Frame::drawFullscreen() const
 
 void Frame::renderDirect(PassTimers& timers)
 {
-    // direct.frag per pixel: two to four G-buffer texels (the targets the scene has), one target; per punctual light about 60 flops and
-    // (2r+1)^2 shadow taps (four texels each when filtered), per emitting triangle about 250 flops (the
-    // clipped polygon's form factor) and its shadow taps.
-    const double taps =
-        double((2 * settings_.pcfRadius + 1) * (2 * settings_.pcfRadius + 1)) * (settings_.pcfLinear ? 4.0 : 1.0);
+    // direct.frag per pixel: two to four G-buffer texels (the targets the scene has), one target, and the
+    // loop over the lights.
     const double punctual = gpu_.punctualLightCount(),
                  area = areaLightsInDirect_ ? shadows_.lightCount() - punctual : 0.0;
+    const PassCost lights = directLightsCost(settings_, punctual, area);
     PassCost cost;
-    cost.flops = 30 + punctual * (60 + 10 * taps) + area * (250 + 10 * taps);
-    cost.fetches = 2 + (specular_ ? 1 : 0) + (emission_ ? 1 : 0) + (punctual + area) * taps;
-    cost.bytesRead = 8 + 8 + (specular_ ? 8 : 0) + (emission_ ? 8 : 0) + (punctual + area) * taps * 4;
+    cost.flops = 30 + lights.flops;
+    cost.fetches = 2 + (specular_ ? 1 : 0) + (emission_ ? 1 : 0) + lights.fetches;
+    cost.bytesRead = 8 + 8 + (specular_ ? 8 : 0) + (emission_ ? 8 : 0) + lights.bytesRead;
     cost.bytesWritten = 16;
     auto t = timers.scope("direct", cost);
     PassState::fullscreen(directFbo_, settings_.width, settings_.height).apply();

@@ -9,6 +9,7 @@
 #include "core/point_order.h"
 #include "gl/frame/bindings.h"
 #include "gl/frame/points/bindings.h"
+#include "gl/frame/shader_costs.h"
 #include "gl/gl.h"
 #include "gl/resource/dispatch.h"
 
@@ -35,15 +36,14 @@ PassCost pointLightCost(const Frame& frame, bool keepDirect, bool glossy)
 {
     const double punctual = frame.gpuScene().punctualLightCount();
     const double area = frame.shadowMaps().lightCount() - punctual;
-    const int r = frame.shadowMaps().stillFrame() > 0 ? 0 : frame.settings().pcfRadius;
-    const double texels = 4.0 * (r + 1) * (r + 1);
-    const double shadowFlops = 75 + 3.5 * texels; // cube face, view transform, the gathers' weights
+    const PassCost shadow = shadowLookupCost(frame);
     PassCost c;
-    c.flops = 40 + punctual * (75 + shadowFlops) + area * (420 + shadowFlops) + (glossy ? 50 : 0);
-    c.fetches = (punctual + area) * texels;
-    c.bytesRead = 32 + (glossy ? 4 : 0) + (punctual + area) * texels * 4;
+    c.flops = 40 + punctual * (75 + shadow.flops) + area * (420 + shadow.flops) + (glossy ? 50 : 0);
+    c.fetches = (punctual + area) * shadow.fetches;
+    c.bytesRead = 32 + (glossy ? 4 : 0) + (punctual + area) * shadow.bytesRead;
     c.bytesWritten = 8 + (keepDirect ? 8 : 0) + (glossy ? 16 : 0);
-    c.uniformWords = punctual * (16 + 24) + area * (16 + 12 + 24); // Light, its triangle, its shadow view
+    c.uniformWords =
+        punctual * (16 + shadow.uniformWords) + area * (16 + 12 + shadow.uniformWords); // Light, its triangle
     return c;
 }
 

@@ -2,6 +2,7 @@
 
 #include "core/sampling.h"
 #include "gl/frame/bindings.h"
+#include "gl/frame/shader_costs.h"
 #include "gl/gl.h"
 #include "gl/resource/pass_state.h"
 #include "gl/technique/grb/bindings.h"
@@ -9,21 +10,6 @@
 namespace bounce::gl {
 
 namespace {
-
-// shadow.glsl's shadowVisibility for one light, counted as gl/frame/points/point_cloud.cpp counts it: the
-// shadow view (24 words) and its transform, (r+1)^2 textureGathers of four depths (r: the PCF radius, 0 in
-// still frames) and their weights.
-PassCost shadowLookupCost(const Frame& frame)
-{
-    const int r = frame.shadowMaps().stillFrame() > 0 ? 0 : frame.settings().pcfRadius;
-    const double texels = 4.0 * (r + 1) * (r + 1);
-    PassCost c;
-    c.flops = 75 + 3.5 * texels;
-    c.fetches = texels;
-    c.bytesRead = texels * 4;
-    c.uniformWords = 24;
-    return c;
-}
 
 // transfer.frag per atlas texel: its position (empty ones stop there). Per filled texel (the atlas counted
 // them): its normal, chart, base colour, material and both sender sums, bundleSender with charts, one

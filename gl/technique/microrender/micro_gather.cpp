@@ -4,6 +4,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "gl/frame/shader_costs.h"
 #include "gl/gl.h"
 #include "gl/technique/microrender/bindings.h"
 
@@ -18,9 +19,6 @@ constexpr int kWarpBins = 32;
 constexpr double kFlopsWarpBin = 30;                    // warpBin: atan, sqrt, a division, bin and fraction
 constexpr double kFlopsToDirection = 60;                // warpToDirection: two 5-step searches, sin, cos, sqrt
 constexpr double kFlopsSolidAngle = kFlopsWarpBin + 10; // warpCosineSolidAngle
-constexpr double kFlopsBrdfLobes = 125;                 // brdfEvalLobes: two transmissions, GGX D, Smith Vis
-constexpr double kFlopsBrdfDiffuse = 65;                // the same for a diffuse-only sample (weight 0)
-constexpr double kFlopsGlossyNode = 90;                 // nodeRadiance's pointGlossyRadiance
 constexpr double kFlopsRaySetup = 200;                  // bvhRay: six corrected divisions
 constexpr double kFlopsBox = 25, kFlopsTriangle = 100;  // bvhHitBox, bvhHitTriangle
 constexpr double kBoxBytes = 32, kTriangleBytes = 48;   // core::BvhNode, core::BvhTriangle
@@ -53,19 +51,19 @@ PassCost sampleWork(Frame& frame, const MicroGatherSettings& s, const MicroStats
             const double boxes = 2.0 * caster.bvh().depth(), triangles = 2.0 * core::Bvh::kMaxLeafSize;
             w.flopsFixed += rays * (kFlopsRaySetup + boxes * kFlopsBox + triangles * kFlopsTriangle);
             w.bytesFixed += rays * (boxes * kBoxBytes + triangles * kTriangleBytes);
-            // The hit's normal and material, and the lights at it as the direct pass (frame.cpp) counts them.
-            const FrameSettings& fs = frame.settings();
-            const double taps = double((2 * fs.pcfRadius + 1) * (2 * fs.pcfRadius + 1)) * (fs.pcfLinear ? 4.0 : 1.0);
-            const double punctual = frame.gpuScene().punctualLightCount(),
-                         area = frame.shadowMaps().lightCount() - punctual;
-            w.flopsFixed += taken * (40 + punctual * (60 + 10 * taps) + area * (250 + 10 * taps));
-            w.fetchesFixed += taken * (punctual + area) * taps;
-            w.bytesFixed += taken * (kHitBytes + (punctual + area) * taps * 4);
+            // The hit's normal and material, and the lights at it as the direct pass counts them.
+            const double punctual = frame.gpuScene().punctualLightCount();
+            const PassCost lights =
+                directLightsCost(frame.settings(), punctual, frame.shadowMaps().lightCount() - punctual);
+            w.flopsFixed += taken * (40 + lights.flops);
+            w.fetchesFixed += taken * lights.fetches;
+            w.bytesFixed += taken * (kHitBytes + lights.bytesRead);
         }
     }
     if (s.stages >= 4) { // the convolution, every micro-pixel
-        w.flopsFixed += pixels * (kFlopsToDirection + 40 + kFlopsSolidAngle +
-                                  (atPoints ? kFlopsBrdfDiffuse : kFlopsBrdfLobes) + (glossy ? kFlopsGlossyNode : 0));
+        w.flopsFixed +=
+            pixels * (kFlopsToDirection + 40 + kFlopsSolidAngle + (atPoints ? kFlopsBrdfDiffuse : kFlopsBrdfLobes) +
+                      (glossy ? kFlopsPointGlossyRadiance : 0));
         w.bytesFixed += pixels * (4 + nodeBytes);
     }
     return w;

@@ -7,6 +7,7 @@
 #include "core/point_order.h"
 #include "core/point_projection.h"
 #include "gl/frame/points/pixel_gather.h"
+#include "gl/frame/shader_costs.h"
 #include "gl/gl.h"
 #include "gl/technique/pointproj/bindings.h"
 
@@ -16,11 +17,8 @@ namespace {
 
 // Flops of the functions gather.comp calls per point and texel, counted from their source (common/brdf.glsl,
 // technique/pointproj/projection.glsl).
-constexpr double kFlopsBrdfLobes = 125;  // brdfEvalLobes: two transmissions, GGX D, Smith Vis
-constexpr double kFlopsBrdfDiffuse = 65; // the same for a diffuse-only target (the points: weight 0)
-constexpr double kFlopsGlossyPoint = 90; // pointGlossyRadiance: the lobe's words unpacked, brdfGlossy
-constexpr double kFlopsSplat = 95;       // splat: the direction, hemiOctEncode, Eq. 5, the side, the key
-constexpr double kSurfelBytes = 32;      // PointSurfel
+constexpr double kFlopsSplat = 95;  // splat: the direction, hemiOctEncode, Eq. 5, the side, the key
+constexpr double kSurfelBytes = 32; // PointSurfel
 
 // gather.comp per gathered pixel (one work group of kGroup): the micro-buffer cleared; N_rnd random points
 // of every cluster read and weighed (Eq. 4), the carry rule, N_s samples found by a binary search over the
@@ -46,7 +44,7 @@ PassCost pixelWork(const ProjectionSettings& s, const PointCloud& cloud, int tex
     w.flopsFixed += splats * kFlopsSplat;
     w.bytesFixed += splats * (4 + kSurfelBytes + 4 + splatTexels * 4); // area, surfel, Omega_texel, keys
     w.bytesFixed += s.holeFill * texels * 8.0; // each texel's key read, a fill written (holes' neighbours left out)
-    w.flopsFixed += texels * (15 + 8 + 6 + 15 + brdf + 20 + (cloud.glossy() ? kFlopsGlossyPoint : 0));
+    w.flopsFixed += texels * (15 + 8 + 6 + 15 + brdf + 20 + (cloud.glossy() ? kFlopsPointGlossyRadiance : 0));
     w.bytesFixed += texels * (4 + kSurfelBytes + 8 + 4 + (cloud.glossy() ? 16 : 0));
     return w;
 }
