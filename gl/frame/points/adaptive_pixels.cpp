@@ -219,21 +219,31 @@ void AdaptivePixels::interpolate(Frame& frame, int level, PassTimers& timers)
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
 }
 
+int AdaptivePixels::postFilterRadius() const
+{
+    if (settings_.postFilter >= 0) return settings_.postFilter;
+    return (settings_.glossyScene ? 1 : 3) * std::min(width_, height_) / 512;
+}
+
 void AdaptivePixels::compose(Frame& frame, float newWeight, PassTimers& timers)
 {
     // adaptive_compose.comp per pixel: its geometry texel, and on geometry (a bound: every pixel) its diffuse
-    // colour and two light texels, the product and sum; in progressive mode the running mean's texel and
-    // mix; two RGBA32F stores.
+    // colour and two light texels, the product and sum; with the post-filter, per pixel of the window its
+    // geometry texel, the geometric term, the weight's exp and two light texels; in progressive mode the
+    // running mean's texel and mix; two RGBA32F stores.
     const bool progressive = newWeight < 1.0f;
+    const int r = postFilterRadius();
+    const double window = r > 0 ? double((2 * r + 1) * (2 * r + 1)) : 0.0;
     PassCost cost;
-    cost.flops = 8 + (progressive ? 9 : 0);
-    cost.fetches = 4 + (progressive ? 1 : 0);
-    cost.bytesRead = 8 + 8 + 2 * 16 + (progressive ? 16 : 0);
+    cost.flops = 8 + (progressive ? 9 : 0) + window * (45 + 20 + 14);
+    cost.fetches = 4 + (progressive ? 1 : 0) + window * 3;
+    cost.bytesRead = 8 + 8 + 2 * 16 + (progressive ? 16 : 0) + window * (8 + 2 * 16);
     cost.bytesWritten = 2 * 16;
     auto t = timers.scope("compose", cost);
     frame.bindGBuffer();
     setCommon(frame, compose_, 1);
     compose_.set("newWeight", newWeight);
+    compose_.set("postFilter", r);
     diffuse_.bindImage(0, GL_READ_ONLY, 0, GL_RGBA32F);
     glossy_.bindImage(1, GL_READ_ONLY, 0, GL_RGBA32F);
     accumulated_.bindImage(2, GL_READ_WRITE, 0, GL_RGBA32F);

@@ -21,13 +21,19 @@ struct PointprojSettings {
     int bounceNodes = 4096;
 };
 
+AdaptiveSettings inScene(AdaptiveSettings a, bool glossyScene)
+{
+    a.glossyScene = glossyScene;
+    return a;
+}
+
 class Pointproj final : public Technique {
 public:
     Pointproj(Frame& frame, const PointprojSettings& s)
         : settings_(s),
           cloud_(frame, std::size_t(s.points), 1, s.bounces > 1),
           gather_(cloud_, s.projection, s.bounces > 1),
-          pixels_(frame, s.adaptive)
+          pixels_(frame, inScene(s.adaptive, cloud_.glossy()))
     {
         stride_ = std::max(1, cloud_.count() / std::clamp(s.bounceNodes, 1, cloud_.count()));
         if (s.bounces > 1) gathered_ = Buffer("pointproj.bounceGathered", std::size_t(cloud_.count() / stride_) * 16);
@@ -79,6 +85,7 @@ public:
             {"uniformFallbacks", double(stats_.uniformFallbacks)},
             {"clampedSplats", double(stats_.clampedSplats)},
             {"accumulatedFrames", double(steps_)},
+            {"postFilterWidth", pixels_.postFilterRadius() > 0 ? 2.0 * pixels_.postFilterRadius() + 1.0 : 0.0},
         };
     }
 
@@ -114,7 +121,10 @@ TechniqueInfo pointprojTechniqueInfo()
          ""},
         {"gather", "one micro-buffer per pixel: importance, carry allocation, splats, BRDF", ""},
         {"interpolate", "joint bilateral interpolation of the pixels not gathered", ""},
-        {"compose", "diffuse colour x diffuse part + glossy part, the progressive mean", ""},
+        {"compose",
+         "the 7x7 (glossy scenes: 3x3) joint bilateral post-filter, diffuse colour x diffuse part + "
+         "glossy part, the progressive mean",
+         ""},
     };
     info.reads = {GBufferChannel::Position, GBufferChannel::Normal, GBufferChannel::Diffuse, GBufferChannel::Specular};
     info.params = {
@@ -138,6 +148,9 @@ TechniqueInfo pointprojTechniqueInfo()
          false, ParamUpdate::Uniform},
         {"lambda", ParamType::Float, 8, 0, 1000, "the weight of the radiance term of the coherence metric", false,
          ParamUpdate::Uniform},
+        choiceParam("postFilter", {"auto", "7x7", "3x3", "off"}, 0,
+                    "§4's post-process joint bilateral filter of the indirect light; auto: 7x7 (3x3 in a scene "
+                    "with a glossy material) at 512x512, scaled with the image's smaller side (none below 171 or 512)"),
         {"progressive", ParamType::Bool, 1, 0, 1,
          "each frame draws new random points and is averaged in, until something moves"},
         {"bounces", ParamType::Int, 1, 1, 8, "indirect bounces; > 1 gathers at the points first (§4)"},
@@ -167,6 +180,8 @@ TechniqueInfo pointprojTechniqueInfo()
         s.progressive = v.getBool("progressive");
         s.bounces = v.getInt("bounces");
         s.bounceNodes = v.getInt("bounceNodes");
+        const std::string filter = v.getChoice(decls, "postFilter");
+        s.adaptive.postFilter = filter == "7x7" ? 3 : filter == "3x3" ? 1 : filter == "off" ? 0 : -1;
         return std::make_unique<Pointproj>(frame, s);
     };
     return info;
