@@ -7,6 +7,7 @@
 // images: llvmpipe on two cores.
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -41,6 +42,21 @@ testing::Sets with(testing::Sets base, const testing::Sets& more)
 {
     for (const auto& kv : more) base.push_back(kv);
     return base;
+}
+
+// cornell-spot's frame of w x h with its G-buffer drawn and nothing else: the adaptive pixels' own
+// passes, run on light images a test fills itself.
+std::unique_ptr<gl::Frame> cornellSpotGBuffer(int w, int h)
+{
+    gl::FrameSettings fs;
+    fs.width = w;
+    fs.height = h;
+    static const core::Scene scene = core::makeCornell("cornell-spot"); // the frame keeps a reference
+    auto frame = std::make_unique<gl::Frame>(scene, fs);
+    gl::PassTimers timers;
+    frame->beginFrame();
+    frame->renderGBuffer(timers);
+    return frame;
 }
 
 // Furnace: every point reflects rho L_e and the texels' f_r cos Omega sum to rho, so a full micro-buffer
@@ -281,15 +297,9 @@ TEST_F(PointprojTest, AdaptiveSamplingAndProgressiveFrames)
 // gathered marks (alpha 1) on the first level's grid only; with no gathered pixel the mean is 0.
 TEST_F(PointprojTest, RadianceScaleOnTheGpuIsTheMeanOfTheSampledLuminance)
 {
-    const core::Scene scene = core::makeCornell("cornell-spot");
     constexpr int w = 53, h = 37;
-    gl::FrameSettings fs;
-    fs.width = w;
-    fs.height = h;
-    gl::Frame frame(scene, fs);
-    gl::PassTimers timers;
-    frame.beginFrame();
-    frame.renderGBuffer(timers);
+    const std::unique_ptr<gl::Frame> drawn = cornellSpotGBuffer(w, h);
+    gl::Frame& frame = *drawn;
     gl::AdaptivePixels pixels(frame, gl::AdaptiveSettings{});
     const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
     pixels.diffuseLight().clear(0, zero);
@@ -323,15 +333,10 @@ TEST_F(PointprojTest, RadianceScaleOnTheGpuIsTheMeanOfTheSampledLuminance)
 // without the filter.
 TEST_F(PointprojTest, PostFilterKeepsConstantsStopsAtCreasesAndAveragesNoise)
 {
-    const core::Scene scene = core::makeCornell("cornell-spot");
     constexpr int w = 45, h = 37;
-    gl::FrameSettings fs;
-    fs.width = w;
-    fs.height = h;
-    gl::Frame frame(scene, fs);
+    const std::unique_ptr<gl::Frame> drawn = cornellSpotGBuffer(w, h);
+    gl::Frame& frame = *drawn;
     gl::PassTimers timers;
-    frame.beginFrame();
-    frame.renderGBuffer(timers);
     gl::AdaptivePixels plain(frame, gl::AdaptiveSettings{});
     gl::AdaptiveSettings filtering;
     filtering.postFilter = 3;
