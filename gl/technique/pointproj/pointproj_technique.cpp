@@ -122,8 +122,8 @@ TechniqueInfo pointprojTechniqueInfo()
         {"gather", "one micro-buffer per pixel: importance, carry allocation, splats, BRDF", ""},
         {"interpolate", "joint bilateral interpolation of the pixels not gathered", ""},
         {"compose",
-         "the 7x7 (glossy scenes: 3x3) joint bilateral post-filter, diffuse colour x diffuse part + "
-         "glossy part, the progressive mean",
+         "§4's joint bilateral post-filter (7x7 at 512x512, 3x3 in glossy scenes), diffuse colour x "
+         "diffuse part + glossy part, the progressive mean",
          ""},
     };
     info.reads = {GBufferChannel::Position, GBufferChannel::Normal, GBufferChannel::Diffuse, GBufferChannel::Specular};
@@ -148,9 +148,11 @@ TechniqueInfo pointprojTechniqueInfo()
          false, ParamUpdate::Uniform},
         {"lambda", ParamType::Float, 8, 0, 1000, "the weight of the radiance term of the coherence metric", false,
          ParamUpdate::Uniform},
-        choiceParam("postFilter", {"auto", "7x7", "3x3", "off"}, 0,
-                    "§4's post-process joint bilateral filter of the indirect light; auto: 7x7 (3x3 in a scene "
-                    "with a glossy material) at 512x512, scaled with the image's smaller side (none below 171 or 512)"),
+        choiceParam(
+            "postFilter", {"auto", "7x7", "3x3", "off"}, 0,
+            "§4's post-process joint bilateral filter of the indirect light; auto: 7x7 (3x3 in a scene "
+            "with a glossy material) at 512x512, scaled with the image's smaller side (none below 171 pixels, or "
+            "512 in a glossy scene)"),
         {"progressive", ParamType::Bool, 1, 0, 1,
          "each frame draws new random points and is averaged in, until something moves"},
         {"bounces", ParamType::Int, 1, 1, 8, "indirect bounces; > 1 gathers at the points first (§4)"},
