@@ -23,9 +23,11 @@ uniform int postFilter;  // the window's half-width r; 0: no filter
 // The pixel's two light parts, through the post-filter where there is one.
 void lightAt(ivec2 px, out vec3 diffuse, out vec3 glossy)
 {
-    diffuse = imageLoad(lightDiffuse, px).rgb;
-    glossy = imageLoad(lightGlossy, px).rgb;
-    if (postFilter == 0) return;
+    if (postFilter == 0) {
+        diffuse = imageLoad(lightDiffuse, px).rgb;
+        glossy = imageLoad(lightGlossy, px).rgb;
+        return;
+    }
     float sigma = 0.5 * float(postFilter + 1);
     GSurface own = gbufferSurface(px);
     diffuse = vec3(0.0);
