@@ -1,6 +1,7 @@
 #include "gl/frame/points/adaptive_pixels.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "gl/frame/bindings.h"
 #include "gl/frame/points/bindings.h"
@@ -42,15 +43,15 @@ PassCost selectWork(double pixels, double tested, bool firstLevel, double taken)
 }
 
 // adaptive_mean.comp, run inside "adaptive-select" on level 1, per scope: per pixel its diffuse-light
-// texel and the group sum; per gathered pixel its glossy-light texel, diffuse colour and luminance; one
-// partial per 16 x 16 tile, summed by one group, and 16 bytes read back.
+// texel and the group sum; per gathered pixel its glossy-light and direct texels, diffuse colour,
+// luminance and logarithm; one partial per 16 x 16 tile, summed by one group, and 16 bytes read back.
 PassCost meanWork(int width, int height, double gathered)
 {
     const double pixels = double(width) * height, tiles = double((width + 15) / 16) * double((height + 15) / 16);
     PassCost w;
-    w.flopsFixed = pixels * 2 + gathered * 12 + tiles * 2;
-    w.fetchesFixed = pixels + gathered * 2 + tiles;
-    w.bytesFixed = pixels * 16 + gathered * (16 + 8) + tiles * 2 * 16 + 16 + 16;
+    w.flopsFixed = pixels * 2 + gathered * 20 + tiles * 2;
+    w.fetchesFixed = pixels + gathered * 3 + tiles;
+    w.bytesFixed = pixels * 16 + gathered * (16 + 16 + 8) + tiles * 2 * 16 + 16 + 16;
     return w;
 }
 
@@ -127,10 +128,10 @@ int AdaptivePixels::select(Frame& frame, int level, PassTimers& timers)
     select_.set("epsilon", settings_.epsilon * float(1 << std::max(level - 1, 0)));
     select_.set("lambda", settings_.lambda);
     if (level == 1) {
-        radianceScale_ = meanSampledLuminance(frame);
+        logAverage_ = logAverageLuminance(frame);
         t.addWork(meanWork(width_, height_, sampled_)); // sampled_: the first level's targets
     }
-    select_.set("radianceScale", radianceScale_ > 0.0f ? 1.0f / radianceScale_ : 0.0f);
+    select_.set("logAverage", logAverage_);
     state_.bindImage(0, GL_READ_WRITE, 0, GL_R8UI);
     diffuse_.bindImage(1, GL_READ_ONLY, 0, GL_RGBA32F);
     glossy_.bindImage(2, GL_READ_ONLY, 0, GL_RGBA32F);
@@ -147,7 +148,7 @@ int AdaptivePixels::select(Frame& frame, int level, PassTimers& timers)
     return int(n);
 }
 
-float AdaptivePixels::meanSampledLuminance(Frame& frame)
+float AdaptivePixels::logAverageLuminance(Frame& frame)
 {
     // The first level's samples: a quarter-by-quarter grid (what the paper's display-scaled L_o gets from
     // its tone mapping), summed per 16 x 16 tile, then the tiles by one work group.
@@ -156,6 +157,7 @@ float AdaptivePixels::meanSampledLuminance(Frame& frame)
     diffuse_.bindImage(0, GL_READ_ONLY, 0, GL_RGBA32F);
     glossy_.bindImage(1, GL_READ_ONLY, 0, GL_RGBA32F);
     partials_.bindImage(2, GL_WRITE_ONLY, 0, GL_RGBA32F);
+    frame.direct().bindImage(3, GL_READ_ONLY, 0, GL_RGBA32F);
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     dispatchCompute(mean_, {width_, height_, 1}, {16, 16, 1});
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
@@ -167,22 +169,23 @@ float AdaptivePixels::meanSampledLuminance(Frame& frame)
     return texel[2];
 }
 
-float AdaptivePixels::meanSampledLuminanceOnCpu(Frame& frame) const
+float AdaptivePixels::logAverageLuminanceOnCpu(Frame& frame) const
 {
     glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
     const std::vector<float> d = diffuse_.readFloats(0, 4), g = glossy_.readFloats(0, 4),
-                             c = frame.diffuse().readFloats(0, 4);
+                             c = frame.diffuse().readFloats(0, 4), e = frame.direct().readFloats(0, 4);
+    constexpr double kLogDelta = 1e-4; // adaptive.glsl's
+    const double w[3] = {0.2126, 0.7152, 0.0722};
     double sum = 0.0;
     int n = 0;
     for (std::size_t i = 0; i + 3 < d.size(); i += 4) {
         if (d[i + 3] < 1.0f) continue; // not gathered
         double l = 0.0;
-        const double w[3] = {0.2126, 0.7152, 0.0722};
-        for (int k = 0; k < 3; ++k) l += w[k] * (double(c[i + k]) * d[i + k] + g[i + k]);
-        sum += l;
+        for (int k = 0; k < 3; ++k) l += w[k] * (double(c[i + k]) * d[i + k] + g[i + k] + e[i + k]);
+        sum += std::log(kLogDelta + l);
         ++n;
     }
-    return n > 0 ? float(sum / n) : 0.0f;
+    return n > 0 ? float(std::exp(sum / n)) : 0.0f;
 }
 
 void AdaptivePixels::bindForGather(Frame& frame, Program& program)

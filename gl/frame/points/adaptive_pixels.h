@@ -57,13 +57,15 @@ public:
 
     int sampledLastFrame() const { return sampled_; } // gather targets over every level of the last frame
 
-    // The mean outgoing luminance of the pixels gathered so far (the first level's, when select() asks
-    // for it on level 1): a reduction on the GPU (adaptive_mean.comp), 16 bytes read back; and the same
-    // from the three images read back, for tests. The light images, for tests to fill.
-    float meanSampledLuminance(Frame& frame);
-    float meanSampledLuminanceOnCpu(Frame& frame) const;
+    // The log-average luminance of the frame's light (direct plus L_o) at the pixels gathered so far (the
+    // first level's, when select() asks for it on level 1), which display-scales the coherence metric's
+    // L_o: a reduction on the GPU (adaptive_mean.comp), 16 bytes read back; and the same from the four
+    // images read back, for tests. The light images and the pixels' states, for tests to fill and read.
+    float logAverageLuminance(Frame& frame);
+    float logAverageLuminanceOnCpu(Frame& frame) const;
     Texture& diffuseLight() { return diffuse_; }
     Texture& glossyLight() { return glossy_; }
+    const Texture& pixelState() const { return state_; } // r8ui: adaptive.glsl's kSampled, kInterpolated...
 
 private:
     AdaptiveSettings settings_;
@@ -72,8 +74,8 @@ private:
     Texture state_, diffuse_, glossy_, accumulated_, partials_;
     Buffer targets_, count_;
     int sampled_ = 0;
-    int selected_ = 0;           // targets of the last select(), its level's alone
-    float radianceScale_ = 0.0f; // the mean outgoing luminance of the first level's samples
+    int selected_ = 0;        // targets of the last select(), its level's alone
+    float logAverage_ = 0.0f; // logAverageLuminance() of the first level's samples
     void allocate(int width, int height);
     void setCommon(Frame& frame, Program& program, int spacing);
 };

@@ -22,12 +22,21 @@ uniform float sceneDiagonal; // d, metres
 
 bool hasGeometry(ivec2 px) { return gbufferHasGeometry(px); }
 
+float luminance(vec3 c) { return dot(c, vec3(0.2126, 0.7152, 0.0722)); }
+
 // L_o's luminance at px from its two light images (the diffuse part times the pixel's diffuse colour, plus
 // the glossy part).
 float luminanceOf(ivec2 px, vec3 diffuseLight, vec3 glossyLight)
 {
-    return dot(gbufferDiffuse(px).rgb * diffuseLight + glossyLight, vec3(0.2126, 0.7152, 0.0722));
+    return luminance(gbufferDiffuse(px).rgb * diffuseLight + glossyLight);
 }
+
+// The display scale of L_o in the coherence metric (adaptive_mean.comp, adaptive_select.comp): L_o's
+// luminance times kKey over the log-average luminance of the frame's light, which maps that log-average to
+// middle grey (Reinhard et al. 2002's key 0.18), clamped at 1 as the paper's 8-bit L_o is. kLogDelta keeps
+// a black pixel's logarithm finite.
+const float kKey = 0.18;
+const float kLogDelta = 1e-4;
 
 bool onGrid(ivec2 px, int s) { return px.x % s == 0 && px.y % s == 0; }
 

@@ -2,8 +2,9 @@
 // "adaptive-select": one level of §3.3's subdivision. First level (spacing 0 in the uniform): every pixel of
 // the 4 x 4 grid with geometry is sampled (or of the 1 x 1 grid: every pixel, without adaptive sampling).
 // Later levels: a candidate is sampled when the coherence metric over its parents exceeds epsilon, else
-// marked for interpolation. Departure: L_o is scaled by 1 / the mean luminance of the first level's
-// samples (the paper's 8-bit L_o is display-scaled; radiance here is absolute, so lambda needs a scale).
+// marked for interpolation. L_o is display-scaled as the paper's 8-bit L_o is: radiance here is absolute, so
+// it is scaled by adaptive.glsl's kKey over the log-average luminance of the frame's light at the first
+// level's samples and clamped at 1.
 #include "common/bindings.glsl"
 #include "frame/points/adaptive.glsl"
 #include "frame/points/bindings.glsl"
@@ -17,7 +18,7 @@ layout(std430, binding = SSBO_GATHER_COUNT) buffer GatherCount { uint gatherCoun
 uniform int firstGrid;   // > 0: the first level, every pixel of this grid
 uniform float epsilon;
 uniform float lambda;
-uniform float radianceScale; // 1 / the mean outgoing luminance of the first level's samples (0: none)
+uniform float logAverage; // the log-average luminance of the frame's light at the first level's samples
 
 float outgoingLuminance(ivec2 px)
 {
@@ -48,6 +49,7 @@ void main()
         ivec2 parents[4] = ivec2[4](lo, ivec2(hi.x, lo.y), ivec2(lo.x, hi.y), hi);
         GSurface own = gbufferSurface(px);
         vec3 pc = own.position, nc = own.normal;
+        float radianceScale = logAverage > 0.0 ? kKey / logAverage : 0.0;
         float geometric = 0.0, l[4];
         for (int i = 0; i < 4; ++i) {
             if (!hasGeometry(parents[i])) {
@@ -56,7 +58,7 @@ void main()
                 continue;
             }
             geometric = max(geometric, geometricTerm(parents[i], pc, nc));
-            l[i] = outgoingLuminance(parents[i]) * radianceScale;
+            l[i] = min(outgoingLuminance(parents[i]) * radianceScale, 1.0);
         }
         float radiance = 0.0;
         for (int j = 0; j < 4; ++j)
