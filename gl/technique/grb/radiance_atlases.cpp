@@ -120,9 +120,9 @@ void RadianceAtlases::bindSender() const
 PassCost RadianceAtlases::senderRadianceCost() const
 {
     // Its position, normal and base colour (RGBA32F) and material (64 bytes), the face normal unpacked and
-    // brdfParams; interleaved, the transmission and the seed, direct and indirect sums (and the glossy
-    // transfer texel, RGBA16F); one bounce, the transmission and the seed alone.
-    const bool interleaved = settings_.interleaved, glossy = interleaved && settings_.glossy;
+    // brdfParams; interleaved, the transmission and the seed, direct and indirect sums; one bounce, the
+    // transmission and the seed alone; in a glossy scene either way the glossy transfer texel (RGBA16F).
+    const bool interleaved = settings_.interleaved, glossy = settings_.glossy;
     PassCost c;
     c.flops = 60 + (interleaved ? 42 : 32) + (glossy ? 3 : 0);
     c.fetches = 3 + (interleaved ? 3 : 1) + (glossy ? 1 : 0);

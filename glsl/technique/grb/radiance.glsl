@@ -62,8 +62,12 @@ void senderRadiance(ivec2 x, vec3 wo, out vec3 Le, out vec3 Lr)
     Lr += texelFetch(senderGlossy, x, 0).rgb; // prepared for this direction at the previous one (Sec. 5.4)
 #endif
 #else
-    // One bounce only (Sec. 5.2 before 5.5): senders send the seeded direct light, nothing gathered.
+    // One bounce only (Sec. 5.2 before 5.5): senders send the seeded direct light, nothing gathered; a
+    // glossy sender also its lobe's reflection of the direct light (transfer.frag keeps the rest out).
     Lr = b.diffuse * brdfTransmission(b, max(dot(nrm.xyz, wo), 0.0)) * texelFetch(seedAtlas, x, 0).rgb;
+#ifdef GLOSSY
+    Lr += texelFetch(senderGlossy, x, 0).rgb; // its direct light alone in this mode
+#endif
 #endif
 }
 

@@ -56,15 +56,20 @@ void main()
 #ifdef GLOSSY
     // Sec. 5.4: L_x f_r(y, w_i, w_i+1) cos theta for the next direction, on the side y faces.
     vec3 wo = dot(nf, nextDir) >= 0.0 ? nextDir : -nextDir;
+#ifdef INTERLEAVED
+    vec3 reflected = Lr; // light of every order so far
+#else
+    vec3 reflected = vec3(0.0); // one bounce: the lobe reflects direct light only
+#endif
     vec3 glossy = vec3(0.0);
     if (b.weight > 0.0 && dot(ns, wo) > 0.0) {
 #ifdef AREA_GLOSSY
-        glossy = 2.0 * kPi * brdfGlossy(b, ns, wo, s.wi) * Lr * s.cosine;
+        glossy = 2.0 * kPi * brdfGlossy(b, ns, wo, s.wi) * reflected * s.cosine;
         BrdfParams lobe = b;
         lobe.diffuse = vec3(0.0); // the glossy lobe only: the diffuse part is the bundles'
         glossy += sampledAreaLights(punctualLightCount, lightCount, pos.xyz, ns, wo, lobe, areaRotation);
 #else
-        glossy = 2.0 * kPi * brdfGlossy(b, ns, wo, s.wi) * (Le + Lr) * s.cosine;
+        glossy = 2.0 * kPi * brdfGlossy(b, ns, wo, s.wi) * (Le + reflected) * s.cosine;
 #endif
 #ifdef PUNCTUAL_LIGHTS
         for (int i = 0; i < punctualLightCount; ++i) {
