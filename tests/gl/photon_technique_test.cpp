@@ -77,13 +77,13 @@ bool allFiniteNonNegative(const core::Image& img)
     return std::all_of(img.rgb.begin(), img.rgb.end(), [](float v) { return std::isfinite(v) && v >= 0.0f; });
 }
 
-core::Image reference(const core::Scene& scene)
+core::Image reference(const core::Scene& scene, double noise = 0.02)
 {
     ref::RenderSettings s;
     s.paths = ref::LightPaths::Full;
     s.width = kSize;
     s.height = kSize;
-    s.targetNoise = 0.02;
+    s.targetNoise = noise;
     s.spp = 65536;
     s.seed = 11;
     s.progress = false;
@@ -221,7 +221,9 @@ INSTANTIATE_TEST_SUITE_P(Cornell, PhotonPathTracerTest,
 TEST_F(PhotonTechniqueTest, LightUnderTheCeilingStaysFiniteAndConverges)
 {
     const core::Scene scene = core::makeCornell("cornell-point-ceiling");
-    const core::Image want = reference(scene);
+    // 3% noise, not 2%: the lamp's hot spot makes this reference the slowest (35 s against about 70 on two
+    // cores), and the test's figures are a mean over 768 pixels and a bound of 4 on the relative RMSE.
+    const core::Image want = reference(scene, 0.03);
     std::vector<bool> belowCeiling(std::size_t(kSize) * kSize);
     for (int y = 0; y < kSize; ++y)
         for (int x = 0; x < kSize; ++x) belowCeiling[std::size_t(y) * kSize + x] = y >= kSize / 4;
