@@ -77,14 +77,14 @@ bool allFiniteNonNegative(const core::Image& img)
     return std::all_of(img.rgb.begin(), img.rgb.end(), [](float v) { return std::isfinite(v) && v >= 0.0f; });
 }
 
-core::Image reference(const core::Scene& scene, double noise = 0.02)
+core::Image reference(const core::Scene& scene, int spp = 65536)
 {
     ref::RenderSettings s;
     s.paths = ref::LightPaths::Full;
     s.width = kSize;
     s.height = kSize;
-    s.targetNoise = noise;
-    s.spp = 65536;
+    s.targetNoise = 0.02;
+    s.spp = spp;
     s.seed = 11;
     s.progress = false;
     return ref::cachedReference(scene, scene.camera, s).image;
@@ -221,9 +221,12 @@ INSTANTIATE_TEST_SUITE_P(Cornell, PhotonPathTracerTest,
 TEST_F(PhotonTechniqueTest, LightUnderTheCeilingStaysFiniteAndConverges)
 {
     const core::Scene scene = core::makeCornell("cornell-point-ceiling");
-    // 3% noise, not 2%: the lamp's hot spot makes this reference the slowest (35 s against about 70 on two
-    // cores), and the test's figures are a mean over 768 pixels and a bound of 4 on the relative RMSE.
-    const core::Image want = reference(scene, 0.03);
+    // 16384 samples per pixel, not 65536: the lamp's hot spot keeps this reference's noise far above the 2%
+    // it asks for (23% at 16384), so the sample count alone decides its time; at 65536 this was the suite's
+    // longest test (about 70 s in a full run). The test's figures are a mean over 768 pixels (23% /
+    // sqrt(768): under 1%) and a bound of 4 on the relative RMSE. Measured with it: the mean 25.0% off with
+    // 64 rays, 3.5% with 1024 (3.0% against the 65536-sample reference).
+    const core::Image want = reference(scene, 16384);
     std::vector<bool> belowCeiling(std::size_t(kSize) * kSize);
     for (int y = 0; y < kSize; ++y)
         for (int x = 0; x < kSize; ++x) belowCeiling[std::size_t(y) * kSize + x] = y >= kSize / 4;
