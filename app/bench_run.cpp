@@ -141,6 +141,9 @@ void compareWithReferences(const BenchConfig& config, const std::string& sceneNa
         row.record["error"][paths] = {
             {"rmse", m.rmse}, {"relativeRmse", m.relativeRmse}, {"relativeMse", m.relativeMse}, {"mae", m.mae},
             {"ssim", m.ssim}, {"maxError", m.maxError}};
+        // Image over reference per channel (R, G, B): the issues' "channel means within N%".
+        for (int c = 0; c < 3; ++c)
+            row.record["error"][paths]["channelMeanRatio"].push_back(m.channelMeanImage[c] / m.channelMeanReference[c]);
         if (paths == core::lightPathsName(info.lightPaths)) {
             row.relRmseOwn = m.relativeRmse;
             row.rmseOwn = m.rmse;

@@ -21,10 +21,11 @@ const char* kUsage =
     "usage: bounce compare IMAGE REFERENCE [--block N] [--mask-above L] [--heatmap FILE] [--json FILE]\n"
     "\n"
     "Error figures of IMAGE against REFERENCE (.exr or .pfm; IMAGE the same size or an integer multiple of\n"
-    "it, then box-filtered down to it first), over the RGB values of every\n"
-    "pixel: RMSE, relative RMSE (RMSE / mean of the reference), relative MSE (mean (a-r)^2 / (r^2 + 0.01)),\n"
-    "mean absolute error, max error and SSIM of the luminance (11x11 Gaussian window, sigma 1.5, dynamic\n"
-    "range = the 99th percentile of the reference's luminance). NaN/Inf values are counted and reported;\n"
+    "it, then box-filtered down to it first), over the RGB values of every pixel: RMSE, relative RMSE\n"
+    "(RMSE / mean of the reference), relative MSE (mean (a-r)^2 / (r^2 + 0.01)), mean absolute error, max\n"
+    "error, the means (of all channels, and of R, G and B each) and SSIM of the luminance (11x11 Gaussian\n"
+    "window, sigma 1.5, dynamic range = the 99th percentile of the reference's luminance). NaN/Inf values are counted "
+    "and reported;\n"
     "any of them makes every error figure infinite, SSIM 0, and the exit status 1.\n"
     "\n"
     "  --block    compare the means of NxN-pixel blocks (at the reference's size; N divides it) instead of\n"
@@ -115,6 +116,10 @@ int cmdCompare(const Args& args)
     std::printf("max error:      %s\n", fmt(m.maxError).c_str());
     std::printf("SSIM:           %s\n", fmt(m.ssim).c_str());
     std::printf("means:          %s (image), %s (reference)\n", fmt(m.meanImage).c_str(), fmt(m.meanReference).c_str());
+    std::printf("channel means:  R %s / %s, G %s / %s, B %s / %s (image / reference)\n",
+                fmt(m.channelMeanImage[0]).c_str(), fmt(m.channelMeanReference[0]).c_str(),
+                fmt(m.channelMeanImage[1]).c_str(), fmt(m.channelMeanReference[1]).c_str(),
+                fmt(m.channelMeanImage[2]).c_str(), fmt(m.channelMeanReference[2]).c_str());
     std::printf("non-finite:     %zu values in the image, %zu in the reference\n", m.nonFiniteImage,
                 m.nonFiniteReference);
 
@@ -141,6 +146,10 @@ int cmdCompare(const Args& args)
         j["ssim"] = number(m.ssim);
         j["meanImage"] = number(m.meanImage);
         j["meanReference"] = number(m.meanReference);
+        j["channelMeanImage"] = {number(m.channelMeanImage[0]), number(m.channelMeanImage[1]),
+                                 number(m.channelMeanImage[2])};
+        j["channelMeanReference"] = {number(m.channelMeanReference[0]), number(m.channelMeanReference[1]),
+                                     number(m.channelMeanReference[2])};
         j["nonFiniteImage"] = m.nonFiniteImage;
         j["nonFiniteReference"] = m.nonFiniteReference;
         const std::filesystem::path p = o.get("json");

@@ -116,6 +116,8 @@ ImageMetrics pointwise(const Image& a, const Image& r, double eps)
     m.width = a.width;
     m.height = a.height;
     double se = 0.0, rel = 0.0, ae = 0.0, sumA = 0.0, sumR = 0.0, maxErr = 0.0;
+    std::array<double, 3> channelSumA{}, channelSumR{};
+    std::array<std::size_t, 3> channelCount{};
     for (std::size_t i = 0; i < a.rgb.size(); ++i) {
         const double va = a.rgb[i], vr = r.rgb[i];
         const bool fa = std::isfinite(va), fr = std::isfinite(vr);
@@ -129,6 +131,9 @@ ImageMetrics pointwise(const Image& a, const Image& r, double eps)
         maxErr = std::max(maxErr, std::abs(d));
         sumA += va;
         sumR += vr;
+        channelSumA[i % 3] += va;
+        channelSumR[i % 3] += vr;
+        ++channelCount[i % 3];
         ++m.valuesCompared;
     }
     const double n = m.valuesCompared > 0 ? double(m.valuesCompared) : 1.0;
@@ -143,6 +148,13 @@ ImageMetrics pointwise(const Image& a, const Image& r, double eps)
     else
         m.relativeRmse = m.rmse == 0.0 ? 0.0 : std::numeric_limits<double>::infinity();
     if (m.valuesCompared == 0) m.meanImage = m.meanReference = std::numeric_limits<double>::quiet_NaN();
+    for (int c = 0; c < 3; ++c) {
+        const bool any = channelCount[c] > 0;
+        m.channelMeanImage[c] =
+            any ? channelSumA[c] / double(channelCount[c]) : std::numeric_limits<double>::quiet_NaN();
+        m.channelMeanReference[c] =
+            any ? channelSumR[c] / double(channelCount[c]) : std::numeric_limits<double>::quiet_NaN();
+    }
     if (!m.allFinite()) {
         // A renderer that writes NaN must never look flawless: every error figure is infinite.
         const double inf = std::numeric_limits<double>::infinity();

@@ -22,6 +22,7 @@
 // there are none). The single-figure functions apply the same rule; use compareImages to see counts.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <stdexcept>
 #include <string>
@@ -44,8 +45,12 @@ struct ImageMetrics {
     double mae = 0.0;
     double maxError = 0.0;
     double ssim = 1.0;
-    double meanImage = 0.0;         // mean of a over the finite values
-    double meanReference = 0.0;     // mean of the reference over the finite values
+    double meanImage = 0.0;     // mean of a over the finite values
+    double meanReference = 0.0; // mean of the reference over the finite values
+    // The same means per channel (R, G, B), each over that channel's finite pairs: a tint or a colour
+    // bleeding too strongly shows here while the three together balance out.
+    std::array<double, 3> channelMeanImage{};
+    std::array<double, 3> channelMeanReference{};
     std::size_t nonFiniteImage = 0; // NaN/Inf values (channels) in a
     std::size_t nonFiniteReference = 0;
     std::size_t valuesCompared = 0; // channel pairs where both are finite

@@ -296,6 +296,10 @@ TEST(Cli, CompareReportsFiguresAndRefusesDifferentSizes)
     const nlohmann::json j = nlohmann::json::parse(in);
     EXPECT_NEAR(j["rmse"].get<double>(), 0.5, 1e-6) << j.dump();
     EXPECT_NEAR(j["relativeRmse"].get<double>(), 0.5 / 1.5, 1e-6) << j.dump();
+    for (int c = 0; c < 3; ++c) {
+        EXPECT_NEAR(j["channelMeanImage"][c].get<double>(), 1.0, 1e-6) << j.dump();
+        EXPECT_NEAR(j["channelMeanReference"][c].get<double>(), 1.5, 1e-6) << j.dump();
+    }
     const fs::path before = d / "ac.json";
     const CliRun different =
         run("compare " + (d / "a.exr").string() + " " + (d / "c.exr").string() + " --json " + before.string());

@@ -79,6 +79,35 @@ TEST(Metrics, OneDifferingValue)
     EXPECT_GT(ssim(a, r), 1.0 - 121.0 / 1600.0);
 }
 
+// The per-channel means: a tint the overall mean hides (R +50%, B -50%, G exact: the overall means
+// agree), and a NaN in one channel leaves that channel's mean over its finite values only.
+TEST(Metrics, ChannelMeansShowATintTheOverallMeanHides)
+{
+    Image a(4, 4), r(4, 4);
+    for (int i = 0; i < 16; ++i) {
+        a.rgb[3 * i + 0] = 3.0f;
+        a.rgb[3 * i + 1] = 2.0f;
+        a.rgb[3 * i + 2] = 1.0f;
+        r.rgb[3 * i + 0] = 2.0f;
+        r.rgb[3 * i + 1] = 2.0f;
+        r.rgb[3 * i + 2] = 2.0f;
+    }
+    a.rgb[3 * 5 + 0] = std::numeric_limits<float>::quiet_NaN();
+    const ImageMetrics m = compareImages(a, r);
+    EXPECT_DOUBLE_EQ(m.channelMeanImage[0], 3.0);
+    EXPECT_DOUBLE_EQ(m.channelMeanImage[1], 2.0);
+    EXPECT_DOUBLE_EQ(m.channelMeanImage[2], 1.0);
+    for (int c = 0; c < 3; ++c) EXPECT_DOUBLE_EQ(m.channelMeanReference[c], 2.0) << "channel " << c;
+    const ImageMetrics clean = compareImages(Image(a.width, a.height), Image(a.width, a.height));
+    EXPECT_DOUBLE_EQ(clean.channelMeanImage[0], 0.0);
+    // Without the NaN the overall means agree while R and B are 50% off.
+    a.rgb[3 * 5 + 0] = 3.0f;
+    const ImageMetrics tinted = compareImages(a, r);
+    EXPECT_DOUBLE_EQ(tinted.meanImage, tinted.meanReference);
+    EXPECT_DOUBLE_EQ(tinted.channelMeanImage[0] / tinted.channelMeanReference[0], 1.5);
+    EXPECT_DOUBLE_EQ(tinted.channelMeanImage[2] / tinted.channelMeanReference[2], 0.5);
+}
+
 TEST(Metrics, SsimFallsWithNoiseAndIsSymmetricInStructure)
 {
     const Image r = pattern(48, 48);
