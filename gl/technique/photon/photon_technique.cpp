@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <memory>
+#include <numeric>
 
 #include <glm/glm.hpp>
 
@@ -68,6 +69,7 @@ public:
             {"photons.stored", double(tracer_.storedCount())},
             {"photons.capacity", double(tracer_.capacity())},
             {"photons.projectionCoverage", projectionCoverage()},
+            {"photons.maxPowerScale", maxPowerScale()},
             {"tree.depth", double(tree_.depth())},
             {"cut.eMin", double(cut_.eMin())},
             {"cut.coarseSize", double(cut_.coarseSize())},
@@ -92,6 +94,18 @@ private:
             all += double(m.gridSize) * m.gridSize;
         }
         return all > 0.0 ? marked / all : 0.0;
+    }
+
+    // Guided emission: the largest factor on a directional light's power per photon, that of a cell with one
+    // copy in the emission list (entries / cells; 1 unguided or without a directional light).
+    double maxPowerScale() const
+    {
+        double scale = 1.0;
+        for (const ProjectionMap& m : tracer_.projectionMaps())
+            if (!m.copies.empty())
+                scale =
+                    std::max(scale, std::accumulate(m.copies.begin(), m.copies.end(), 0.0) / double(m.cells.size()));
+        return scale;
     }
 
     double splitCount() const
@@ -141,6 +155,9 @@ TechniqueInfo photonTechniqueInfo()
         {"projectionMap", ParamType::Bool, 1, 0, 1,
          "a directional light's photons leave only from where its projection map meets the scene (0: across the "
          "whole scene)"},
+        {"guidedEmission", ParamType::Bool, 1, 0, 1,
+         "a directional light's cells send photons in proportion to what a pilot trace stored from them, with the "
+         "power scaled to stay unbiased (0: every cell alike)"},
         {"leafPhotons", ParamType::Int, 1, 1, 1024,
          "photons per leaf of the photon tree, at most (the paper's kd-tree: 1)"},
         {"cutLevel", ParamType::Int, 12, 0, 24,
@@ -174,6 +191,7 @@ TechniqueInfo photonTechniqueInfo()
         s.tracer.maxBounces = v.getInt("maxBounces");
         s.tracer.russianRoulette = v.getBool("russianRoulette");
         s.tracer.projectionMap = v.getBool("projectionMap");
+        s.tracer.guidedEmission = v.getBool("guidedEmission");
         s.leafPhotons = v.getInt("leafPhotons");
         s.cut.eminLevel = v.getInt("cutLevel");
         s.cut.iterations = v.getInt("cutIterations");

@@ -79,12 +79,35 @@ void PhotonTracer::allocate(int capacity)
     valuesTmp_ = Buffer("photon.sortValuesTmp", c * 4);
 }
 
+std::vector<std::uint32_t> ProjectionMap::entries() const
+{
+    std::vector<std::uint32_t> list;
+    for (std::size_t i = 0; i < cells.size(); ++i) {
+        const std::uint32_t k = copies.empty() ? 1u : copies[i];
+        list.insert(list.end(), k, cells[i] | (k << 16));
+    }
+    return list;
+}
+
+std::vector<std::uint32_t> guidedCopies(const std::vector<double>& storedPerCell)
+{
+    std::vector<std::uint32_t> copies(storedPerCell.size(), 1u);
+    const double total = std::accumulate(storedPerCell.begin(), storedPerCell.end(), 0.0);
+    if (!(total > 0.0)) return copies;
+    const double mean = total / double(storedPerCell.size());
+    for (std::size_t i = 0; i < copies.size(); ++i)
+        copies[i] = std::uint32_t(
+            std::clamp(std::lround(kCopiesAtMean * storedPerCell[i] / mean), 1L, long(ProjectionMap::kMaxCopies)));
+    return copies;
+}
+
 ProjectionMap PhotonTracer::project(const Frame& frame, const RayCaster& caster, glm::vec3 direction, float radius)
 {
     // 64^2 cells of 4^2 probes: a cell is 1/32 of the scene's bounding radius across, and the marks are
     // widened by a cell so that an edge the probes pass between still sends photons.
     constexpr int kGrid = 64;
     constexpr unsigned kProbes = 4;
+    static_assert(kGrid * kGrid <= 65536, "a cell's index must fit an emission entry's low 16 bits");
     const core::Bounds& b = frame.gpuScene().bounds();
     const glm::vec3 centre = b.empty() ? glm::vec3(0.0f) : b.centre();
     ProjectionMap map;
@@ -176,11 +199,13 @@ void PhotonTracer::buildEmitters(const Frame& frame, const RayCaster& caster)
         for (std::size_t k = 0; given < n && k < remainders.size(); ++k, ++given) ++count[remainders[k].second];
     }
     emitters_.clear();
+    emitterMaps_.clear();
     std::uint32_t first = 0;
     directional = 0;
     for (std::size_t i = 0; i < lights.size(); ++i) {
         const LightSource& l = lights[i];
-        const ProjectionMap* map = l.type == kLightDirectional ? &projections_[directional++] : nullptr;
+        const int mapIndex = l.type == kLightDirectional ? int(directional++) : -1;
+        const ProjectionMap* map = mapIndex >= 0 ? &projections_[std::size_t(mapIndex)] : nullptr;
         if (count[i] == 0) continue; // a light of no power, or fewer photons than lights
         PhotonEmitter e{};
         e.positionType = glm::vec4(l.position, float(l.type));
@@ -190,8 +215,13 @@ void PhotonTracer::buildEmitters(const Frame& frame, const RayCaster& caster)
             e.positionType = glm::vec4(map->corner, float(l.type));
             e.v0 = glm::vec4(map->axisU, map->cellSide);
             e.v1 = glm::vec4(map->axisV, float(map->gridSize));
-            e.v2 = glm::vec4(float(map->cells.size()), float(cells.size()), 0.0f, 0.0f);
-            cells.insert(cells.end(), map->cells.begin(), map->cells.end());
+            // v2: the emission list's length and first entry, and the power's factor entries / cells (the
+            // light's power is spread over the distinct cells; a cell with k copies is picked k times as
+            // often, so each of its photons carries that factor over k).
+            const std::vector<std::uint32_t> list = map->entries();
+            e.v2 =
+                glm::vec4(float(list.size()), float(cells.size()), float(list.size()) / float(map->cells.size()), 0.0f);
+            cells.insert(cells.end(), list.begin(), list.end());
         }
         if (l.type == kLightArea) {
             e.v0 = glm::vec4(l.triangle[0], 0.0f);
@@ -201,6 +231,7 @@ void PhotonTracer::buildEmitters(const Frame& frame, const RayCaster& caster)
         e.range = glm::uvec4(first, count[i], 0, 0);
         first += count[i];
         emitters_.push_back(e);
+        emitterMaps_.push_back(mapIndex);
     }
     if (emitters_.empty()) emitters_.push_back(PhotonEmitter{}); // an SSBO may not be empty
     if (cells.empty()) cells.push_back(0);
@@ -209,7 +240,70 @@ void PhotonTracer::buildEmitters(const Frame& frame, const RayCaster& caster)
     Buffer::assign(emitterBuffer_, "photon.emitters", emitters_);
     if (Buffer::assign(cells_, "photon.projectionCells", cells))
         cellTexels_ = Texture::createBufferView("photon.projectionCells", GL_R32UI, cells_);
-    if (first == 0) emitters_.clear();
+    if (first == 0) {
+        emitters_.clear();
+        emitterMaps_.clear();
+    }
+}
+
+void PhotonTracer::guide()
+{
+    const std::vector<std::uint32_t> stored = pathCounts_.download<std::uint32_t>();
+    for (std::size_t k = 0; k < emitters_.size(); ++k) {
+        if (emitterMaps_[k] < 0) continue;
+        ProjectionMap& map = projections_[std::size_t(emitterMaps_[k])];
+        if (!map.copies.empty() || map.cells.empty()) continue;
+        // The cell photon_trace.comp's emit() picked for each path, in the same float arithmetic (one copy
+        // of each cell in the pilot's list).
+        const PhotonEmitter& e = emitters_[k];
+        const auto cells = std::uint32_t(map.cells.size());
+        std::vector<double> perCell(cells, 0.0);
+        for (std::uint32_t j = 0; j < e.range.y && e.range.x + j < stored.size(); ++j) {
+            const float u = (float(j) + 0.5f) / float(e.range.y);
+            const auto i = std::min(std::uint32_t(u * float(cells)), cells - 1u);
+            perCell[i] += double(stored[e.range.x + j]);
+        }
+        map.copies = guidedCopies(perCell);
+    }
+}
+
+// photon_trace.comp over every path, traced again with the staging arrays doubled until its photons fit.
+void PhotonTracer::dispatchTrace(const Frame& frame, const RayCaster& caster, Buffer& counters, double& surfaces,
+                                 double& written)
+{
+    const auto paths = std::uint32_t(std::max(settings_.photons, 0));
+    for (;;) {
+        const std::uint32_t zero[3] = {0, 0, 0};
+        counters.update(0, sizeof zero, zero);
+        frame.bindSceneData();
+        caster.bind();
+        emitterBuffer_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_PHOTON_EMITTERS);
+        cellTexels_.bind(UNIT_PHOTON_CELLS);
+        counters.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_PHOTON_COUNTERS);
+        staging_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_PHOTON_STAGING);
+        pathCounts_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_PHOTON_PATHS);
+        emitted_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_PHOTON_EMITTED);
+        trace_.set("pathCount", paths);
+        trace_.set("emitterCount", int(emitters_.size()));
+        trace_.set("capacity", unsigned(capacity_));
+        trace_.set("maxBounces", settings_.maxBounces);
+        trace_.set("russianRoulette", settings_.russianRoulette ? 1 : 0);
+        trace_.set("rayEpsilon", 1e-5f * size_);
+        trace_.set("seed", settings_.seed);
+        if (paths > 0) dispatchCompute(trace_, {int(paths), 1, 1}, {64, 1, 1});
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+        std::uint32_t staged = 0;
+        counters.download(kCounterStaged * 4, 4, &staged);
+        stored_ = staged;
+        surfaces += double(paths) + double(staged);
+        written += double(std::min(staged, std::uint32_t(capacity_)));
+        if (staged <= std::uint32_t(capacity_)) break;
+        // Out of space: double until it fits (section 5's dynamic arrays), and trace again.
+        int grown = capacity_;
+        while (std::uint32_t(grown) < staged) grown *= 2;
+        allocate(grown);
+        ++grown_;
+    }
 }
 
 void PhotonTracer::trace(const Frame& frame, const RayCaster& caster, Buffer& counters, PassTimers& timers)
@@ -233,37 +327,15 @@ void PhotonTracer::trace(const Frame& frame, const RayCaster& caster, Buffer& co
             traceDirectional_ = directional;
         }
         double surfaces = 0.0, written = 0.0;
-        for (;;) {
-            const std::uint32_t zero[3] = {0, 0, 0};
-            counters.update(0, sizeof zero, zero);
-            frame.bindSceneData();
-            caster.bind();
-            emitterBuffer_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_PHOTON_EMITTERS);
-            cellTexels_.bind(UNIT_PHOTON_CELLS);
-            counters.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_PHOTON_COUNTERS);
-            staging_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_PHOTON_STAGING);
-            pathCounts_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_PHOTON_PATHS);
-            emitted_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_PHOTON_EMITTED);
-            trace_.set("pathCount", paths);
-            trace_.set("emitterCount", int(emitters_.size()));
-            trace_.set("capacity", unsigned(capacity_));
-            trace_.set("maxBounces", settings_.maxBounces);
-            trace_.set("russianRoulette", settings_.russianRoulette ? 1 : 0);
-            trace_.set("rayEpsilon", 1e-5f * size_);
-            trace_.set("seed", settings_.seed);
-            if (paths > 0) dispatchCompute(trace_, {int(paths), 1, 1}, {64, 1, 1});
-            glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
-            std::uint32_t staged = 0;
-            counters.download(kCounterStaged * 4, 4, &staged);
-            stored_ = staged;
-            surfaces += double(paths) + double(staged);
-            written += double(std::min(staged, std::uint32_t(capacity_)));
-            if (staged <= std::uint32_t(capacity_)) break;
-            // Out of space: double until it fits (section 5's dynamic arrays), and trace again.
-            int grown = capacity_;
-            while (std::uint32_t(grown) < staged) grown *= 2;
-            allocate(grown);
-            ++grown_;
+        dispatchTrace(frame, caster, counters, surfaces, written);
+        // Guided emission: the first trace of a new projection map is its pilot; its stored photons per
+        // cell weight the cells, and the frame's photons are traced again from the weighted list.
+        const bool unguided = std::any_of(emitterMaps_.begin(), emitterMaps_.end(),
+                                          [&](int m) { return m >= 0 && projections_[std::size_t(m)].copies.empty(); });
+        if (settings_.guidedEmission && unguided) {
+            guide();
+            buildEmitters(frame, caster);
+            dispatchTrace(frame, caster, counters, surfaces, written);
         }
         // The surfaces photons reach, taken as every path's first and every stored photon's (an estimate:
         // misses and unstored ends past the first surface are left out): a BVH walk each, then

@@ -66,6 +66,10 @@ struct PhotonTracerSettings {
     // Directional lights: photons leave from the cells of a projection map where the light meets the
     // scene (photon_project.comp), or from the whole square across the scene (false).
     bool projectionMap = true;
+    // Directional lights: the projection map's cells weighted by where their photons end up (the photons
+    // a pilot trace stored per cell; every cell keeps a share, and a photon's power is divided by its
+    // cell's weight so the estimate stays unbiased), or every cell alike (false).
+    bool guidedEmission = true;
 };
 
 // `walks` closest-hit walks of glsl/common/raycast.glsl through `bvh`, as per-scope work. A walk's length
@@ -79,7 +83,21 @@ struct ProjectionMap {
     float cellSide = 0.0f;
     int gridSize = 0;
     std::vector<std::uint32_t> cells; // marked, widened by one cell; all of them without a projection map
+    // Guided emission: per cell of `cells`, the copies of it in the list photons leave from (1 to
+    // kMaxCopies), in proportion to the photons its pilot paths stored. Empty: one copy each (no pilot yet,
+    // or guidedEmission off).
+    std::vector<std::uint32_t> copies;
+    static constexpr std::uint32_t kMaxCopies = 1024; // fits the entry's high 16 bits
+    // The emission list's entries, cell | copies << 16: a photon picks one uniformly and carries the light's
+    // power over the photons times (entries / cells) / copies.
+    std::vector<std::uint32_t> entries() const;
 };
+
+// Per-cell copies for guided emission from the photons each cell's pilot paths stored: a cell that stored
+// the mean count gets kCopiesAtMean copies, more or fewer in proportion, at least one and at most
+// ProjectionMap::kMaxCopies. All ones when nothing was stored.
+std::vector<std::uint32_t> guidedCopies(const std::vector<double>& storedPerCell);
+inline constexpr double kCopiesAtMean = 16.0;
 
 class PhotonTracer {
 public:
@@ -114,6 +132,7 @@ private:
     RadixSort sort_;
     Buffer emitterBuffer_, staging_, sorted_, pathCounts_, emitted_, keys_, values_, keysTmp_, valuesTmp_;
     std::vector<PhotonEmitter> emitters_;
+    std::vector<int> emitterMaps_; // per emitter: its index in projections_, -1 for a light without a map
     std::vector<ProjectionMap> projections_;
     Buffer cells_;
     Texture cellTexels_; // cells_ as R32UI texels at UNIT_PHOTON_CELLS
@@ -124,6 +143,9 @@ private:
 
     void buildEmitters(const Frame& frame, const RayCaster& caster);
     ProjectionMap project(const Frame& frame, const RayCaster& caster, glm::vec3 direction, float radius);
+    void dispatchTrace(const Frame& frame, const RayCaster& caster, Buffer& counters, double& surfaces,
+                       double& written);
+    void guide();
     void allocate(int capacity);
 };
 

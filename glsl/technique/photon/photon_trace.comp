@@ -26,7 +26,8 @@ struct PhotonEmitter {
     vec4 powerCosInner;  // rgb W per photon (before a spot's falloff); w: cos inner
     vec4 v0;             // area: corner 0; directional: xyz the map's first axis, w its cell side
     vec4 v1;             // area: corner 1; directional: xyz the second axis, w the grid size
-    vec4 v2;             // area: corner 2; directional: x its marked cells, y the first of them in projectionCells
+    vec4 v2;             // area: corner 2; directional: x its emission list's entries, y the first of them in
+                         // projectionCells, z entries / cells
     uvec4 range;         // x: first path index, y: path count
 };
 
@@ -81,12 +82,16 @@ void emit(PhotonEmitter e, uint j, uint n, out vec3 origin, out vec3 dir, out ve
         power *= spotWeight(l, z);
 #ifdef DIRECTIONAL_LIGHTS
     } else if (kind == kLightDirectional) {
-        // Uniform over the marked cells of the light's projection map (photon_project.comp): the
-        // stratified coordinate picks the cell and the place across it, the radical inverse the place
-        // along it.
-        float marked = e.v2.x, s = u.x * marked;
-        uint i = min(uint(s), uint(marked) - 1u), grid = uint(e.v1.w);
-        uint cell = texelFetch(projectionCells, int(uint(e.v2.y) + i)).r;
+        // Uniform over the entries of the light's emission list (photon_project.comp's marked cells,
+        // each cell repeated by its guided weight; PhotonTracer::guide): the stratified coordinate picks
+        // the entry and the place across it, the radical inverse the place along it. A cell of k copies
+        // is picked k times as often as a cell of one, so its photons carry 1 / k of the power times
+        // entries / cells (v2.z): the estimate stays unbiased.
+        float entries = e.v2.x, s = u.x * entries;
+        uint i = min(uint(s), uint(entries) - 1u), grid = uint(e.v1.w);
+        uint entry = texelFetch(projectionCells, int(uint(e.v2.y) + i)).r;
+        uint cell = entry & 0xFFFFu;
+        power *= e.v2.z / float(entry >> 16);
         vec2 f = (vec2(cell % grid, cell / grid) + vec2(s - float(i), u.y)) * e.v0.w;
         origin += f.x * e.v0.xyz + f.y * e.v1.xyz;
         dir = e.directionCos.xyz;
