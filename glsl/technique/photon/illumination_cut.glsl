@@ -7,7 +7,8 @@
 #include "technique/photon/photon_tree.glsl"
 
 struct CutNode {
-    vec4 irradiance;   // rgb E_p (W/m^2), the standard density estimate at the node's centre; w: 1 once computed
+    vec4 irradiance;   // rgb E_p (W/m^2), the standard density estimate at the node's middle photon (on a
+                       // surface; cut_refine.comp); w: 1 once computed
     vec4 influenceLo;  // xyz: the box within which this node's or its cut descendants' kernels (Eq. 5) are non-zero; w: flags (their value)
     vec4 influenceHi;  // xyz; w: the refinement iteration in which the node entered the cut
     vec4 centreRadius; // xyz the node's centre (mean photon position), w: r_p
