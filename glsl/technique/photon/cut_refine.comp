@@ -2,9 +2,9 @@
 // One refinement iteration of the illumination cut (section 3.3), one invocation per cut node: a node
 // entering the cut gets its accurate irradiance E_p, the standard density estimate from its k nearest
 // photons at its middle photon (density.glsl; see below), and the same estimate weighted as Eq. 3 weighs
-// photons (by w_i . n_p), which is compared with E~_p. When |E_p - E~_p| > threshold x E~_p (the paper: Delta E =
-// 1.2 E~_p) and splitting is allowed, the node leaves the cut and its non-empty children enter it. Each
-// invocation writes only its node and its children: no two touch the same node.
+// photons (by w_i . n_p), which is compared with E~_p. When |E_p - E~_p| > threshold x E~_p (the paper:
+// Delta E = 1.2 E~_p) and splitting is allowed, the node leaves the cut and its non-empty children enter
+// it. Each invocation writes only its node and its children: no two touch the same node.
 #include "technique/photon/density.glsl"
 
 layout(local_size_x = 64) in;
@@ -29,7 +29,7 @@ void main()
         // centre: the photons' mean lies off the surfaces wherever they curve or meet (a corner, a block's
         // edge), and the disc pi R^2 around a point at height h above a surface holds the photons of only
         // pi (R^2 - h^2). As photons grow R shrinks while a node of the coarse cut keeps its size, and the
-        // cut lost 5% of the light at 262,144 paths on cornell-spot (README, "Open" before this).
+        // cut lost 5% of the light at 262,144 paths on cornell-spot (README: "The cut's E_p on a surface").
         uvec2 range = nodeRange(i);
         Photon middle = photons[(range.x + range.y) / 2u];
         vec3 x = middle.positionPath.xyz, n = middle.normal.xyz;
