@@ -317,47 +317,64 @@ TEST_F(MicrorenderTest, FurnaceReturnsRhoLWithAndWithoutWarping)
 }
 
 // Against the path tracer's one bounce (onebounce-indirect, 8192 spp at 24 x 24: about 3% noise per pixel),
-// gathering at every pixel with 24^2 warped micro-buffers and rays, on interior pixels. Point rasterisation
-// dilates silhouettes by up to a micro-pixel (a pixel takes the nearest node whose centre falls in it, also
-// when the surface covers a sliver of it): where surfaces border the void (the box's open front) that adds
-// light, the more node centres per micro-pixel the more. Measured (mean ratio, relative RMSE) at cut 1,
-// the paper's criterion: cornell-spot 1.076, 0.248; cornell-point 1.072, 0.166. (Judging interior nodes by
-// their bounding spheres alone, 2.6x as many nodes per micro-pixel: 1.114 and 1.104.) With the paper's
-// rays against the listed discs (rays=discs): 1.045, 0.198 and 1.039, 0.144.
+// gathering at every pixel with 24^2 warped micro-buffers and rays, on interior pixels. The paper's point
+// rasterisation (silhouettes=0) dilates silhouettes by up to a micro-pixel (a pixel takes the nearest node
+// whose centre falls in it, also when the surface covers a sliver of it): where surfaces border the void
+// (the box's open front) or a darker surface behind, that adds light. The silhouette rays (the default)
+// ray cast the micro-pixels the rasterised nodes do not fill or fill at different depths. Measured (mean
+// ratio, relative RMSE) at cut 1, the paper's criterion: cornell-spot 1.022, 0.217 (silhouettes=0: 1.076,
+// 0.248); cornell-point 1.037, 0.152 (1.072, 0.166). Without the depth test of the silhouette rays 1.061
+// and 1.063. With the paper's rays against the listed discs (rays=discs): 1.046, 0.198 and 1.039, 0.144.
 TEST_F(MicrorenderTest, MatchesThePathTracersOneBounce)
 {
     constexpr int size = 24;
+    struct Case {
+        const char* name;
+        testing::Sets sets;
+        double maxMean;
+    };
+    const Case cases[] = {
+        {"silhouette rays", {{"rays", "triangles"}}, 1.045},
+        {"point rasterisation", {{"rays", "triangles"}, {"silhouettes", "0"}}, 1.12},
+        {"rays against discs", {{"rays", "discs"}}, 1.08},
+    };
     for (const char* name : {"cornell-spot", "cornell-point"}) {
         const core::Scene scene = core::makeCornell(name);
         const core::Image want = testing::pathTracedOneBounce(scene, size, size, 8192);
-        for (const char* rays : {"triangles", "discs"}) {
-            const char* cut = "1";
-            SCOPED_TRACE(std::string(name) + " rays " + rays);
-            const PointRender r =
-                renderPoints(scene, "microrender", {{"coarsestLevel", "0"}, {"cut", cut}, {"rays", rays}}, size, size);
+        for (const Case& c : cases) {
+            if (std::string(name) == "cornell-point" && &c != &cases[0]) continue; // the other two: once is enough
+            SCOPED_TRACE(std::string(name) + ", " + c.name);
+            testing::Sets sets = c.sets;
+            sets.push_back({"coarsestLevel", "0"});
+            sets.push_back({"cut", "1"});
+            const PointRender r = renderPoints(scene, "microrender", sets, size, size);
             const std::vector<bool> mask = interiorOf(r.mask);
             ASSERT_GT(std::count(mask.begin(), mask.end(), true), size * size / 2);
             const Versus v = versus(r.indirect, want, mask);
-            std::printf("[ vs ref   ] %s rays=%s: mean ratio %.4f, relative RMSE %.4f, rays in %.0f%% of the buffers\n",
-                        name, rays, v.meanRatio, v.relRmse, 100.0 * r.counter("rayCastShare"));
-            EXPECT_GT(v.meanRatio, 1.0) << "the dilation adds light";
-            EXPECT_LT(v.meanRatio, 1.12) << "the mean against the path tracer";
+            std::printf("[ vs ref   ] %s, %s: mean ratio %.4f, relative RMSE %.4f, rays in %.0f%% of the buffers\n",
+                        name, c.name, v.meanRatio, v.relRmse, 100.0 * r.counter("rayCastShare"));
+            if (c.maxMean > 1.1) {
+                EXPECT_GT(v.meanRatio, 1.04) << "the dilation adds light";
+            }
+            EXPECT_GT(v.meanRatio, 0.97) << "the mean against the path tracer";
+            EXPECT_LT(v.meanRatio, c.maxMean) << "the mean against the path tracer";
             EXPECT_LT(v.relRmse, 0.30) << "relative RMSE against the path tracer";
             if (::testing::Test::HasFailure())
-                testing::writeComparisonImages(std::string(name) + "-" + rays, r.indirect, want);
+                testing::writeComparisonImages(std::string(name) + "-" + c.sets.front().second, r.indirect, want);
         }
     }
 }
 
 // cornell-glossy: on the rough metal block (GGX alpha 0.09) the indirect light is the glossy reflection of
 // the diffusely lit room, what the warped micro-buffers gather (the block cannot see itself). On the
-// block's interior pixels at 24 x 24 (26 of them), measured mean ratio / relative RMSE: 1.166 / 0.263 with
-// importance warping, 1.276 / 0.500 with the Nusselt mapping weighted by the BRDF (§2.3, Fig. 5: the warp
-// spends the micro-pixels on the lobe); the rest of the excess is the dilation above.
+// block's interior pixels at 24 x 24 (26 of them), measured mean ratio / relative RMSE: 1.019 / 0.155 with
+// importance warping, 1.069 / 0.183 with the Nusselt mapping weighted by the BRDF (§2.3, Fig. 5: the warp
+// spends the micro-pixels on the lobe); with the paper's point rasterisation (silhouettes=0, the dilation
+// above) 1.166 / 0.263 and 1.276 / 0.500.
 // Elsewhere the light -> metal -> wall paths come from the points' glossy lobes (point_cloud.glsl's
-// `glossy`): on the room's interior pixels (372), measured 1.076 / 0.375; with points that reflect
-// diffusely only, as they did before they carried their lobes, 0.652 / 1.255 (the metal's light on the
-// ceiling missing).
+// `glossy`): on the room's interior pixels (372), measured 1.025 / 0.312 (silhouettes=0: 1.076 / 0.375);
+// with points that reflect diffusely only, as they did before they carried their lobes, 0.652 / 1.255
+// (the metal's light on the ceiling missing).
 TEST_F(MicrorenderTest, GlossyGatherOnTheMetalBlockAndFromItMatchesThePathTracer)
 {
     constexpr int size = 24;
@@ -374,18 +391,18 @@ TEST_F(MicrorenderTest, GlossyGatherOnTheMetalBlockAndFromItMatchesThePathTracer
                     v.meanRatio, v.relRmse, int(std::count(block.begin(), block.end(), true)));
         rmse[warp] = v.relRmse;
         if (warp) {
-            EXPECT_NEAR(v.meanRatio, 1.0, 0.2);
-            EXPECT_LT(v.relRmse, 0.3);
+            EXPECT_NEAR(v.meanRatio, 1.0, 0.08);
+            EXPECT_LT(v.relRmse, 0.22);
             const std::vector<bool> room = interiorOf(testing::without(r.mask, r.glossy));
             const Versus w = versus(r.indirect, want, room);
             std::printf("[ glossy   ] the room: mean ratio %.4f, relative RMSE %.4f over %d pixels\n", w.meanRatio,
                         w.relRmse, int(std::count(room.begin(), room.end(), true)));
             EXPECT_GT(w.meanRatio, 0.95) << "the light the metal block reflects onto the room is missing";
-            EXPECT_LT(w.meanRatio, 1.12) << "the mean against the path tracer (the dilation adds light)";
-            EXPECT_LT(w.relRmse, 0.45);
+            EXPECT_LT(w.meanRatio, 1.06) << "the mean against the path tracer";
+            EXPECT_LT(w.relRmse, 0.36);
         }
     }
-    EXPECT_LT(rmse[1], 0.7 * rmse[0]) << "importance warping did not help the glossy gather";
+    EXPECT_LT(rmse[1], 0.9 * rmse[0]) << "importance warping did not help the glossy gather";
 }
 
 // The cut's two walks (cutWalk): one subtree per invocation, or the whole group level by level from shared

@@ -27,6 +27,10 @@ struct MicroGatherSettings {
     // The rays against the listed leaves' discs only, where the list is not empty (the paper), rather than
     // through the scene's triangles where the list is not empty and at every hole.
     bool rayDiscs = false;
+    // With the rays through the triangles: also one through every micro-pixel a silhouette crosses (the
+    // rasterised nodes do not fill it, or lie at different depths), whose answer stands (gather.comp,
+    // "Silhouettes"); false: the paper's point rasterisation, which dilates silhouettes by up to a pixel.
+    bool silhouetteRays = true;
     // A node is rasterised once its solid angle is at most cut x the micro-pixel's at its direction (§2.2:
     // 1). Larger values rasterise coarser nodes (fewer node centres per pixel: less of the silhouette
     // dilation of point rasterisation) and leave holes that the rays fill.
