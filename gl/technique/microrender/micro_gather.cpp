@@ -125,7 +125,10 @@ Program MicroGather::makeProgram(Frame& frame, const PointHierarchy& hierarchy, 
     };
     if (settings_.rayCast) d.push_back({"RAY_CAST", "1"});
     if (settings_.rayCast && settings_.rayDiscs) d.push_back({"RAY_DISCS", "1"});
-    if (settings_.rayCast && !settings_.rayDiscs && settings_.silhouetteRays) d.push_back({"SILHOUETTE_RAYS", "1"});
+    if (settings_.rayCast && !settings_.rayDiscs && settings_.silhouetteRays) {
+        d.push_back({"SILHOUETTE_RAYS", "1"});
+        if (settings_.silhouetteDepths) d.push_back({"SILHOUETTE_DEPTHS", "1"});
+    }
     // Even: children are queued in pairs. Two queues of 768 (the default) fit in the ray pass's 3 x 24^2 words.
     if (settings_.cutQueue > 0) d.push_back({"CUT_QUEUE", std::to_string(std::max(settings_.cutQueue, kGroup) & ~1)});
     if (!settings_.warp) d.push_back({"NO_WARP", "1"});

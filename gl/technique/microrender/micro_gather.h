@@ -27,10 +27,12 @@ struct MicroGatherSettings {
     // The rays against the listed leaves' discs only, where the list is not empty (the paper), rather than
     // through the scene's triangles where the list is not empty and at every hole.
     bool rayDiscs = false;
-    // With the rays through the triangles: also one through every micro-pixel a silhouette crosses (the
-    // rasterised nodes do not fill it, or lie at different depths), whose answer stands (gather.comp,
-    // "Silhouettes"); false: the paper's point rasterisation, which dilates silhouettes by up to a pixel.
+    // With the rays through the triangles: also one through every micro-pixel a silhouette crosses, whose
+    // answer stands (gather.comp, "Silhouettes"): where the rasterised nodes do not fill it, and with
+    // silhouetteDepths also where they lie at different depths. false: the paper's point rasterisation,
+    // which dilates silhouettes by up to a micro-pixel.
     bool silhouetteRays = true;
+    bool silhouetteDepths = true;
     // A node is rasterised once its solid angle is at most cut x the micro-pixel's at its direction (§2.2:
     // 1). Larger values rasterise coarser nodes (fewer node centres per pixel: less of the silhouette
     // dilation of point rasterisation) and leave holes that the rays fill.

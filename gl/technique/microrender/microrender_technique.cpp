@@ -129,10 +129,11 @@ TechniqueInfo microrenderTechniqueInfo()
                     "what the rays meet: triangles (the scene's BVH, every micro-pixel where the list holds leaves "
                     "and every hole, lit by the nearest listed leaf or the lights) or discs (§2.2: the listed "
                     "leaves' discs only, no ray where the list is empty: holes stay)"),
-        {"silhouettes", ParamType::Bool, 1, 0, 1,
-         "with rays=triangles: a ray through every micro-pixel a silhouette crosses (the nodes rasterised into it do "
-         "not fill it, or lie at different depths), its answer standing; 0: the paper's point rasterisation, which "
-         "dilates silhouettes by up to a micro-pixel"},
+        choiceParam("silhouettes", {"coverage-depth", "coverage", "off"}, 0,
+                    "with rays=triangles, a ray through every micro-pixel a silhouette crosses, its answer standing: "
+                    "where the nodes rasterised into it do not fill it or lie at different depths (coverage-depth), "
+                    "where they do not fill it (coverage); off: the paper's point rasterisation, which dilates "
+                    "silhouettes by up to a micro-pixel"),
         choiceParam("cutWalk", {"auto", "subtrees", "levels"}, 0,
                     "the cut's walk (the same cut): each invocation one of 64 subtrees (the paper's one walk per "
                     "thread), or the group level by level from a shared queue (balanced); auto: subtrees on a "
@@ -164,7 +165,9 @@ TechniqueInfo microrenderTechniqueInfo()
         s.gather.warp = v.getBool("warp");
         s.gather.rayCast = v.getBool("rayCast");
         s.gather.rayDiscs = v.getChoice(microrenderTechniqueInfo().params, "rays") == "discs";
-        s.gather.silhouetteRays = v.getBool("silhouettes");
+        const std::string silhouettes = v.getChoice(microrenderTechniqueInfo().params, "silhouettes");
+        s.gather.silhouetteRays = silhouettes != "off";
+        s.gather.silhouetteDepths = silhouettes == "coverage-depth";
         s.gather.cut = float(v.get("cut"));
         s.gather.stages = v.getInt("stages");
         const std::string walk = v.getChoice(microrenderTechniqueInfo().params, "cutWalk");

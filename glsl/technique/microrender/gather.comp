@@ -20,20 +20,21 @@
 //      point rasterisation is unsure (below, "Silhouettes");
 //   4. convolution: each micro-pixel's radiance times f cos Omega at its direction (Omega from the warp's
 //      Jacobian), summed: with the warp proportional to f this is rho times the mean of the micro-pixels.
-// Silhouettes (departure, SILHOUETTE_RAYS, with RAY_CAST): a micro-pixel takes the nearest node whose centre falls in it, however
-// little of it the node covers, so every silhouette is dilated by up to a micro-pixel: against the void
-// (the Cornell box's open front) or a darker surface behind, that adds light (+7.6% on cornell-spot's one
-// bounce at 24 x 24). Each rasterised node therefore also adds its share of the micro-pixel's solid angle
-// (at most 1, an interior node's projected by the most its normal cone can face the sample) and raises the
-// pixel's farthest depth. A pixel the shares do not fill, or whose nodes lie at depths farther apart than
-// the nearest node's sphere, holds a silhouette: a ray through its jittered direction decides it, as the
-// path tracer does (a miss: the void; a hit farther than the nearest node: the surface behind; near it:
-// the node). The pixels the surfaces fill keep the paper's rasterisation.
+// Silhouettes (departure; SILHOUETTE_RAYS, with RAY_CAST): a micro-pixel takes the nearest node whose
+// centre falls in it, however little of it the node covers, so every silhouette is dilated by up to a
+// micro-pixel: against the void (the Cornell box's open front) or a darker surface behind, that adds light
+// (+7.6% on cornell-spot's one bounce at 24 x 24). Each rasterised node therefore also adds its share of the
+// micro-pixel's solid angle (at most 1, an interior node's projected by the most its normal cone can face
+// the sample) and raises the pixel's farthest depth. A pixel the shares do not fill, or (SILHOUETTE_DEPTHS)
+// whose nodes lie at depths farther apart than the nearest node's sphere, holds a silhouette: a ray through
+// its jittered direction decides it, as the path tracer does (a miss: the void; a hit farther than the
+// nearest node: the surface behind; near it: the node). The pixels the surfaces fill keep the paper's
+// rasterisation.
 // GLOSSY_POINTS: a node sends its glossy lobe's direct light too, evaluated towards the sample
 // (hierarchy.glsl's nodeRadiance), so that light -> glossy -> receiver paths are gathered.
 // Results: the diffuse part without the receiver's diffuse colour and the glossy part (gather_target.glsl).
 // Defines: MICRO_RES (8, 16, 24), MICRO_GROUP (64), WARP_BINS, KEY_INDEX_BITS, LIST_CAP, RAY_CAST,
-// SILHOUETTE_RAYS (with RAY_CAST and without RAY_DISCS),
+// SILHOUETTE_RAYS (with RAY_CAST and without RAY_DISCS), SILHOUETTE_DEPTHS (with SILHOUETTE_RAYS),
 // GATHER_AT_POINTS, PUNCTUAL_LIGHTS / AREA_LIGHTS (the lights at ray hits), MICRO_STAGES (4; fewer runs
 // only the first stages, for the time split by stage of §5: 1 the warp, 2 + the cut, 3 + the rays),
 // CUT_QUEUE (the cut's walk by levels, below).
@@ -348,7 +349,10 @@ void main()
 #ifdef SILHOUETTE_RAYS
         float keyReach = key == kEmptyKey ? 0.0 : 2.0 * microNodes[key & kIndexMask].sphere.w;
         // A silhouette (see the top): the ray's answer stands, also a miss or a hit behind the node.
-        bool partial = microCover[p] < kCoverFull || float(microFar[p]) / depthScale > keyDepth + keyReach;
+        bool partial = microCover[p] < kCoverFull;
+#ifdef SILHOUETTE_DEPTHS
+        partial = partial || float(microFar[p]) / depthScale > keyDepth + keyReach;
+#endif
 #else
         const float keyReach = 0.0;
         const bool partial = false;
