@@ -55,6 +55,7 @@
 #ifdef RAY_CAST
 #include "common/raycast.glsl"
 #include "frame/points/point_light.glsl"
+#include "common/base_color.glsl" // after common/scene.glsl (point_light.glsl)
 #endif
 
 layout(local_size_x = MICRO_GROUP) in;
@@ -388,12 +389,18 @@ void main()
                 radiance = nodeRadiance(microNodes[best], -dir);
             } else {
                 Material m = materials[sceneTriangleMaterial(hit.triangle)];
+                // The base colour with its texture, as the points take it (point_update.comp): Sponza's
+                // factors are white, and without the texel the hits were 2-3x too bright.
+                vec2 uv = (1.0 - hit.b.x - hit.b.y) * sceneVertexUv(sceneVertexIndex(hit.triangle, 0)) +
+                          hit.b.x * sceneVertexUv(sceneVertexIndex(hit.triangle, 1)) +
+                          hit.b.y * sceneVertexUv(sceneVertexIndex(hit.triangle, 2));
+                vec3 baseColor = m.baseColorMetallic.rgb * baseColorTexel(m, uv).rgb;
 #ifdef GLOSSY_POINTS
-                BrdfParams b = brdfParams(m.baseColorMetallic.rgb, m.baseColorMetallic.a, m.emissionRoughness.a,
+                BrdfParams b = brdfParams(baseColor, m.baseColorMetallic.a, m.emissionRoughness.a,
                                           m.specularColorSpecular.a, m.specularColorSpecular.rgb);
                 radiance = surfaceDirectRadiance(hp, hn, -dir, b);
 #else
-                radiance = pointDirectRadiance(hp, hn, m.baseColorMetallic.rgb * (1.0 - m.baseColorMetallic.a));
+                radiance = pointDirectRadiance(hp, hn, baseColor * (1.0 - m.baseColorMetallic.a));
 #endif
             }
         }
