@@ -38,8 +38,7 @@ bool bvhCutOut(uint triangle, vec2 b)
 {
     Material m = materials[sceneTriangleMaterial(triangle)];
     if (!(intBitsToFloat(m.flags.z) > 0.0)) return false; // opaque: no texture read
-    vec2 uv = (1.0 - b.x - b.y) * sceneVertexUv(sceneVertexIndex(triangle, 0)) +
-              b.x * sceneVertexUv(sceneVertexIndex(triangle, 1)) + b.y * sceneVertexUv(sceneVertexIndex(triangle, 2));
+    vec2 uv = sceneTriangleUv(triangle, b);
     return alphaCutOut(m, baseColorTexel(m, uv).a);
 }
 #endif

@@ -94,6 +94,11 @@ vec3 sceneTriangleNormal(uint triangle, vec2 b)
     float len = length(n);
     return len > 0.0 ? n / len : vec3(0.0, 0.0, 1.0);
 }
+vec2 sceneTriangleUv(uint triangle, vec2 b)
+{
+    return (1.0 - b.x - b.y) * sceneVertexUv(sceneVertexIndex(triangle, 0)) +
+           b.x * sceneVertexUv(sceneVertexIndex(triangle, 1)) + b.y * sceneVertexUv(sceneVertexIndex(triangle, 2));
+}
 #endif
 
 // Cube face of a direction, in the order +x, -x, +y, -y, +z, -z (the order of shadow layers).

@@ -27,8 +27,7 @@ void main()
     vec3 baseColor = m.baseColorMetallic.rgb;
 #ifdef TEXTURES
     if (m.flags.x >= 0) {
-        vec2 uv = (1.0 - b.x - b.y) * sceneVertexUv(sceneVertexIndex(tri, 0)) + b.x * sceneVertexUv(sceneVertexIndex(tri, 1)) +
-                  b.y * sceneVertexUv(sceneVertexIndex(tri, 2));
+        vec2 uv = sceneTriangleUv(tri, b);
         baseColor *= textureLod(baseColorTextures, vec3(uv, float(m.flags.x)), 0.0).rgb;
     }
 #endif

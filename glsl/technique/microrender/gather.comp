@@ -391,9 +391,7 @@ void main()
                 Material m = materials[sceneTriangleMaterial(hit.triangle)];
                 // The base colour with its texture, as the points take it (point_update.comp): Sponza's
                 // factors are white, and without the texel the hits were 2-3x too bright.
-                vec2 uv = (1.0 - hit.b.x - hit.b.y) * sceneVertexUv(sceneVertexIndex(hit.triangle, 0)) +
-                          hit.b.x * sceneVertexUv(sceneVertexIndex(hit.triangle, 1)) +
-                          hit.b.y * sceneVertexUv(sceneVertexIndex(hit.triangle, 2));
+                vec2 uv = sceneTriangleUv(hit.triangle, hit.b);
                 vec3 baseColor = m.baseColorMetallic.rgb * baseColorTexel(m, uv).rgb;
 #ifdef GLOSSY_POINTS
                 BrdfParams b = brdfParams(baseColor, m.baseColorMetallic.a, m.emissionRoughness.a,

@@ -40,8 +40,7 @@ vec3 gatherRadiance(vec3 origin, vec3 dir, Hit hit, out int coverage)
     if (dot(n, wo) <= 0.0) n = ng;
     vec3 baseColor = m.baseColorMetallic.rgb;
     if (m.flags.x >= 0) {
-        vec2 uv = (1.0 - hit.b.x - hit.b.y) * sceneVertexUv(sceneVertexIndex(tri, 0)) +
-                  hit.b.x * sceneVertexUv(sceneVertexIndex(tri, 1)) + hit.b.y * sceneVertexUv(sceneVertexIndex(tri, 2));
+        vec2 uv = sceneTriangleUv(tri, hit.b);
         baseColor *= textureLod(baseColorTextures, vec3(uv, float(m.flags.x)), 0.0).rgb;
     }
     BrdfParams b = brdfParams(baseColor, m.baseColorMetallic.a, m.emissionRoughness.a, m.specularColorSpecular.a,
