@@ -153,6 +153,54 @@ double radicalInverse(int dimension, std::uint64_t index)
     return std::min(double(reversed) / double(denominator), 0x1.fffffffffffffp-1);
 }
 
+namespace {
+
+std::uint32_t reverseBits(std::uint32_t x)
+{
+    x = ((x >> 1) & 0x55555555u) | ((x & 0x55555555u) << 1);
+    x = ((x >> 2) & 0x33333333u) | ((x & 0x33333333u) << 2);
+    x = ((x >> 4) & 0x0F0F0F0Fu) | ((x & 0x0F0F0F0Fu) << 4);
+    x = ((x >> 8) & 0x00FF00FFu) | ((x & 0x00FF00FFu) << 8);
+    return (x >> 16) | (x << 16);
+}
+
+// Owen's nested uniform scramble of a 32-bit fraction: each bit flipped by a hash of the bits above it.
+// Laine and Karras's hash does that for the bits below, so it runs on the reversed fraction.
+std::uint32_t owenScramble(std::uint32_t x, std::uint32_t seed)
+{
+    x = reverseBits(x);
+    x += seed;
+    x ^= x * 0x6c50b47cu;
+    x ^= x * 0xb82f1e52u;
+    x ^= x * 0xc7afe638u;
+    x ^= x * 0x8d22f6e6u;
+    return reverseBits(x);
+}
+
+std::uint32_t hashU32(std::uint32_t x)
+{
+    x ^= x >> 16;
+    x *= 0x7feb352du;
+    x ^= x >> 15;
+    x *= 0x846ca68bu;
+    x ^= x >> 16;
+    return x;
+}
+
+} // namespace
+
+glm::vec2 sobol2(std::uint32_t index, std::uint32_t seed)
+{
+    // Dimension 0 is the van der Corput sequence; dimension 1's generator matrix is Pascal's triangle mod 2.
+    const std::uint32_t x = reverseBits(index);
+    std::uint32_t y = 0;
+    for (std::uint32_t v = 1u << 31; index != 0; index >>= 1, v ^= v >> 1)
+        if (index & 1u) y ^= v;
+    // 24 bits: a float in [0, 1) keeps them exactly.
+    const auto unit = [](std::uint32_t b) { return float(b >> 8) * 0x1p-24f; };
+    return {unit(owenScramble(x, hashU32(seed))), unit(owenScramble(y, hashU32(seed ^ 0x9e3779b9u)))};
+}
+
 DiscreteDistribution::DiscreteDistribution(const std::vector<double>& weights)
 {
     pmf_.resize(weights.size(), 0.0f);

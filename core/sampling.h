@@ -106,6 +106,13 @@ inline double halton(int dimension, std::uint64_t index)
     return radicalInverse(dimension, index);
 }
 
+// The first two dimensions of Sobol's sequence (Sobol 1967), point `index`, Owen-scrambled by `seed`
+// (nested uniform scrambling by Laine and Karras's hash; Burley 2020). A (0, 2)-sequence in base 2: every
+// run of 2^m points from a multiple of 2^m puts exactly one point in each of any 2^m equal boxes of
+// 2^a x 2^(m-a), so 16 still frames sample a light 4 x 4. Halton's high bases (5 and 7 and up) lie on
+// lines for their first points. Each seed is another, independent, scrambling.
+glm::vec2 sobol2(std::uint32_t index, std::uint32_t seed);
+
 // A discrete distribution over weights (not necessarily normalised), sampled by inversion of the CDF
 // (binary search). Zero weights are never chosen; all-zero weights give an empty distribution.
 class DiscreteDistribution {

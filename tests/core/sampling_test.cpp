@@ -201,6 +201,28 @@ TEST(Halton, FirstPointsStratifyTheSquare)
     for (int c : box) EXPECT_EQ(c, 1);
 }
 
+TEST(Sobol2, EveryRunOfTwoToTheMIsAZeroTwoNet)
+{
+    // A (0, 2)-sequence in base 2, under every scramble: the points k 2^m .. (k + 1) 2^m - 1 put exactly one
+    // point in each 2^a x 2^(m - a) box, for every a. Scrambling keeps this, and changes the points.
+    for (std::uint32_t seed : {0u, 1u, 7u})
+        for (int m = 0; m <= 8; ++m)
+            for (std::uint32_t k = 0; k < 3; ++k)
+                for (int a = 0; a <= m; ++a) {
+                    const int n = 1 << m, nx = 1 << a, ny = n / nx;
+                    std::vector<int> box(std::size_t(n), 0);
+                    for (int i = 0; i < n; ++i) {
+                        const glm::vec2 p = sobol2(k * std::uint32_t(n) + std::uint32_t(i), seed);
+                        ASSERT_TRUE(p.x >= 0.0f && p.x < 1.0f && p.y >= 0.0f && p.y < 1.0f);
+                        ++box[std::size_t(int(p.y * float(ny)) * nx + int(p.x * float(nx)))];
+                    }
+                    for (int c : box) ASSERT_EQ(c, 1) << "seed " << seed << ", 2^" << m << " points, run " << k;
+                }
+    EXPECT_NE(sobol2(5, 1).x, sobol2(5, 2).x);
+    EXPECT_NE(sobol2(5, 1).y, sobol2(5, 2).y);
+    EXPECT_NE(sobol2(5, 1).x, sobol2(5, 1).y); // the two dimensions are scrambled apart
+}
+
 TEST(DiscreteDistribution, FrequenciesFollowWeights)
 {
     const DiscreteDistribution d({1.0, 0.0, 3.0, 0.0, 4.0});
