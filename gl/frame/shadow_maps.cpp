@@ -103,14 +103,14 @@ float triangleArea(const glm::vec3* t)
     return 0.5f * glm::length(glm::cross(t[1] - t[0], t[2] - t[0]));
 }
 
+constexpr std::uint32_t kAreaSampleSeed = 1u; // the scramble; any seed keeps the stratification
+
 // Still frame i's point on an emitting mesh: uniform by area, point i of the scrambled Sobol sequence
 // (core::sobol2; Halton's dimensions 0 and 1 jitter the pixel), the first coordinate choosing the triangle
 // by its share of the area and then, rescaled, with the second the point inside it. Returns the triangle's
 // light index. Halton's dimensions 2 and 3 were used before: bases 5 and 7, whose first points lie on lines
 // (1/5, 1/7), (2/5, 2/7), ...; cornell-area's direct light at 256x256 after 16 frames was 9.4% from the
 // path tracer's (4x4-block means), 5.1% with these points.
-constexpr std::uint32_t kAreaSampleSeed = 1u; // the scramble; any seed keeps the stratification
-
 int areaSample(const std::vector<LightSource>& lights, glm::ivec2 group, int index, glm::vec3& point, float& area)
 {
     area = 0.0f;
