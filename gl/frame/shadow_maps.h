@@ -14,8 +14,8 @@
 //   - every view is shifted by a sub-texel Halton offset (the taps' positions on the surfaces change), so
 //     that one nearest tap per frame averages to the exact hard shadow of a point light, spot or the sun;
 //   - an area emitter's cube moves to a point sampled uniformly over the emitting mesh's area (scrambled
-//     Sobol points, core::sobol2, stratified over the frames) and the triangle that holds it carries the mesh's area (Light's
-//     intensityCosInner.w, 0 on the others): glsl/frame/direct.frag's sum of areaSampleUnshadowed is then the
+//     Sobol points, core::sobol2, stratified over the frames) and the triangle that holds it carries the
+//     mesh's area (Light's intensityCosInner.w, 0 on the others): glsl/frame/direct.frag's sum of areaSampleUnshadowed is then the
 //     one-sample estimate L A cos cos / r^2 V of the emitter's direct light, whose mean over the frames is
 //     the path tracer's soft shadow. Frame 0 (and a moving view): the cube at the centroid, unshifted.
 #pragma once
