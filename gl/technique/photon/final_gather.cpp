@@ -32,6 +32,42 @@ std::vector<Define> gatherDefines(const Frame& frame, const FinalGatherSettings&
     return d;
 }
 
+std::vector<Define> interpolationDefines(bool glossySampled)
+{
+    if (glossySampled) return {{"GLOSSY_SAMPLED", "1"}};
+    return {};
+}
+
+// The work of `rays` gather rays (photon_gather.glsl), each taken to hit (a bound), `extraLookups` of them
+// looked up again at twice the radius.
+PassCost gatherRayWork(const Frame& frame, const RayCaster& caster, const PhotonTree& tree, const IlluminationCut& cut,
+                       const FinalGatherSettings& settings, double rays, double extraLookups)
+{
+    // Per ray: its direction, a BVH walk, then photon_gather.glsl reads the triangle's indices, vertices and material (152 bytes; a bilinear
+    // base-colour sample where the scene has textures), its direct light from every light (a record of
+    // shared words, one shadow tap: 2x2 texels when filtered), the irradiance there, the BRDF.
+    const double taps = frame.settings().pcfLinear && frame.shadowMaps().stillFrame() == 0 ? 4 : 1;
+    const double punctual = frame.gpuScene().punctualLightCount(), area = frame.shadowMaps().lightCount() - punctual;
+    PassCost w = bvhWalkWork(caster.bvh(), rays);
+    w.flopsFixed += rays * (215 + punctual * (60 + 10 * taps) + area * (250 + 10 * taps));
+    w.fetchesFixed = rays * ((frame.gpuScene().hasTextures() ? 4 : 0) + (punctual + area) * taps);
+    w.bytesFixed += rays * (152 + (punctual + area) * 4 * taps);
+    w.uniformWordsFixed = rays * (16 * punctual + 28 * area);
+    if (settings.fullPhotonMap) {
+        const PassCost density = nearestPhotonsWork(tree, settings.densityPhotons, rays);
+        w.flopsFixed += density.flopsFixed;
+        w.bytesFixed += density.bytesFixed;
+        return w;
+    }
+    // cut_lookup.glsl per hit: taken as 2 x log2(cut size) nodes visited, each its box, flags and, in the
+    // cut, its kernel (64 bytes, 20 flops; an estimate: the walk's length is known only on the GPU); again
+    // at twice the radius for the hits no kernel reached.
+    const double visits = 2.0 * std::max(double(std::bit_width(cut.size())), 1.0), lookups = rays + extraLookups;
+    w.flopsFixed += lookups * visits * 20;
+    w.bytesFixed += lookups * visits * 64;
+    return w;
+}
+
 } // namespace
 
 FinalGather::FinalGather(const Frame& frame, const FinalGatherSettings& settings)
@@ -80,44 +116,65 @@ void FinalGather::gather(const Frame& frame, const RayCaster& caster, const Phot
     counters.download((kCounterFirst + 1) * 4, sizeof hits, hits);
     fallback_ = hits[0];
     uncovered_ = hits[1];
-    t.addWork(rayWork(frame, caster, tree, cut, double(clusters.nonEmpty()) * std::max(settings_.rays, 1)));
+    t.addWork(gatherRayWork(frame, caster, tree, cut, settings_,
+                            double(clusters.nonEmpty()) * std::max(settings_.rays, 1),
+                            double(fallback_) + double(uncovered_)));
 }
 
-PassCost FinalGather::rayWork(const Frame& frame, const RayCaster& caster, const PhotonTree& tree,
-                              const IlluminationCut& cut, double rays) const
+GlossyGather::GlossyGather(const Frame& frame, int rays) : rays_(frame.scene().hasGlossy() ? std::max(rays, 0) : 0)
 {
-    // Per ray of the clusters with a sample, each taken to hit (a bound): its cosine direction, a BVH walk,
-    // then photon_gather.glsl reads the triangle's indices, vertices and material (152 bytes; a bilinear
-    // base-colour sample where the scene has textures), its direct light from every light (a record of
-    // shared words, one shadow tap: 2x2 texels when filtered), the irradiance there, the BRDF.
-    const double taps = frame.settings().pcfLinear && frame.shadowMaps().stillFrame() == 0 ? 4 : 1;
-    const double punctual = frame.gpuScene().punctualLightCount(), area = frame.shadowMaps().lightCount() - punctual;
-    PassCost w = bvhWalkWork(caster.bvh(), rays);
-    w.flopsFixed += rays * (215 + punctual * (60 + 10 * taps) + area * (250 + 10 * taps));
-    w.fetchesFixed = rays * ((frame.gpuScene().hasTextures() ? 4 : 0) + (punctual + area) * taps);
-    w.bytesFixed += rays * (152 + (punctual + area) * 4 * taps);
-    w.uniformWordsFixed = rays * (16 * punctual + 28 * area);
-    if (settings_.fullPhotonMap) {
-        const PassCost density = nearestPhotonsWork(tree, settings_.densityPhotons, rays);
-        w.flopsFixed += density.flopsFixed;
-        w.bytesFixed += density.bytesFixed;
-        return w;
-    }
-    // cut_lookup.glsl per hit: taken as 2 x log2(cut size) nodes visited, each its box, flags and, in the
-    // cut, its kernel (64 bytes, 20 flops; an estimate: the walk's length is known only on the GPU); again
-    // at twice the radius for the hits no kernel reached.
-    const double visits = 2.0 * std::max(double(std::bit_width(cut.size())), 1.0),
-                 lookups = rays + double(fallback_) + double(uncovered_);
-    w.flopsFixed += lookups * visits * 20;
-    w.bytesFixed += lookups * visits * 64;
-    return w;
+    if (rays_ == 0) return;
+    std::vector<Define> d = gatherDefines(frame, FinalGatherSettings{});
+    const std::vector<Define> g = frame.gbufferDefines();
+    d.insert(d.end(), g.begin(), g.end());
+    program_ = Program::compute("photon.glossy", "technique/photon/photon_glossy.comp", d);
 }
 
-Interpolation::Interpolation(bool asCompute)
+void GlossyGather::run(Frame& frame, const RayCaster& caster, const PhotonTree& tree, const Buffer& photons,
+                       const IlluminationCut& cut, float sceneSize, PassTimers& timers)
+{
+    // photon_glossy.comp per pixel and ray: its surface and BRDF read, the lobe's basis and sample, the
+    // weight, the target read and written; the ray's own work as a final-gather ray's (a bound: every pixel
+    // taken to have a lobe and its ray to hit).
+    PassCost cost;
+    cost.flops = 150;
+    cost.fetches = 3;
+    cost.bytesRead = 8 + 2 * 8 + 16;
+    cost.bytesWritten = 16;
+    auto t = timers.scope("glossy", cost); // timed in every scene, as every declared pass: empty without a lobe
+    if (rays_ == 0) return;
+    t.addWork(gatherRayWork(frame, caster, tree, cut, FinalGatherSettings{},
+                            double(frame.width()) * frame.height() * rays_, 0.0));
+    frame.bindGBuffer();
+    frame.bindSceneData();
+    caster.bind();
+    tree.bind(program_);
+    photons.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_PHOTONS);
+    cut.bind();
+    program_.set("punctualLightCount", frame.gpuScene().punctualLightCount());
+    program_.set("lightCount", frame.shadowMaps().lightCount());
+    frame.shadowMaps().setPcfUniforms(program_, 0);
+    program_.set("viewport", glm::ivec2(frame.width(), frame.height()));
+    program_.set("cameraPosition", frame.camera().position);
+    program_.set("rayCount", unsigned(rays_));
+    program_.set("seed", std::uint32_t(frame.stillFrame()));
+    program_.set("rayEpsilon", 1e-5f * sceneSize);
+    frame.indirect().bindImage(0, GL_READ_WRITE);
+    for (int j = 0; j < rays_; ++j) {
+        program_.set("rayIndex", unsigned(j));
+        dispatchCompute(program_, {frame.width(), frame.height(), 1}, {8, 8, 1});
+        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    }
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
+}
+
+Interpolation::Interpolation(bool asCompute, bool glossySampled)
     : asCompute_(asCompute),
-      program_(asCompute ? Program::compute("photon.interpolate", "technique/photon/photon_interpolate.comp")
-                         : Program::graphics("photon.interpolate", "frame/fullscreen.vert",
-                                             "technique/photon/photon_interpolate.frag"))
+      program_(asCompute
+                   ? Program::compute("photon.interpolate", "technique/photon/photon_interpolate.comp",
+                                      interpolationDefines(glossySampled))
+                   : Program::graphics("photon.interpolate", "frame/fullscreen.vert",
+                                       "technique/photon/photon_interpolate.frag", interpolationDefines(glossySampled)))
 {} // the fragment form's framebuffer is made in run(), on the frame's indirect texture; the compute form has none
 
 bool Interpolation::defaultAsCompute()

@@ -18,6 +18,7 @@ namespace bounce::gl {
 
 struct FinalGatherSettings {
     int rays = 256;             // per sample (the paper: 250-500)
+    int glossyRays = 4;         // per pixel with a glossy lobe and frame (GlossyGather; 0: the lobe's albedo)
     bool fullPhotonMap = false; // density estimation in every photon instead of the cut (Fig. 6's reference)
     int densityPhotons = 32;    // k, for fullPhotonMap
     std::uint32_t seed = 1;
@@ -39,17 +40,31 @@ private:
     FinalGatherSettings settings_;
     Program program_;
     std::uint32_t fallback_ = 0, uncovered_ = 0;
+};
 
-    // The work of the gather's `rays` (per-scope work: their number, their walks and lookups).
-    PassCost rayWork(const Frame& frame, const RayCaster& caster, const PhotonTree& tree, const IlluminationCut& cut,
-                     double rays) const;
+// The glossy last bounce sampled at every pixel with a glossy lobe (photon_glossy.comp), added to what the
+// interpolation wrote: `rays` directions from the lobe per pixel and frame, each bringing back a final-gather
+// ray's radiance (direct light and the cut's photon light at its hit).
+class GlossyGather {
+public:
+    GlossyGather(const Frame& frame, int rays);
+    // Whether the scene has a lobe to sample and rays to sample it with: else run() does nothing and the
+    // interpolation keeps the lobe's split-sum albedo.
+    bool active() const { return rays_ > 0; }
+    void run(Frame& frame, const RayCaster& caster, const PhotonTree& tree, const Buffer& photons,
+             const IlluminationCut& cut, float sceneSize, PassTimers& timers);
+
+private:
+    int rays_;
+    Program program_;
 };
 
 class Interpolation {
 public:
     // asCompute: one invocation per pixel into the indirect texture (photon_interpolate.comp); else a
     // full-screen triangle (photon_interpolate.frag). The same arithmetic (photon_interpolate.glsl).
-    explicit Interpolation(bool asCompute = defaultAsCompute());
+    // glossySampled: the glossy lobe is left out (GlossyGather adds it).
+    explicit Interpolation(bool asCompute = defaultAsCompute(), bool glossySampled = false);
     // !preferFragmentPasses() (gl/probe/machine_probe.h): compute on a GPU, whose graphics units may be
     // few (an NVIDIA H200's fragment form took 9.6 ms at 1024x768, the compute form 0.58).
     static bool defaultAsCompute();

@@ -37,7 +37,8 @@ public:
           tree_(s.leafPhotons),
           clusters_(s.clusters),
           gather_(frame, s.gather),
-          interpolation_(s.interpolateAsCompute)
+          glossy_(frame, s.gather.glossyRays),
+          interpolation_(s.interpolateAsCompute, glossy_.active())
     {
         const core::Bounds& b = frame.gpuScene().bounds();
         sceneSize_ = b.empty() ? 1.0f : std::max(glm::length(b.extent()), 1e-30f);
@@ -58,6 +59,7 @@ public:
             clusters_.addPointTreeWork(t);
         }
         interpolation_.run(frame, clusters_, settings_.interpolationError, everyPixel, timers);
+        glossy_.run(frame, caster_, tree_, tracer_.photons(), cut_, sceneSize_, timers);
     }
 
     void restart() override { clusters_.restart(); }
@@ -123,6 +125,7 @@ private:
     IlluminationCut cut_;
     ShadingClusters clusters_;
     FinalGather gather_;
+    GlossyGather glossy_;
     Interpolation interpolation_;
     float sceneSize_ = 1.0f;
 };
@@ -146,6 +149,7 @@ TechniqueInfo photonTechniqueInfo()
         {"kmeans", "quadtree seeding and k-means shading clusters with their samples", ""},
         {"gather", "final gather at every cluster's sample through the cut", ""},
         {"interpolate", "the tree of samples and the interpolation to every pixel", ""},
+        {"glossy", "the glossy last bounce sampled from the lobe at every pixel with one, through the cut", ""},
     };
     info.reads = {GBufferChannel::Position, GBufferChannel::Normal, GBufferChannel::Diffuse, GBufferChannel::Specular};
     info.params = {
@@ -172,6 +176,9 @@ TechniqueInfo photonTechniqueInfo()
         {"kmeansIterations", ParamType::Int, 4, 0, 64, "k-means iterations after seeding"},
         {"temporal", ParamType::Bool, 1, 0, 1, "reuse the previous frame's clusters (section 3.2)"},
         {"gatherRays", ParamType::Int, 256, 1, 65536, "final-gather rays per cluster sample (the paper: 250-500)"},
+        {"glossyRays", ParamType::Int, 4, 0, 1024,
+         "rays per pixel with a glossy lobe and frame for the glossy last bounce, drawn from the lobe (0: the "
+         "interpolated irradiance reflected with the lobe's directional albedo)"},
         {"interpolationError", ParamType::Float, 0.3, 0.0, 10.0,
          "samples whose error 1/w is below this take part in a pixel's interpolation"},
         choiceParam("gatherAt", {"clusters", "pixels"}, 0,
@@ -205,6 +212,7 @@ TechniqueInfo photonTechniqueInfo()
         s.gather.rays = v.getInt("gatherRays");
         s.gather.fullPhotonMap = v.getChoice(photonTechniqueInfo().params, "density") == "photons";
         s.gather.densityPhotons = v.getInt("densityPhotons");
+        s.gather.glossyRays = v.getInt("glossyRays");
         s.interpolationError = float(v.get("interpolationError"));
         const std::string form = v.getChoice(photonTechniqueInfo().params, "interpolation");
         s.interpolateAsCompute = form == "auto" ? Interpolation::defaultAsCompute() : form == "compute";

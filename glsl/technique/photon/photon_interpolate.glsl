@@ -9,7 +9,8 @@
 // out (1 - w F(n.v)) and in (1 - w F_avg, F_avg = F0 + (1 - F0) / 21, Schlick's term averaged over the
 // cosine-weighted hemisphere), plus the glossy part w (F0 A + B) / pi, A and B Karis' (2014) fit of the
 // GGX lobe's directional albedo. The paper interpolates spherical harmonics for glossy last bounces
-// (section 3.4); the albedo is exact only for uniform incident light, and good for rough lobes.
+// (section 3.4); the albedo is exact only for uniform incident light, and good for rough lobes. With
+// GLOSSY_SAMPLED the glossy part is left out: photon_glossy.comp adds it, sampled from the lobe.
 //
 // Shared by the pass's two forms (Interpolation::run chooses): photon_interpolate.frag, a full-screen
 // triangle, and photon_interpolate.comp, one invocation per pixel, for GPUs whose graphics units are few
@@ -85,7 +86,11 @@ vec4 interpolatedRadiance(ivec2 q)
     vec4 r = specular.a * vec4(-1.0, -0.0275, -0.572, 0.022) + vec4(1.0, 0.0425, 1.04, -0.04);
     float a004 = min(r.x * r.x, exp2(-9.28 * cosView)) * r.x + r.y;
     vec2 ab = vec2(-1.04, 1.04) * a004 + r.zw;
+#ifdef GLOSSY_SAMPLED
+    vec3 glossy = vec3(0.0);
+#else
     vec3 glossy = diffuse.a * (f0 * ab.x + ab.y);
+#endif
     return vec4((diffuse.rgb * out_ * in_ + glossy) / 3.14159265358979323846 * e, 1.0);
 }
 
