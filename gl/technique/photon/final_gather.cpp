@@ -43,9 +43,10 @@ std::vector<Define> interpolationDefines(bool glossySampled)
 PassCost gatherRayWork(const Frame& frame, const RayCaster& caster, const PhotonTree& tree, const IlluminationCut& cut,
                        const FinalGatherSettings& settings, double rays, double extraLookups)
 {
-    // Per ray: its direction, a BVH walk, then photon_gather.glsl reads the triangle's indices, vertices and material (152 bytes; a bilinear
-    // base-colour sample where the scene has textures), its direct light from every light (a record of
-    // shared words, one shadow tap: 2x2 texels when filtered), the irradiance there, the BRDF.
+    // Per ray: its direction, a BVH walk, then photon_gather.glsl reads the triangle's indices, vertices and
+    // material (152 bytes; a bilinear base-colour sample where the scene has textures), its direct light from
+    // every light (a record of shared words, one shadow tap: 2x2 texels when filtered), the irradiance there,
+    // the BRDF.
     const double taps = frame.settings().pcfLinear && frame.shadowMaps().stillFrame() == 0 ? 4 : 1;
     const double punctual = frame.gpuScene().punctualLightCount(), area = frame.shadowMaps().lightCount() - punctual;
     PassCost w = bvhWalkWork(caster.bvh(), rays);
