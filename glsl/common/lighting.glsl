@@ -112,19 +112,15 @@ vec3 directFromAreaTriangle(Light l, vec3 p, vec3 n, vec3 wo, BrdfParams b)
 // mean keeps the early frames' ratios.
 const int kAreaGlossyPoints = 4;
 
-vec3 areaSampleUnshadowed(Light l, vec3 p, vec3 n, vec3 wo, BrdfParams b, vec2 rotation)
+// The glossy lobe's light from emitting triangle l at p (in front of it), unshadowed, over the triangle's
+// kAreaGlossyPoints^2 stratified points rotated by `rotation`: 0 in a scene without a lobe.
+vec3 areaGlossyUnshadowed(Light l, vec3 p, vec3 n, vec3 wo, BrdfParams b, vec2 rotation)
 {
-    float sampleArea = l.intensityCosInner.w;
-#ifdef SCENE_DIFFUSE_ONLY
-    if (sampleArea <= 0.0) return vec3(0.0);
-#endif
+    vec3 glossy = vec3(0.0);
+#ifndef SCENE_DIFFUSE_ONLY
     int first = l.shadow.z;
     vec3 a = lightPolygons[first].xyz, bb = lightPolygons[first + 1].xyz, c = lightPolygons[first + 2].xyz;
     vec3 emitterNormal = l.directionCosOuter.xyz;
-    if (dot(p - a, emitterNormal) <= 0.0) return vec3(0.0); // behind the one-sided emitter
-    vec3 L = l.intensityCosInner.rgb;
-    vec3 glossy = vec3(0.0);
-#ifndef SCENE_DIFFUSE_ONLY
     float area = 0.5 * length(cross(bb - a, c - a));
     const float m = float(kAreaGlossyPoints);
     for (int j = 0; j < kAreaGlossyPoints; ++j)
@@ -138,8 +134,38 @@ vec3 areaSampleUnshadowed(Light l, vec3 p, vec3 n, vec3 wo, BrdfParams b, vec2 r
             float g = max(-dot(wi, emitterNormal), 0.0) * max(dot(n, wi), 0.0) / d2;
             glossy += brdfGlossy(b, n, wo, wi) * (g * area / (m * m));
         }
-    glossy *= L;
+    glossy *= l.intensityCosInner.rgb;
 #endif
+    return glossy;
+}
+
+// Outgoing radiance towards wo from emitting triangle l at p, shadowed as directFromAreaTriangle: the
+// diffuse part exact (polygon form factor), the glossy part over the triangle's points
+// (areaGlossyUnshadowed) instead of towards its centroid, where a lobe narrower than the emitter turns the
+// emitter into a point: its reflection off a polished metal a bright dot instead of the emitter's image.
+vec3 directFromAreaTriangleSampled(Light l, vec3 p, vec3 n, vec3 wo, BrdfParams b, vec2 rotation)
+{
+    vec3 wi;
+    vec3 irradiance = areaTriangleIrradiance(l, p, n, wi);
+    if (max(irradiance.r, max(irradiance.g, irradiance.b)) <= 0.0) return vec3(0.0); // behind it, or beyond p's horizon
+    vec3 diffuseFactor, lobe;
+    brdfEvalLobes(b, n, wo, wi, diffuseFactor, lobe);
+    vec3 radiance = diffuseFactor * b.diffuse * irradiance + areaGlossyUnshadowed(l, p, n, wo, b, rotation);
+    return radiance * shadowVisibility(l, p, n);
+}
+
+vec3 areaSampleUnshadowed(Light l, vec3 p, vec3 n, vec3 wo, BrdfParams b, vec2 rotation)
+{
+    float sampleArea = l.intensityCosInner.w;
+#ifdef SCENE_DIFFUSE_ONLY
+    if (sampleArea <= 0.0) return vec3(0.0);
+#endif
+    int first = l.shadow.z;
+    vec3 a = lightPolygons[first].xyz;
+    vec3 emitterNormal = l.directionCosOuter.xyz;
+    if (dot(p - a, emitterNormal) <= 0.0) return vec3(0.0); // behind the one-sided emitter
+    vec3 L = l.intensityCosInner.rgb;
+    vec3 glossy = areaGlossyUnshadowed(l, p, n, wo, b, rotation);
     vec3 diffuse = vec3(0.0);
     if (sampleArea > 0.0) {
         vec3 d = l.positionType.xyz - p;

@@ -25,6 +25,9 @@ std::vector<Define> gatherDefines(const Frame& frame, const FinalGatherSettings&
     const GpuScene& scene = frame.gpuScene();
     if (scene.punctualLightCount() > 0) d.push_back({"PUNCTUAL_LIGHTS", "1"});
     if (int(scene.lights().size()) > scene.punctualLightCount()) d.push_back({"AREA_LIGHTS", "1"});
+    // No glossy terms at the hits (common/brdf.glsl) where the scene has no lobe.
+    if (!frame.scene().hasGlossy()) d.push_back({"SCENE_DIFFUSE_ONLY", "1"});
+    if (s.causticAlpha > 0.0f) d.push_back({"CAUSTIC_MAP", "1"});
     if (s.fullPhotonMap) {
         d.push_back({"DENSITY_PHOTONS", "1"});
         d.push_back({"NEAREST_K", std::to_string(s.densityPhotons)});
@@ -110,6 +113,7 @@ void FinalGather::gather(const Frame& frame, const RayCaster& caster, const Phot
     program_.set("minDistance", 1e-4f * sceneSize);
     program_.set("maxDistance", sceneSize);
     program_.set("seed", settings_.seed);
+    program_.set("causticAlpha", settings_.causticAlpha);
     program_.use();
     glDispatchCompute(clusters.count(), 1, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
@@ -167,6 +171,50 @@ void GlossyGather::run(Frame& frame, const RayCaster& caster, const PhotonTree& 
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     }
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
+}
+
+namespace {
+
+// Whether a surface of the scene has a lobe no rougher than causticRoughness (0: none counts).
+bool hasNearSpecular(const core::Scene& scene, float causticRoughness)
+{
+    for (const core::Mesh& m : scene.meshes)
+        if (m.material < scene.materials.size()) {
+            const core::Material& mat = scene.materials[m.material];
+            if (mat.isGlossy() && causticRoughness > 0.0f && mat.roughness <= causticRoughness) return true;
+        }
+    return false;
+}
+
+} // namespace
+
+CausticMap::CausticMap(const Frame& frame, float causticRoughness, float radius)
+    : active_(hasNearSpecular(frame.scene(), causticRoughness)), roughness_(causticRoughness), radius_(radius)
+{
+    if (active_)
+        program_ = Program::compute("photon.caustic", "technique/photon/photon_caustic.comp", frame.gbufferDefines());
+}
+
+void CausticMap::run(Frame& frame, const PhotonTree& tree, const Buffer& photons, float sceneSize, PassTimers& timers)
+{
+    // photon_caustic.comp per pixel: its surface and BRDF read, the tree's walk within the radius (taken as
+    // two nodes per level, an estimate: its length is known only on the GPU), the target read and written.
+    PassCost cost;
+    cost.flops = 60 + 2 * 20 * double(std::max(tree.depth(), 1));
+    cost.fetches = 3;
+    cost.bytesRead = 8 + 2 * 8 + 16 + 2 * 32 * double(std::max(tree.depth(), 1));
+    cost.bytesWritten = 16;
+    auto t = timers.scope("caustic", cost); // timed in every scene: empty without a near-specular lobe
+    if (!active_) return;
+    frame.bindGBuffer();
+    tree.bind(program_);
+    photons.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_PHOTONS);
+    program_.set("viewport", glm::ivec2(frame.width(), frame.height()));
+    program_.set("cameraPosition", frame.camera().position);
+    program_.set("radius", radius_ * sceneSize);
+    frame.indirect().bindImage(0, GL_READ_WRITE);
+    dispatchCompute(program_, {frame.width(), frame.height(), 1}, {8, 8, 1});
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
 }
 
 Interpolation::Interpolation(bool asCompute, bool glossySampled)

@@ -11,6 +11,7 @@
 #include "gl/resource/program.h"
 #include "gl/resource/timer.h"
 #include "gl/technique/photon/illumination_cut.h"
+#include "gl/technique/photon/photon_tracer.h"
 #include "gl/technique/photon/photon_tree.h"
 #include "gl/technique/photon/shading_clusters.h"
 
@@ -22,6 +23,7 @@ struct FinalGatherSettings {
     bool fullPhotonMap = false; // density estimation in every photon instead of the cut (Fig. 6's reference)
     int densityPhotons = 32;    // k, for fullPhotonMap
     std::uint32_t seed = 1;
+    float causticAlpha = -1.0f; // hits whose lobe is this smooth do not reflect the lights (the caustic map's)
 };
 
 class FinalGather {
@@ -56,6 +58,24 @@ public:
 
 private:
     int rays_;
+    Program program_;
+};
+
+// The caustic photon map (photon_caustic.comp): the caustic photons (L S+ D) near every pixel's surface
+// point, cone-filtered within `radius` and reflected by its diffuse lobe, added to the pixel's indirect light.
+// Active where the scene has a lobe no rougher than the tracer's causticRoughness.
+class CausticMap {
+public:
+    // radius: of the density estimate, as a fraction of the scene's size.
+    CausticMap(const Frame& frame, float causticRoughness, float radius);
+    bool active() const { return active_; }
+    // What the final gather's hits leave out for this map (FinalGatherSettings::causticAlpha).
+    float gatherCausticAlpha() const { return active_ ? causticAlpha(roughness_) : -1.0f; }
+    void run(Frame& frame, const PhotonTree& tree, const Buffer& photons, float sceneSize, PassTimers& timers);
+
+private:
+    bool active_;
+    float roughness_, radius_;
     Program program_;
 };
 

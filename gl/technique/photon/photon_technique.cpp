@@ -25,7 +25,16 @@ struct PhotonSettings {
     FinalGatherSettings gather;
     float interpolationError = 0.3f;
     bool interpolateAsCompute = true;
+    float causticRadius = 0.01f; // of the caustic map's estimate, per scene size
 };
+
+// The gather's settings, with the hits' near-specular reflections of the lights left to the caustic map.
+FinalGatherSettings gatherSettings(const FinalGatherSettings& s, const CausticMap& caustic)
+{
+    FinalGatherSettings g = s;
+    g.causticAlpha = caustic.gatherCausticAlpha();
+    return g;
+}
 
 class Photon final : public Technique {
 public:
@@ -36,7 +45,8 @@ public:
           tracer_(s.tracer),
           tree_(s.leafPhotons),
           clusters_(s.clusters),
-          gather_(frame, s.gather),
+          caustic_(frame, s.tracer.causticRoughness, s.causticRadius),
+          gather_(frame, gatherSettings(s.gather, caustic_)),
           glossy_(frame, s.gather.glossyRays),
           interpolation_(s.interpolateAsCompute, glossy_.active())
     {
@@ -60,6 +70,7 @@ public:
         }
         interpolation_.run(frame, clusters_, settings_.interpolationError, everyPixel, timers);
         glossy_.run(frame, caster_, tree_, tracer_.photons(), cut_, sceneSize_, timers);
+        caustic_.run(frame, tree_, tracer_.photons(), sceneSize_, timers);
     }
 
     void restart() override { clusters_.restart(); }
@@ -124,6 +135,7 @@ private:
     PhotonTree tree_;
     IlluminationCut cut_;
     ShadingClusters clusters_;
+    CausticMap caustic_;
     FinalGather gather_;
     GlossyGather glossy_;
     Interpolation interpolation_;
@@ -150,6 +162,7 @@ TechniqueInfo photonTechniqueInfo()
         {"gather", "final gather at every cluster's sample through the cut", ""},
         {"interpolate", "the tree of samples and the interpolation to every pixel", ""},
         {"glossy", "the glossy last bounce sampled from the lobe at every pixel with one, through the cut", ""},
+        {"caustic", "the caustic photons (L S+ D) near every pixel, where the scene has a near-specular lobe", ""},
     };
     info.reads = {GBufferChannel::Position, GBufferChannel::Normal, GBufferChannel::Diffuse, GBufferChannel::Specular};
     info.params = {
@@ -162,6 +175,10 @@ TechniqueInfo photonTechniqueInfo()
         {"guidedEmission", ParamType::Bool, 1, 0, 1,
          "a directional light's cells send photons in proportion to what a pilot trace stored from them, with the "
          "power scaled to stay unbiased (0: every cell alike)"},
+        {"causticRoughness", ParamType::Float, 0.1, 0.0, 1.0,
+         "photons whose every bounce drew a lobe this smooth or smoother are caustic photons, read at the pixels "
+         "(0: no caustic map; the final gather then sees the lights in near-specular surfaces)"},
+        {"causticRadius", ParamType::Float, 0.01, 1e-5, 1.0, "the caustic map's estimate radius, per scene size"},
         {"leafPhotons", ParamType::Int, 1, 1, 1024,
          "photons per leaf of the photon tree, at most (the paper's kd-tree: 1)"},
         {"cutLevel", ParamType::Int, 12, 0, 24,
@@ -199,6 +216,8 @@ TechniqueInfo photonTechniqueInfo()
         s.tracer.russianRoulette = v.getBool("russianRoulette");
         s.tracer.projectionMap = v.getBool("projectionMap");
         s.tracer.guidedEmission = v.getBool("guidedEmission");
+        s.tracer.causticRoughness = float(v.get("causticRoughness"));
+        s.causticRadius = float(v.get("causticRadius"));
         s.leafPhotons = v.getInt("leafPhotons");
         s.cut.eminLevel = v.getInt("cutLevel");
         s.cut.iterations = v.getInt("cutIterations");

@@ -289,6 +289,7 @@ void PhotonTracer::dispatchTrace(const Frame& frame, const RayCaster& caster, Bu
         trace_.set("maxBounces", settings_.maxBounces);
         trace_.set("russianRoulette", settings_.russianRoulette ? 1 : 0);
         trace_.set("rayEpsilon", 1e-5f * size_);
+        trace_.set("causticAlpha", causticAlpha(settings_.causticRoughness));
         trace_.set("seed", settings_.seed);
         if (paths > 0) dispatchCompute(trace_, {int(paths), 1, 1}, {64, 1, 1});
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);

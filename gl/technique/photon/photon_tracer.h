@@ -5,6 +5,7 @@
 // glsl/technique/photon/photon_trace.comp says what happens at a surface.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -70,7 +71,15 @@ struct PhotonTracerSettings {
     // a pilot trace stored per cell; every cell keeps a share, and a photon's power is divided by its
     // cell's weight so the estimate stays unbiased), or every cell alike (false).
     bool guidedEmission = true;
+    // Caustic photons (L S+ D): the roughest lobe a caustic path may bounce off; 0: no caustic photons.
+    float causticRoughness = 0.1f;
 };
+
+// The GGX alpha of causticRoughness as the BRDF clamps it (common/brdf.glsl: at least 1e-3); -1 for 0.
+inline float causticAlpha(float causticRoughness)
+{
+    return causticRoughness > 0.0f ? std::max(causticRoughness * causticRoughness, 1e-3f) : -1.0f;
+}
 
 // `walks` closest-hit walks of glsl/common/raycast.glsl through `bvh`, as per-scope work. A walk's length
 // is known only on the GPU: it is estimated from the tree's depth (photon_tracer.cpp).

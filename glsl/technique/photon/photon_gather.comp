@@ -19,7 +19,6 @@ layout(std430, binding = SSBO_PHOTON_COUNTERS) buffer Counters { uint counters[]
 
 uniform uint clusterCount;
 uniform uint gatherRays;
-uniform float rayEpsilon;
 uniform float minDistance; // R_j's bounds, scene units
 uniform float maxDistance;
 uniform uint seed;
@@ -48,7 +47,9 @@ void main()
             Hit hit;
             if (!closestHit(x + n * rayEpsilon, dir, 0.0, 3.0e38, hit)) continue;
             int coverage;
-            sum += gatherRadiance(x, dir, hit, coverage);
+            uint r = pcgHash(h ^ (j + 1u));
+            vec2 rotation = vec2(float(r >> 8), float(pcgHash(r) >> 8)) * (1.0 / 16777216.0);
+            sum += gatherRadiance(dir, hit, rotation, coverage);
             inverseSum += 1.0 / max(hit.t, 1e-30);
             fallback += coverage == 1 ? 1u : 0u;
             uncovered += coverage == 0 ? 1u : 0u;

@@ -16,56 +16,107 @@ layout(binding = UNIT_BASE_COLOR) uniform sampler2DArray baseColorTextures;
 
 uniform int punctualLightCount; // lights [0, punctualLightCount): point, spot, directional
 uniform int lightCount;         // lights [punctualLightCount, lightCount): emitting triangles
+uniform float rayEpsilon;       // scene units: how far a ray starts off its surface
+uniform float causticAlpha;     // CAUSTIC_MAP: the roughest lobe the gather passes its rays on through
 
-// Radiance leaving the hit of a ray from `origin` along `dir` back towards the origin: direct light
-// (shadow maps) plus photon-map indirect light; emission is left out (the frame's direct light has it).
-// coverage as CutLookup's (2 with DENSITY_PHOTONS).
-vec3 gatherRadiance(vec3 origin, vec3 dir, Hit hit, out int coverage)
+// A ray's hit as the gather reads it: the point, its normals facing the ray, its BRDF; `visible` false
+// for the back of a one-sided surface, which is black.
+struct GatherHit {
+    vec3 y, n, ng;
+    BrdfParams b;
+    bool visible;
+};
+
+GatherHit gatherHit(vec3 dir, Hit hit)
 {
-    coverage = 2;
+    GatherHit h;
     uint tri = hit.triangle;
     vec3 p0 = sceneVertexPosition(sceneVertexIndex(tri, 0));
     vec3 p1 = sceneVertexPosition(sceneVertexIndex(tri, 1));
     vec3 p2 = sceneVertexPosition(sceneVertexIndex(tri, 2));
-    vec3 y = (1.0 - hit.b.x - hit.b.y) * p0 + hit.b.x * p1 + hit.b.y * p2;
-    vec3 ng = normalize(cross(p1 - p0, p2 - p0));
-    vec3 n = sceneTriangleNormal(tri, hit.b);
+    h.y = (1.0 - hit.b.x - hit.b.y) * p0 + hit.b.x * p1 + hit.b.y * p2;
+    h.ng = normalize(cross(p1 - p0, p2 - p0));
+    h.n = sceneTriangleNormal(tri, hit.b);
     Material m = materials[sceneTriangleMaterial(tri)];
-    vec3 wo = -dir;
-    if (dot(ng, wo) <= 0.0) {
-        if (m.flags.y == 0) return vec3(0.0); // the back of a one-sided surface is black
-        ng = -ng;
-        n = -n;
+    h.visible = true;
+    if (dot(h.ng, dir) >= 0.0) {
+        h.visible = m.flags.y != 0;
+        h.ng = -h.ng;
+        h.n = -h.n;
     }
-    if (dot(n, wo) <= 0.0) n = ng;
+    if (dot(h.n, dir) >= 0.0) h.n = h.ng;
     vec3 baseColor = m.baseColorMetallic.rgb;
     if (m.flags.x >= 0) {
         vec2 uv = sceneTriangleUv(tri, hit.b);
         baseColor *= textureLod(baseColorTextures, vec3(uv, float(m.flags.x)), 0.0).rgb;
     }
-    BrdfParams b = brdfParams(baseColor, m.baseColorMetallic.a, m.emissionRoughness.a, m.specularColorSpecular.a,
-                              m.specularColorSpecular.rgb);
+    h.b = brdfParams(baseColor, m.baseColorMetallic.a, m.emissionRoughness.a, m.specularColorSpecular.a,
+                     m.specularColorSpecular.rgb);
+    return h;
+}
+
+// Radiance leaving hit h towards wo: direct light (shadow maps; an emitting triangle's glossy reflection over
+// its points, rotated by `rotation`: lighting.glsl, directFromAreaTriangleSampled) plus photon-map indirect
+// light; emission is left out (the frame's direct light has it). lobe false: the glossy lobe left out of
+// both. coverage as CutLookup's (2 with DENSITY_PHOTONS).
+vec3 hitRadiance(GatherHit h, vec3 wo, vec2 rotation, bool lobe, out int coverage)
+{
+    coverage = 2;
+    BrdfParams b = h.b;
+    if (!lobe) b.weight = 0.0;
     vec3 radiance = vec3(0.0);
 #ifdef PUNCTUAL_LIGHTS
-    for (int l = 0; l < punctualLightCount; ++l) radiance += directFromPunctual(lights[l], y, n, wo, b);
+    for (int l = 0; l < punctualLightCount; ++l) radiance += directFromPunctual(lights[l], h.y, h.n, wo, b);
 #endif
 #ifdef AREA_LIGHTS
-    for (int l = punctualLightCount; l < lightCount; ++l) radiance += directFromAreaTriangle(lights[l], y, n, wo, b);
+    for (int l = punctualLightCount; l < lightCount; ++l)
+        radiance += directFromAreaTriangleSampled(lights[l], h.y, h.n, wo, b, rotation);
 #endif
 #ifdef DENSITY_PHOTONS
     float radius;
     PhotonNode root = photonNodes[1];
-    DensitySums s = nearestPhotons(y, n, nearestStartRadius(root), radius);
+    DensitySums s = nearestPhotons(h.y, h.n, nearestStartRadius(root), radius);
     vec3 irradiance = s.power / (kPi * radius * radius);
-    vec3 wi = n;
+    vec3 wi = h.n;
 #else
-    CutLookup c = cutIrradiance(y, n);
+    CutLookup c = cutIrradiance(h.y, h.n);
     coverage = c.coverage;
     vec3 irradiance = c.irradiance;
-    vec3 wi = dot(c.incoming, n) > 0.0 ? c.incoming : n;
+    vec3 wi = dot(c.incoming, h.n) > 0.0 ? c.incoming : h.n;
 #endif
     // The photons' irradiance reflected as from one direction, their mean: exact for the Lambertian part.
-    return radiance + brdfEval(b, n, wo, wi) * irradiance;
+    return radiance + brdfEval(b, h.n, wo, wi) * irradiance;
 }
+
+// Radiance leaving the hit of a ray along `dir` back towards its origin (hitRadiance). With the caustic map
+// (CAUSTIC_MAP: lobes no rougher than causticAlpha), a near-specular hit passes the ray on along its mirror
+// direction, once, as the paper's shading points seen through specular surfaces: its lobe reflects neither
+// the lights (L S D at the origin: the caustic map's) nor the photons' mean direction (a spike for a
+// mirror), but what the reflected ray's hit sends, weighted by w F.
+vec3 gatherRadiance(vec3 dir, Hit hit, vec2 rotation, out int coverage)
+{
+    coverage = 2;
+    GatherHit h = gatherHit(dir, hit);
+    if (!h.visible) return vec3(0.0);
+#ifdef CAUSTIC_MAP
+    bool mirror = h.b.alpha <= causticAlpha;
+#else
+    bool mirror = false;
+#endif
+    vec3 radiance = hitRadiance(h, -dir, rotation, !mirror, coverage);
+#ifdef CAUSTIC_MAP
+    vec3 wi = reflect(dir, h.n);
+    float cosine = dot(h.n, wi);
+    Hit next;
+    if (mirror && cosine > 0.0 && dot(h.ng, wi) > 0.0 && closestHit(h.y + h.ng * rayEpsilon, wi, 0.0, 3.0e38, next)) {
+        GatherHit g = gatherHit(wi, next);
+        int ignored;
+        vec3 f = h.b.weight * (h.b.f0 + (1.0 - h.b.f0) * schlickWeight(cosine));
+        if (g.visible) radiance += f * hitRadiance(g, -wi, rotation, true, ignored);
+    }
+#endif
+    return radiance;
+}
+
 
 #endif

@@ -22,7 +22,6 @@ uniform vec3 cameraPosition;
 uniform uint rayIndex; // this dispatch's ray, of rayCount per pixel
 uniform uint rayCount;
 uniform uint seed;     // a new set of directions for every still frame
-uniform float rayEpsilon;
 
 // The glossy lobe's sample, f_glossy cos / pdf along wi, with pdf the visible-normal density
 // D(h) G1(wo) / (4 n.wo) written as brdfPdf's glossy term; 0 where wi falls below the surface.
@@ -59,7 +58,9 @@ void main()
     Hit hit;
     if (weight == vec3(0.0) || !closestHit(x + n * rayEpsilon, wi, 0.0, 3.0e38, hit)) return;
     int coverage;
-    vec3 radiance = weight * gatherRadiance(x, wi, hit, coverage) / float(rayCount);
+    uint r = pcgHash(pcgHash(h) ^ (rayIndex + 1u));
+    vec2 rotation = vec2(float(r >> 8), float(pcgHash(r) >> 8)) * (1.0 / 16777216.0);
+    vec3 radiance = weight * gatherRadiance(wi, hit, rotation, coverage) / float(rayCount);
     vec4 sum = imageLoad(target, q);
     imageStore(target, q, vec4(sum.rgb + radiance, sum.a));
 }

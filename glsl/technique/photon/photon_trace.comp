@@ -7,7 +7,10 @@
 //   - from the second surface on it is stored (the first surface's light is direct light, which the
 //     frame's shadow maps give: the photon map holds indirect light only);
 //   - it scatters by the BRDF (scatter.glsl), with Russian roulette on the ratio of its power after and
-//     before, so that a surviving photon keeps its power and the stored power is unbiased.
+//     before, so that a surviving photon keeps its power and the stored power is unbiased;
+//   - a photon whose every bounce so far drew the glossy lobe of a near-specular surface (GGX alpha at
+//     most causticAlpha) is a caustic photon, L S+ D (Jensen 2001): stored with incoming.w = 1, read at the
+//     pixels by photon_caustic.comp.
 // Photons are appended in any order with (path, index within the path); photon_place.comp puts them in
 // path order afterwards, so the photon map is the same in every run. DIRECTIONAL_LIGHTS: the scene has a
 // directional light (its projection-map emission is compiled only then: llvmpipe pays for a texel fetch
@@ -47,6 +50,7 @@ uniform uint capacity;      // staging slots
 uniform int maxBounces;     // surfaces a photon may reach
 uniform int russianRoulette;
 uniform float rayEpsilon;   // scene units: how far a scattered ray starts off its surface
+uniform float causticAlpha; // the roughest lobe (GGX alpha) a caustic path may bounce off (-1: none)
 uniform uint seed;
 
 int findEmitter(uint path)
@@ -121,6 +125,7 @@ void main()
     emit(e, path - e.range.x, e.range.y, origin, dir, power);
     emitted[path] = vec4(power, 0.0);
     uint rng = pcgHash(path ^ pcgHash(seed));
+    bool caustic = true; // every bounce so far off a near-specular lobe
 
     for (int bounce = 0; bounce < maxBounces; ++bounce) {
         if (max(power.r, max(power.g, power.b)) <= 0.0) break;
@@ -153,7 +158,7 @@ void main()
             if (slot < capacity) {
                 staging[slot].positionPath = vec4(p, uintBitsToFloat(path));
                 staging[slot].powerIndex = vec4(power, uintBitsToFloat(stored));
-                staging[slot].incoming = vec4(wo, 0.0);
+                staging[slot].incoming = vec4(wo, caustic ? 1.0 : 0.0);
                 staging[slot].normal = vec4(dot(n, wo) > 0.0 ? n : ng, 0.0);
             }
             stored += 1u;
@@ -162,7 +167,9 @@ void main()
         float u1 = nextRandom(rng);
         vec2 u = vec2(nextRandom(rng), nextRandom(rng));
         vec3 wi;
-        vec3 weight = scatterPhoton(b, dot(n, wo) > 0.0 ? n : ng, wo, u1, u, wi);
+        vec3 nf = dot(n, wo) > 0.0 ? n : ng;
+        caustic = caustic && b.alpha <= causticAlpha && u1 < specularProbability(b, nf, wo);
+        vec3 weight = scatterPhoton(b, nf, wo, u1, u, wi);
         if (dot(ng, wi) <= 0.0) break;
         vec3 next = power * weight;
         if (russianRoulette != 0) {
