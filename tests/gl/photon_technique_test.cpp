@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include "core/brdf.h"
 #include "core/cornell.h"
 #include "core/metrics.h"
 #include "gl/frame/frame.h"
@@ -265,6 +266,32 @@ TEST_F(PhotonTechniqueTest, CausticMapBringsCornellMirrorCloser)
     EXPECT_LT(errors[1], 0.25);
     EXPECT_LT(errors[1], 0.5 * errors[0]) << "the caustic map must bring the image closer";
     EXPECT_LT(means[1], 0.03) << "the caustics' energy";
+}
+
+// Gathering at every pixel makes a cluster of each, and a 300 x 300 viewport has 90,000: more work groups
+// than the 65,535 a driver may allow on one axis of a dispatch (the gather's one group per cluster). Every
+// cluster must still gather: the image's mean indirect light must be that of a 200 x 200 view (40,000
+// clusters, one axis) of the same scene. Measured 0.01640 and 0.01652; no indirect light at all when the
+// gather was one dispatch of 90,000 groups (GL_INVALID_VALUE: `gatherAt=pixels` at 256 x 256 was 0.90 from
+// `full`), 0.0093 when the groups past the first 65,535 gathered for the first clusters again.
+TEST_F(PhotonTechniqueTest, MorePixelClustersThanOneDispatchAxisHolds)
+{
+    gl::ParamValues v = testValues({{"photons", 4096}, {"gatherRays", 4}});
+    v.set(gl::findTechnique("photon").params, "gatherAt", "pixels");
+    const core::Scene scene = core::makeCornell("cornell-spot");
+    const Rendered big = render(scene, 300, 300, v), small = render(scene, 200, 200, v);
+    ASSERT_GT(counter(big, "clusters"), 65535.0);
+    EXPECT_TRUE(allFiniteNonNegative(big.indirect));
+    const auto mean = [](const core::Image& img) {
+        double sum = 0.0;
+        for (int y = 0; y < img.height; ++y)
+            for (int x = 0; x < img.width; ++x) sum += core::luminance(img.at(x, y));
+        return sum / (double(img.width) * img.height);
+    };
+    const double a = mean(big.indirect), b = mean(small.indirect);
+    std::printf("[ measured ] mean indirect luminance: %.5g with %g pixel clusters, %.5g with %g\n", a,
+                counter(big, "clusters"), b, counter(small, "clusters"));
+    EXPECT_NEAR(a / b, 1.0, 0.05);
 }
 
 // The point light 1 mm under the ceiling: half its power lands within millimetres of it, and that spot

@@ -35,6 +35,8 @@ std::vector<Define> gatherDefines(const Frame& frame, const FinalGatherSettings&
     return d;
 }
 
+constexpr int kGatherGroup = 256; // photon_gather.comp's GATHER_GROUP: one work group per cluster
+
 std::vector<Define> interpolationDefines(bool glossySampled)
 {
     if (glossySampled) return {{"GLOSSY_SAMPLED", "1"}};
@@ -114,8 +116,9 @@ void FinalGather::gather(const Frame& frame, const RayCaster& caster, const Phot
     program_.set("maxDistance", sceneSize);
     program_.set("seed", settings_.seed);
     program_.set("causticAlpha", settings_.causticAlpha);
-    program_.use();
-    glDispatchCompute(clusters.count(), 1, 1);
+    // In rows: one group per cluster, and gathering at every pixel makes a cluster of each (65,536 at 256^2,
+    // past the 65,535 groups a driver may allow on one axis).
+    dispatchRows(program_, clusters.count(), kGatherGroup);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
     std::uint32_t hits[2] = {0, 0};
     counters.download((kCounterFirst + 1) * 4, sizeof hits, hits);

@@ -4,6 +4,7 @@
 // (photon_gather.glsl). E = pi / N sum L_j (cosine sampling); R_j = N / sum 1 / t_j, the harmonic mean
 // distance of the hits (section 3.4; misses count 1/t = 0). Each invocation sums its rays in order, then
 // the group reduces its sums in a fixed order: no float atomics, the same result in every run.
+#include "common/dispatch_rows.glsl"
 #include "technique/photon/photon_gather.glsl"
 #include "technique/photon/scatter.glsl"
 #include "technique/photon/shading_clusters.glsl"
@@ -30,7 +31,7 @@ shared uint uncoveredHits[GATHER_GROUP];
 
 void main()
 {
-    uint k = gl_WorkGroupID.x;
+    uint k = rowGroup();
     uint t = gl_LocalInvocationID.x;
     if (k >= clusterCount) return;
     Cluster c = clusters[k];
