@@ -118,5 +118,4 @@ vec3 gatherRadiance(vec3 dir, Hit hit, vec2 rotation, out int coverage)
     return radiance;
 }
 
-
 #endif
