@@ -23,7 +23,7 @@ struct PhotonSettings {
     IlluminationCutSettings cut;
     ShadingClusterSettings clusters;
     FinalGatherSettings gather;
-    float interpolationError = 0.3f;
+    float interpolationError = 0.2f;
     bool interpolateAsCompute = true;
     float causticRadius = 0.01f; // of the caustic map's estimate, per scene size
 };
@@ -196,7 +196,7 @@ TechniqueInfo photonTechniqueInfo()
         {"glossyRays", ParamType::Int, 4, 0, 1024,
          "rays per pixel with a glossy lobe and frame for the glossy last bounce, drawn from the lobe (0: the "
          "interpolated irradiance reflected with the lobe's directional albedo)"},
-        {"interpolationError", ParamType::Float, 0.3, 0.0, 10.0,
+        {"interpolationError", ParamType::Float, 0.2, 0.0, 10.0,
          "samples whose error 1/w is below this take part in a pixel's interpolation"},
         choiceParam("gatherAt", {"clusters", "pixels"}, 0,
                     "gather at the clusters' samples and interpolate (the paper), or at every pixel (Fig. 6)"),
