@@ -19,6 +19,17 @@ double luminance(const glm::vec3& c)
     return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z;
 }
 
+// What a light's photons carry together before a spot's falloff: photon_trace.comp draws a spot's
+// directions uniformly in its outer cone and weights each photon by glTF's falloff, so their base is the
+// intensity times the outer cone's solid angle, not the light's power (which holds the falloff already:
+// with both, a soft spot's photons carried its power times the falloff's mean over the cone, 0.63 for
+// cones of 0.4 and 0.6 rad). The same for every other kind of light.
+glm::vec3 powerBeforeFalloff(const LightSource& light, const glm::vec3& power)
+{
+    if (light.type != kLightSpot) return power;
+    return float(2.0 * 3.14159265358979323846 * (1.0 - double(light.cosOuter))) * light.intensity;
+}
+
 } // namespace
 
 glm::vec3 emittedPower(const LightSource& light, float directionalArea)
@@ -210,7 +221,7 @@ void PhotonTracer::buildEmitters(const Frame& frame, const RayCaster& caster)
         PhotonEmitter e{};
         e.positionType = glm::vec4(l.position, float(l.type));
         e.directionCos = glm::vec4(l.direction, l.cosOuter);
-        e.powerCosInner = glm::vec4(power[i] / float(count[i]), l.cosInner);
+        e.powerCosInner = glm::vec4(powerBeforeFalloff(l, power[i]) / float(count[i]), l.cosInner);
         if (map) {
             e.positionType = glm::vec4(map->corner, float(l.type));
             e.v0 = glm::vec4(map->axisU, map->cellSide);
