@@ -13,6 +13,18 @@
 
 namespace bounce::testing {
 
+// A quad (a, b, c, d) as two triangles, its front face where (b - a) x (c - a) points.
+inline void addQuad(core::Mesh& m, glm::vec3 a, glm::vec3 b, glm::vec3 c, glm::vec3 d)
+{
+    const glm::vec3 n = glm::normalize(glm::cross(b - a, c - a));
+    const auto base = std::uint32_t(m.positions.size());
+    for (const glm::vec3& p : {a, b, c, d}) {
+        m.positions.push_back(p);
+        m.normals.push_back(n);
+    }
+    for (std::uint32_t i : {0u, 1u, 2u, 0u, 2u, 3u}) m.indices.push_back(base + i);
+}
+
 inline core::Scene closedBox(const std::string& name, float rho, float emission = 0.0f, float size = 1.0f)
 {
     core::Scene s;
@@ -27,13 +39,7 @@ inline core::Scene closedBox(const std::string& name, float rho, float emission 
     core::Mesh mesh;
     mesh.name = "box";
     const auto quad = [&](glm::vec3 a, glm::vec3 b, glm::vec3 c, glm::vec3 d) {
-        const glm::vec3 n = glm::normalize(glm::cross(b - a, c - a));
-        const auto base = std::uint32_t(mesh.positions.size());
-        for (const glm::vec3& p : {a, b, c, d}) {
-            mesh.positions.push_back(p * size);
-            mesh.normals.push_back(n);
-        }
-        for (std::uint32_t i : {0u, 1u, 2u, 0u, 2u, 3u}) mesh.indices.push_back(base + i);
+        addQuad(mesh, a * size, b * size, c * size, d * size);
     };
     // Counter-clockwise seen from inside: normals point into the box.
     quad({0, 0, 0}, {0, 0, 1}, {1, 0, 1}, {1, 0, 0}); // floor, +y

@@ -15,6 +15,7 @@
 #include "gl/technique/grb/grb_atlas.h"
 #include "gl/technique/grb/kbuffer.h"
 #include "gl/technique/grb/radiance_atlases.h"
+#include "tests/gl/closed_box.h"
 
 namespace bounce::grbtest {
 
@@ -28,17 +29,7 @@ inline core::Material lambertian(float albedo, float emission = 0.0f)
     return m;
 }
 
-// A quad (v0, v1, v2, v3) as two triangles, its front face where (v1 - v0) x (v2 - v0) points.
-inline void addQuad(core::Mesh& m, glm::vec3 a, glm::vec3 b, glm::vec3 c, glm::vec3 d)
-{
-    const glm::vec3 n = glm::normalize(glm::cross(b - a, c - a));
-    const auto base = std::uint32_t(m.positions.size());
-    for (const glm::vec3& p : {a, b, c, d}) {
-        m.positions.push_back(p);
-        m.normals.push_back(n);
-    }
-    for (std::uint32_t i : {0u, 1u, 2u, 0u, 2u, 3u}) m.indices.push_back(base + i);
-}
+using testing::addQuad;
 
 // An axis-aligned box [lo, hi], its faces towards the inside (or the outside), `skip` faces left out
 // (bit i: face i of -y, +y, -x, +x, -z, +z).
