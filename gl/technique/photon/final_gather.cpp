@@ -74,6 +74,17 @@ PassCost gatherRayWork(const Frame& frame, const RayCaster& caster, const Photon
     return w;
 }
 
+// Whether a surface of the scene has a lobe no rougher than causticRoughness (0: none counts).
+bool hasNearSpecular(const core::Scene& scene, float causticRoughness)
+{
+    for (const core::Mesh& m : scene.meshes)
+        if (m.material < scene.materials.size()) {
+            const core::Material& mat = scene.materials[m.material];
+            if (mat.isGlossy() && causticRoughness > 0.0f && mat.roughness <= causticRoughness) return true;
+        }
+    return false;
+}
+
 } // namespace
 
 FinalGather::FinalGather(const Frame& frame, const FinalGatherSettings& settings)
@@ -175,21 +186,6 @@ void GlossyGather::run(Frame& frame, const RayCaster& caster, const PhotonTree& 
     }
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
 }
-
-namespace {
-
-// Whether a surface of the scene has a lobe no rougher than causticRoughness (0: none counts).
-bool hasNearSpecular(const core::Scene& scene, float causticRoughness)
-{
-    for (const core::Mesh& m : scene.meshes)
-        if (m.material < scene.materials.size()) {
-            const core::Material& mat = scene.materials[m.material];
-            if (mat.isGlossy() && causticRoughness > 0.0f && mat.roughness <= causticRoughness) return true;
-        }
-    return false;
-}
-
-} // namespace
 
 CausticMap::CausticMap(const Frame& frame, float causticRoughness, float radius)
     : active_(hasNearSpecular(frame.scene(), causticRoughness)), roughness_(causticRoughness), radius_(radius)

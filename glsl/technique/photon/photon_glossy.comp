@@ -23,15 +23,13 @@ uniform uint rayIndex; // this dispatch's ray, of rayCount per pixel
 uniform uint rayCount;
 uniform uint seed;     // a new set of directions for every still frame
 
-// The glossy lobe's sample, f_glossy cos / pdf along wi, with pdf the visible-normal density
-// D(h) G1(wo) / (4 n.wo) written as brdfPdf's glossy term; 0 where wi falls below the surface.
+// The glossy lobe's sample, f_glossy cos / pdf along wi, with pdf the visible-normal density (brdfPdf's
+// glossy term); 0 where wi falls below the surface.
 vec3 glossyWeight(BrdfParams b, vec3 n, vec3 wo, vec3 wi)
 {
-    float nDotWo = dot(n, wo), nDotWi = dot(n, wi);
+    float nDotWi = dot(n, wi);
     if (nDotWi <= 0.0) return vec3(0.0);
-    float a2 = b.alpha * b.alpha;
-    float pdf = ggxD(max(dot(n, normalize(wo + wi)), 0.0), a2) /
-                (2.0 * (nDotWo + sqrt(a2 + (1.0 - a2) * nDotWo * nDotWo)));
+    float pdf = visibleNormalPdf(b.alpha, dot(n, normalize(wo + wi)), dot(n, wo));
     return pdf > 0.0 ? brdfGlossy(b, n, wo, wi) * (nDotWi / pdf) : vec3(0.0);
 }
 

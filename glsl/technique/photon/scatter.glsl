@@ -78,6 +78,14 @@ vec3 sampleVisibleNormal(vec3 ve, float alpha, vec2 u)
     return normalize(vec3(alpha * nh.x, alpha * nh.y, max(1e-6, nh.z)));
 }
 
+// The solid-angle density of a reflected direction drawn by sampleVisibleNormal:
+// D(h) G1(wo) / (4 n.wo) with Smith's G1 = 2 n.wo / (n.wo + sqrt(alpha^2 + (1 - alpha^2) (n.wo)^2)).
+float visibleNormalPdf(float alpha, float nDotH, float nDotWo)
+{
+    float a2 = alpha * alpha;
+    return ggxD(max(nDotH, 0.0), a2) / (2.0 * (nDotWo + sqrt(a2 + (1.0 - a2) * nDotWo * nDotWo)));
+}
+
 // core::pdfBrdf: the mixture's solid-angle density of wi.
 float brdfPdf(BrdfParams p, vec3 n, vec3 wo, vec3 wi)
 {
@@ -90,10 +98,7 @@ float brdfPdf(BrdfParams p, vec3 n, vec3 wo, vec3 wi)
         vec3 sum = wo + wi;
         if (dot(sum, sum) > 1e-14) {
             vec3 h = normalize(sum);
-            if (dot(wo, h) > 0.0 && dot(n, h) > 0.0) {
-                float a2 = p.alpha * p.alpha;
-                pdf += pSpec * ggxD(max(dot(n, h), 0.0), a2) / (2.0 * (nDotWo + sqrt(a2 + (1.0 - a2) * nDotWo * nDotWo)));
-            }
+            if (dot(wo, h) > 0.0 && dot(n, h) > 0.0) pdf += pSpec * visibleNormalPdf(p.alpha, dot(n, h), nDotWo);
         }
     }
     return pdf;
