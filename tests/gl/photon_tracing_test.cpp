@@ -182,6 +182,7 @@ TEST_F(PhotonTracingTest, PhotonMapIsDeterministicAndInHilbertOrder)
 {
     gl::PhotonTracerSettings s;
     s.photons = 8192;
+    s.kdOrder = false;
     const core::Scene scene = core::makeCornell("cornell-spot");
     const Traced a = trace(scene, s), b = trace(scene, s);
     ASSERT_GT(a.photons.size(), 1000u);

@@ -155,7 +155,7 @@ TechniqueInfo photonTechniqueInfo()
     info.passes = {
         {"photon-trace", "photons from every light through the BVH, Russian roulette, stored from the second surface",
          ""},
-        {"photon-sort", "photons put in path order and sorted by Hilbert index", ""},
+        {"photon-sort", "photons put in path order, sorted by Hilbert index, then put in kd order (on the CPU)", ""},
         {"photon-tree", "the linear hierarchy over the sorted photons with Eq. 3 per node", ""},
         {"cut", "E_min, the valid cut, its refinement and the irradiance cached per cut node", ""},
         {"kmeans", "quadtree seeding and k-means shading clusters with their samples", ""},
@@ -179,6 +179,9 @@ TechniqueInfo photonTechniqueInfo()
          "photons whose every bounce drew a lobe this smooth or smoother are caustic photons, read at the pixels "
          "(0: no caustic map; the final gather then sees the lights in near-specular surfaces)"},
         {"causticRadius", ParamType::Float, 0.01, 1e-5, 1.0, "the caustic map's estimate radius, per scene size"},
+        choiceParam("photonOrder", {"kd", "hilbert"}, 0,
+                    "the photon tree's nodes: kd-tree cells, each split at its photons' median along its longest "
+                    "side (the paper's; ordered on the CPU), or ranges of the Hilbert curve at equal counts"),
         {"leafPhotons", ParamType::Int, 1, 1, 1024,
          "photons per leaf of the photon tree, at most (the paper's kd-tree: 1)"},
         {"cutLevel", ParamType::Int, 12, 0, 24,
@@ -218,6 +221,7 @@ TechniqueInfo photonTechniqueInfo()
         s.tracer.guidedEmission = v.getBool("guidedEmission");
         s.tracer.causticRoughness = float(v.get("causticRoughness"));
         s.causticRadius = float(v.get("causticRadius"));
+        s.tracer.kdOrder = v.getChoice(photonTechniqueInfo().params, "photonOrder") == "kd";
         s.leafPhotons = v.getInt("leafPhotons");
         s.cut.eminLevel = v.getInt("cutLevel");
         s.cut.iterations = v.getInt("cutIterations");

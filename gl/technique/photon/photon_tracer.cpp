@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
+#include <vector>
 
 #include "gl/context/context.h"
 #include "gl/frame/bindings.h"
@@ -31,6 +33,30 @@ glm::vec3 powerBeforeFalloff(const LightSource& light, const glm::vec3& power)
 }
 
 } // namespace
+
+void orderAsKdTree(std::vector<GpuPhoton>& photons)
+{
+    const std::uint64_t n = photons.size();
+    // Node k of level l holds [floor(k n / 2^l), floor((k + 1) n / 2^l)) (photon_tree.glsl's nodeRange); its
+    // children meet at floor((2k + 1) n / 2^(l + 1)), where the median along the box's longest side goes.
+    const auto split = [&](auto&& self, std::uint32_t lo, std::uint32_t hi, std::uint64_t k, int l) -> void {
+        if (hi - lo <= 1 || l >= 31) return;
+        glm::vec3 a(std::numeric_limits<float>::infinity()), b(-std::numeric_limits<float>::infinity());
+        for (std::uint32_t i = lo; i < hi; ++i) {
+            a = glm::min(a, glm::vec3(photons[i].positionPath));
+            b = glm::max(b, glm::vec3(photons[i].positionPath));
+        }
+        const glm::vec3 side = b - a;
+        const int axis = side.x >= side.y && side.x >= side.z ? 0 : (side.y >= side.z ? 1 : 2);
+        const auto mid = std::uint32_t(((2 * k + 1) * n) >> (l + 1));
+        std::nth_element(
+            photons.begin() + lo, photons.begin() + mid, photons.begin() + hi,
+            [axis](const GpuPhoton& x, const GpuPhoton& y) { return x.positionPath[axis] < y.positionPath[axis]; });
+        self(self, lo, mid, 2 * k, l + 1);
+        self(self, mid, hi, 2 * k + 1, l + 1);
+    };
+    split(split, 0, std::uint32_t(n), 0, 0);
+}
 
 glm::vec3 emittedPower(const LightSource& light, float directionalArea)
 {
@@ -394,6 +420,16 @@ void PhotonTracer::trace(const Frame& frame, const RayCaster& caster, Buffer& co
     dispatchCompute(permute_, {int(stored_), 1, 1}, {64, 1, 1});
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     std::swap(staging_, sorted_); // sorted_ now holds the photons in Hilbert order
+    if (settings_.kdOrder) {
+        // Photons to the CPU and back (PhotonTracerSettings::kdOrder; the README's Departures).
+        std::vector<GpuPhoton> p(stored_);
+        sorted_.download(0, stored_ * sizeof(GpuPhoton), p.data());
+        orderAsKdTree(p);
+        sorted_.update(0, stored_ * sizeof(GpuPhoton), p.data());
+        PassCost copies;
+        copies.bytesFixed = 2.0 * sizeof(GpuPhoton) * stored_;
+        t.addWork(copies);
+    }
 }
 
 glm::dvec3 PhotonTracer::emittedTotal() const

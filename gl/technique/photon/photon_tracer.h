@@ -1,7 +1,8 @@
 // Photon tracing (Wang et al. 2009, section 3.1, "Building Photon Maps"; Jensen 2001): photons from every
 // light of the frame (point, spot, directional, emitting triangles), traced through the frame's BVH with
 // Russian roulette, stored from the second surface on (direct light is the frame's, from shadow maps),
-// put in path order (deterministic), then sorted by Hilbert index: the input of the photon tree.
+// put in path order (deterministic), sorted by Hilbert index, then by default put in kd order
+// (orderAsKdTree): the input of the photon tree.
 // glsl/technique/photon/photon_trace.comp says what happens at a surface.
 #pragma once
 
@@ -73,7 +74,16 @@ struct PhotonTracerSettings {
     bool guidedEmission = true;
     // Caustic photons (L S+ D): the roughest lobe a caustic path may bounce off; 0: no caustic photons.
     float causticRoughness = 0.1f;
+    // The photons in kd order (orderAsKdTree, on the CPU) after the Hilbert sort, so that the photon tree's
+    // nodes are the paper's kd-tree cells; false: Hilbert order.
+    bool kdOrder = true;
 };
+
+// Reorders `photons` so that every node of the photon tree (photon_tree.glsl: node k of level l holds
+// [floor(k N / 2^l), floor((k + 1) N / 2^l))) splits at the median of its photons along its bounding box's
+// longest side: the tree becomes a balanced kd-tree (the paper's photon tree, after Zhou et al. 2008, whose
+// cells are as wide as they are long). Deterministic for the same input.
+void orderAsKdTree(std::vector<GpuPhoton>& photons);
 
 // The GGX alpha of causticRoughness as the BRDF clamps it (common/brdf.glsl: at least 1e-3); -1 for 0.
 inline float causticAlpha(float causticRoughness)
@@ -112,7 +122,8 @@ class PhotonTracer {
 public:
     explicit PhotonTracer(const PhotonTracerSettings& settings);
 
-    // Traces this frame's photons; afterwards photons() holds storedCount() photons in Hilbert order.
+    // Traces this frame's photons; afterwards photons() holds storedCount() photons in kd order (Hilbert
+    // order without PhotonTracerSettings::kdOrder).
     // counters: the family's counters buffer (kCounterSlots uints).
     void trace(const Frame& frame, const RayCaster& caster, Buffer& counters, PassTimers& timers);
 

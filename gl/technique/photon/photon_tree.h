@@ -1,8 +1,9 @@
-// The photon tree (section 3.1/3.3): built on the GPU each frame over the photons in Hilbert order
-// (PhotonTracer) as a complete binary tree in heap layout, a linear hierarchy whose node k of level l holds
-// the photons [floor(k N / 2^l), floor((k + 1) N / 2^l)) (glsl/technique/photon/photon_tree.glsl). The
-// paper builds a kd-tree after Zhou et al. 2008; splitting the Hilbert order at equal counts gives the
-// balanced tree whose levels 12-13 the cut's E_min is taken from. Leaves hold at most leafPhotons photons.
+// The photon tree (section 3.1/3.3): built on the GPU each frame over the photons in the tracer's order
+// (PhotonTracer: kd order, or Hilbert order) as a complete binary tree in heap layout, a linear hierarchy
+// whose node k of level l holds the photons [floor(k N / 2^l), floor((k + 1) N / 2^l))
+// (glsl/technique/photon/photon_tree.glsl). The paper builds a kd-tree after Zhou et al. 2008; over the kd
+// order (orderAsKdTree) the nodes are that balanced kd-tree's cells, whose levels 12-13 the cut's E_min is
+// taken from. Leaves hold at most leafPhotons photons.
 // Per node: bounding box, count, power, centre, mean normal and Eq. 3's estimate E~_p, built by one pass
 // for the leaves and one per level above them; timed "photon-tree".
 #pragma once
@@ -37,7 +38,7 @@ class PhotonTree {
 public:
     explicit PhotonTree(int leafPhotons = 16);
 
-    // photons: `count` photons in Hilbert order at SSBO_PHOTONS' layout. minRadius: the smallest r_p (a
+    // photons: `count` photons in kd (or Hilbert) order at SSBO_PHOTONS' layout. minRadius: the smallest r_p (a
     // node of coincident photons has a box of size 0; Eq. 3 divides by r_p^2).
     void build(const Buffer& photons, std::uint32_t count, float minRadius, PassTimers& timers);
     // Binds the nodes at SSBO_PHOTON_NODES and sets photon_tree.glsl's uniforms on `program`.

@@ -1,8 +1,9 @@
-// The photon tree (gl/technique/photon/photon_tree.h): a complete binary tree over the photons in Hilbert
-// order, stored as a heap (node 1 the root, the children of i are 2i and 2i + 1, level l holds nodes
-// [2^l, 2^(l+1))). Node k of level l holds the photons [floor(k N / 2^l), floor((k + 1) N / 2^l)), so
-// the children split their parent's range exactly, and the leaves (level `treeDepth`) hold at most the
-// configured number of photons. Every node keeps sums that its children add up to, and Eq. 3's estimate.
+// The photon tree (gl/technique/photon/photon_tree.h): a complete binary tree over the photons in the
+// tracer's order (kd order: every node a kd-tree cell; or Hilbert order), stored as a heap (node 1 the
+// root, the children of i are 2i and 2i + 1, level l holds nodes [2^l, 2^(l+1))). Node k of level l holds
+// the photons [floor(k N / 2^l), floor((k + 1) N / 2^l)), so the children split their parent's range
+// exactly, and the leaves (level `treeDepth`) hold at most the configured number of photons. Every node
+// keeps sums that its children add up to, and Eq. 3's estimate.
 #ifndef BOUNCE_PHOTON_TREE_GLSL
 #define BOUNCE_PHOTON_TREE_GLSL
 
