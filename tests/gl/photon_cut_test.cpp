@@ -215,8 +215,8 @@ TEST_F(PhotonCutTest, RefinedCutNodesPassOrAreLeavesOrHitTheCap)
 
 // orderAsKdTree (photon_tracer.h) on the CPU: every node of the tree, at every level, splits its photons at
 // the median along its box's longest side, and the photons are the same ones. Hard cases: counts that are
-// not powers of two, coincident photons (the same point 300 times), photons on one plane (a box side of 0),
-// one photon and none.
+// not powers of two, coincident photons (2 of 3 at one point), photons on one plane (a box side of 0), one
+// photon and none, and NaN coordinates (every 5th photon; only the photons are checked: NaN has no order).
 TEST(PhotonKdOrder, EveryNodeSplitsAtItsMedianAlongItsLongestSide)
 {
     std::uint32_t seed = 7;
@@ -225,13 +225,14 @@ TEST(PhotonKdOrder, EveryNodeSplitsAtItsMedianAlongItsLongestSide)
         return float(seed >> 8) / 16777216.0f;
     };
     for (const std::uint32_t n : {0u, 1u, 2u, 3u, 1000u, 4097u}) {
-        for (const char* kind : {"random", "coincident", "planar"}) {
+        for (const char* kind : {"random", "coincident", "planar", "nan"}) {
             SCOPED_TRACE(std::string(kind) + ", " + std::to_string(n) + " photons");
             std::vector<gl::GpuPhoton> photons(n);
             for (std::uint32_t i = 0; i < n; ++i) {
                 glm::vec3 x(next() * 4.0f, next(), next() * 2.0f);
                 if (kind[0] == 'c' && i % 3 != 0) x = glm::vec3(0.5f);
                 if (kind[0] == 'p') x.y = 0.25f;
+                if (kind[0] == 'n' && i % 5 == 0) x.x = std::nanf("");
                 photons[i].positionPath = glm::vec4(x, float(i));
             }
             std::vector<gl::GpuPhoton> ordered = photons;
@@ -245,7 +246,7 @@ TEST(PhotonKdOrder, EveryNodeSplitsAtItsMedianAlongItsLongestSide)
             std::sort(after.begin(), after.end());
             EXPECT_EQ(after, before) << "the same photons";
             int wrong = 0;
-            for (std::uint32_t node = 1; n > 1 && node < (1u << 13); ++node) {
+            for (std::uint32_t node = 1; n > 1 && kind[0] != 'n' && node < (1u << 13); ++node) {
                 const auto [lo, hi] = gl::PhotonTree::range(node, n);
                 if (hi - lo < 2) continue;
                 glm::vec3 a(3e38f), b(-3e38f);

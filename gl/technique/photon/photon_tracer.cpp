@@ -49,9 +49,13 @@ void orderAsKdTree(std::vector<GpuPhoton>& photons)
         const glm::vec3 side = b - a;
         const int axis = side.x >= side.y && side.x >= side.z ? 0 : (side.y >= side.z ? 1 : 2);
         const auto mid = std::uint32_t(((2 * k + 1) * n) >> (l + 1));
-        std::nth_element(
-            photons.begin() + lo, photons.begin() + mid, photons.begin() + hi,
-            [axis](const GpuPhoton& x, const GpuPhoton& y) { return x.positionPath[axis] < y.positionPath[axis]; });
+        // NaN as +infinity: nth_element needs a strict weak order, which `<` on NaN is not.
+        const auto key = [axis](const GpuPhoton& x) {
+            const float v = x.positionPath[axis];
+            return std::isnan(v) ? std::numeric_limits<float>::infinity() : v;
+        };
+        std::nth_element(photons.begin() + lo, photons.begin() + mid, photons.begin() + hi,
+                         [&key](const GpuPhoton& x, const GpuPhoton& y) { return key(x) < key(y); });
         self(self, lo, mid, 2 * k, l + 1);
         self(self, mid, hi, 2 * k + 1, l + 1);
     };

@@ -81,8 +81,8 @@ struct PhotonTracerSettings {
 
 // Reorders `photons` so that every node of the photon tree (photon_tree.glsl: node k of level l holds
 // [floor(k N / 2^l), floor((k + 1) N / 2^l))) splits at the median of its photons along its bounding box's
-// longest side: the tree becomes a balanced kd-tree (the paper's photon tree, after Zhou et al. 2008, whose
-// cells are as wide as they are long). Deterministic for the same input.
+// longest side: the tree becomes a balanced kd-tree (the paper's photon tree, after Zhou et al. 2008), whose
+// cells stay about as wide as they are long. Deterministic for the same input; a NaN coordinate sorts last.
 void orderAsKdTree(std::vector<GpuPhoton>& photons);
 
 // The GGX alpha of causticRoughness as the BRDF clamps it (common/brdf.glsl: at least 1e-3); -1 for 0.
