@@ -36,30 +36,41 @@ glm::vec3 powerBeforeFalloff(const LightSource& light, const glm::vec3& power)
 
 void orderAsKdTree(std::vector<GpuPhoton>& photons)
 {
+    // The splits move 16-byte items (position, photon index), not the 64-byte photons, which are permuted
+    // once at the end.
+    struct Item {
+        glm::vec3 p;
+        std::uint32_t photon;
+    };
     const std::uint64_t n = photons.size();
+    std::vector<Item> items(photons.size());
+    for (std::size_t i = 0; i < photons.size(); ++i) items[i] = {glm::vec3(photons[i].positionPath), std::uint32_t(i)};
     // Node k of level l holds [floor(k n / 2^l), floor((k + 1) n / 2^l)) (photon_tree.glsl's nodeRange); its
     // children meet at floor((2k + 1) n / 2^(l + 1)), where the median along the box's longest side goes.
     const auto split = [&](auto&& self, std::uint32_t lo, std::uint32_t hi, std::uint64_t k, int l) -> void {
         if (hi - lo <= 1 || l >= 31) return;
         glm::vec3 a(std::numeric_limits<float>::infinity()), b(-std::numeric_limits<float>::infinity());
         for (std::uint32_t i = lo; i < hi; ++i) {
-            a = glm::min(a, glm::vec3(photons[i].positionPath));
-            b = glm::max(b, glm::vec3(photons[i].positionPath));
+            a = glm::min(a, items[i].p);
+            b = glm::max(b, items[i].p);
         }
         const glm::vec3 side = b - a;
         const int axis = side.x >= side.y && side.x >= side.z ? 0 : (side.y >= side.z ? 1 : 2);
         const auto mid = std::uint32_t(((2 * k + 1) * n) >> (l + 1));
         // NaN as +infinity: nth_element needs a strict weak order, which `<` on NaN is not.
-        const auto key = [axis](const GpuPhoton& x) {
-            const float v = x.positionPath[axis];
+        const auto key = [axis](const Item& x) {
+            const float v = x.p[axis];
             return std::isnan(v) ? std::numeric_limits<float>::infinity() : v;
         };
-        std::nth_element(photons.begin() + lo, photons.begin() + mid, photons.begin() + hi,
-                         [&key](const GpuPhoton& x, const GpuPhoton& y) { return key(x) < key(y); });
+        std::nth_element(items.begin() + lo, items.begin() + mid, items.begin() + hi,
+                         [&key](const Item& x, const Item& y) { return key(x) < key(y); });
         self(self, lo, mid, 2 * k, l + 1);
         self(self, mid, hi, 2 * k + 1, l + 1);
     };
     split(split, 0, std::uint32_t(n), 0, 0);
+    std::vector<GpuPhoton> ordered(photons.size());
+    for (std::size_t i = 0; i < items.size(); ++i) ordered[i] = photons[items[i].photon];
+    photons.swap(ordered);
 }
 
 glm::vec3 emittedPower(const LightSource& light, float directionalArea)
