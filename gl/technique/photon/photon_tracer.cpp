@@ -16,6 +16,8 @@ namespace bounce::gl {
 
 namespace {
 
+constexpr double kPiDouble = 3.14159265358979323846;
+
 double luminance(const glm::vec3& c)
 {
     return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z;
@@ -29,7 +31,7 @@ double luminance(const glm::vec3& c)
 glm::vec3 powerBeforeFalloff(const LightSource& light, const glm::vec3& power)
 {
     if (light.type != kLightSpot) return power;
-    return float(2.0 * 3.14159265358979323846 * (1.0 - double(light.cosOuter))) * light.intensity;
+    return float(2.0 * kPiDouble * (1.0 - double(light.cosOuter))) * light.intensity;
 }
 
 } // namespace
@@ -75,19 +77,18 @@ void orderAsKdTree(std::vector<GpuPhoton>& photons)
 
 glm::vec3 emittedPower(const LightSource& light, float directionalArea)
 {
-    constexpr double pi = 3.14159265358979323846;
     switch (light.type) {
-    case kLightPoint: return float(4.0 * pi) * light.intensity;
+    case kLightPoint: return float(4.0 * kPiDouble) * light.intensity;
     case kLightSpot: {
         // The integral over the cone of glTF's falloff: 1 inside the inner cone, t^2 between the cones
         // (t linear in the cosine): 2 pi ((1 - cos inner) + (cos inner - cos outer) / 3).
         const double co = light.cosOuter, ci = std::max(light.cosInner, light.cosOuter);
-        return float(2.0 * pi * ((1.0 - ci) + (ci - co) / 3.0)) * light.intensity;
+        return float(2.0 * kPiDouble * ((1.0 - ci) + (ci - co) / 3.0)) * light.intensity;
     }
     case kLightDirectional: return directionalArea * light.intensity;
     default: {
         const glm::vec3 c = glm::cross(light.triangle[1] - light.triangle[0], light.triangle[2] - light.triangle[0]);
-        return float(pi * 0.5 * double(glm::length(c))) * light.intensity;
+        return float(kPiDouble * 0.5 * double(glm::length(c))) * light.intensity;
     }
     }
 }
