@@ -27,6 +27,7 @@ struct Clustered {
     std::vector<std::uint32_t> ofPixel;
     std::vector<glm::vec4> position, normal;
     std::uint32_t seeds = 0, nonEmpty = 0;
+    int iterations = 0;
     float alpha = 0.0f;
 };
 
@@ -45,6 +46,7 @@ Clustered clusterScene(const core::Scene& scene, int w, int h, const gl::Shading
     c.ofPixel = clusters.downloadClusterOfPixel();
     c.seeds = clusters.seedsPlaced();
     c.nonEmpty = clusters.nonEmpty();
+    c.iterations = clusters.iterationsRun();
     c.alpha = clusters.alphaPerMetre();
     const std::vector<float> p = frame.readPositions(), n = frame.readNormals();
     for (std::size_t i = 0; i < p.size() / 4; ++i) {
@@ -224,6 +226,40 @@ TEST_F(PhotonClustersTest, CpuNearestCentresAndSamplesAgree)
     for (const auto& [k, n] : nearest) badSample += std::size_t(c.clusters[k].sample.w) != n.second;
     EXPECT_EQ(worse, 0) << "points whose cluster is not a nearest centre";
     EXPECT_EQ(badSample, 0) << "samples that are not their cluster's nearest member";
+}
+
+// k-means stops "when the clustering converges" (section 3.2): with tolerance 0, an iteration that moves no
+// pixel. What it stops at must then be a fixed point of k-means, checked on the CPU: every cluster's
+// centre its members' mean position and normal (and, by CpuNearestCentresAndSamplesAgree's check, every
+// point in a nearest cluster). Stopping on the seeding iteration (whose moves are counted against another
+// clustering) or on a count that misses moves leaves centres that are not their members' means.
+TEST_F(PhotonClustersTest, KMeansStopsAtAFixedPointWhenNoPixelMoves)
+{
+    gl::ShadingClusterSettings s;
+    s.clusters = 90;
+    s.iterations = 64;
+    s.tolerance = 0.0f;
+    s.temporal = false;
+    const Clustered c = clusterScene(core::makeCornell("cornell-spot"), 40, 40, s);
+    std::printf("[ measured ] converged after %d iterations\n", c.iterations);
+    EXPECT_LT(c.iterations, s.iterations) << "k-means never converged: the moves are not counted";
+    EXPECT_GE(c.iterations, 2);
+    std::map<std::uint32_t, std::pair<glm::dvec3, glm::dvec3>> sums;
+    for (std::size_t i = 0; i < c.ofPixel.size(); ++i) {
+        if (c.position[i].w == 0.0f) continue;
+        auto& [x, n] = sums[c.ofPixel[i]];
+        x += glm::dvec3(c.position[i]);
+        n += glm::dvec3(c.normal[i]);
+    }
+    int offCentre = 0;
+    for (const auto& [k, sum] : sums) {
+        const gl::GpuCluster& cluster = c.clusters[k];
+        const glm::dvec3 mean = sum.first / double(cluster.centre.w), normal = glm::normalize(sum.second);
+        offCentre += glm::length(mean - glm::dvec3(cluster.centre)) > 1e-4 ||
+                     glm::length(normal - glm::dvec3(cluster.normal)) > 1e-4;
+    }
+    EXPECT_EQ(offCentre, 0) << "clusters whose centre is not their members' mean: k-means stopped before converging";
+    expectPartition(c);
 }
 
 TEST_F(PhotonClustersTest, SameInputGivesTheSameClusters)

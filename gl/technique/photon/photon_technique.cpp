@@ -91,6 +91,7 @@ public:
             {"clusters", double(clusters_.nonEmpty())},
             {"clusters.seeds", double(clusters_.seedsPlaced())},
             {"clusters.reused", double(clusters_.survivors())},
+            {"clusters.iterations", double(clusters_.iterationsRun())},
             {"gather.rays", double(clusters_.nonEmpty()) * double(settings_.gather.rays)},
             {"gather.fallbackHits", double(gather_.fallbackHits())},
             {"gather.uncoveredHits", double(gather_.uncoveredHits())},
@@ -193,7 +194,10 @@ TechniqueInfo photonTechniqueInfo()
         {"clusters", ParamType::Int, 1600, 1, 1048576, "shading clusters K (the paper: 1000-6000)"},
         {"alpha", ParamType::Float, 0.3, 0.0, 100.0,
          "Eq. 2's weight of position against normal, per scene size (the paper: 0.1-0.5)"},
-        {"kmeansIterations", ParamType::Int, 4, 0, 64, "k-means iterations after seeding"},
+        {"kmeansIterations", ParamType::Int, 4, 0, 64, "k-means iterations after seeding, at most"},
+        {"kmeansTolerance", ParamType::Float, 0.002, 0.0, 1.0,
+         "k-means has converged when an iteration moves at most this fraction of the pixels to another cluster "
+         "(0: none)"},
         {"temporal", ParamType::Bool, 1, 0, 1, "reuse the previous frame's clusters (section 3.2)"},
         {"gatherRays", ParamType::Int, 256, 1, 65536, "final-gather rays per cluster sample (the paper: 250-500)"},
         {"glossyRays", ParamType::Int, 4, 0, 1024,
@@ -230,6 +234,7 @@ TechniqueInfo photonTechniqueInfo()
         s.clusters.clusters = v.getInt("clusters");
         s.clusters.alpha = float(v.get("alpha"));
         s.clusters.iterations = v.getInt("kmeansIterations");
+        s.clusters.tolerance = float(v.get("kmeansTolerance"));
         s.clusters.temporal = v.getBool("temporal");
         s.clusters.everyPixel = v.getChoice(photonTechniqueInfo().params, "gatherAt") == "pixels";
         s.gather.rays = v.getInt("gatherRays");

@@ -224,9 +224,15 @@ void ShadingClusters::addPointTreeWork(PassTimers::Scope& t) const
         kernelWork(leaves - 1, {.flops = 40, .bytesRead = 2 * kPointNodeBytes + 8, .bytesWritten = kPointNodeBytes}));
 }
 
-void ShadingClusters::assign(bool onlyClassify, PassTimers::Scope& t)
+std::uint32_t ShadingClusters::assign(bool onlyClassify, bool countMoves, Buffer& counters, PassTimers::Scope& t)
 {
+    if (countMoves) {
+        const std::uint32_t zero = 0;
+        counters.update(kCounterFirst * 4, 4, &zero);
+        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    }
     bind();
+    counters.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_PHOTON_COUNTERS);
     clusterOfPixel_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_CLUSTER_OF_PIXEL);
     keys_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_SORT_KEYS);
     values_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_SORT_VALUES);
@@ -236,8 +242,11 @@ void ShadingClusters::assign(bool onlyClassify, PassTimers::Scope& t)
     assign_.set("bruteForce", settings_.bruteForce ? 1 : 0);
     assign_.set("onlyClassify", onlyClassify ? 1 : 0);
     assign_.set("errorSlack", settings_.errorSlack);
+    assign_.set("countMoves", countMoves ? 1 : 0);
     dispatchCompute(assign_, {width_, height_, 1}, {8, 8, 1});
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+    std::uint32_t moved = 0;
+    if (countMoves) counters.download(kCounterFirst * 4, 4, &moved);
     // kmeans_assign.comp per pixel: its surface and previous cluster read and Eq. 2 to that centre, then
     // the walk of the tree of centres, taken as two nodes per level (a box bound each) and two leaves'
     // centres (an estimate: the walk's length is known only on the GPU; bruteForce: every centre);
@@ -249,6 +258,7 @@ void ShadingClusters::assign(bool onlyClassify, PassTimers::Scope& t)
                                               .fetches = 1,
                                               .bytesRead = kSurfaceBytes + 4 + kPointNodeBytes * boxes + 32 * centres,
                                               .bytesWritten = 12}));
+    return moved;
 }
 
 void ShadingClusters::sortByCluster(Buffer& counters, PassTimers::Scope& t)
@@ -305,7 +315,7 @@ void ShadingClusters::cluster(const Frame& frame, float sceneSize, Buffer& count
         // Temporal reuse: the previous centres, fixed, take the points within their largest error.
         buildPointTree(false, counters);
         addPointTreeWork(t);
-        assign(true, t);
+        assign(true, false, counters, t);
         sortByCluster(counters, t);
         runSegments(t);
         bind();
@@ -342,12 +352,23 @@ void ShadingClusters::cluster(const Frame& frame, float sceneSize, Buffer& count
     }
 
     const double pixels = double(width_) * height_;
+    // "until either the clustering converges or a maximum number of iterations has been reached": from the
+    // second iteration on, the pixels that changed cluster are counted (the first compares with another
+    // frame's or the seeds' clusters), and an iteration that moves at most `tolerance` of them ends k-means
+    // with its assignment. With tolerance 0 that is exact: an assignment that moves no pixel gives the
+    // centres the last update made, so every later iteration and the final assignment would repeat it.
+    const auto movesAllowed = std::uint32_t(double(settings_.tolerance) * pixels);
+    bool converged = false;
+    iterationsRun_ = 0;
     for (int it = 0; it < settings_.iterations; ++it) {
         buildPointTree(false, counters);
         addPointTreeWork(t);
-        assign(false, t);
+        const std::uint32_t moved = assign(false, it > 0, counters, t);
+        converged = it > 0 && moved <= movesAllowed;
         sortByCluster(counters, t);
         runSegments(t);
+        ++iterationsRun_;
+        if (converged) break;
         bind();
         values_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_SORT_VALUES);
         setCommon(update_);
@@ -360,11 +381,13 @@ void ShadingClusters::cluster(const Frame& frame, float sceneSize, Buffer& count
         t.addWork(kernelWork(count_, {.flops = 15, .bytesRead = kClusterBytes, .bytesWritten = 48}));
         t.addWork(kernelWork(pixels, {.flops = kSurfaceFlops + 10, .fetches = 1, .bytesRead = 4 + kSurfaceBytes}));
     }
-    buildPointTree(false, counters);
-    addPointTreeWork(t);
-    assign(false, t);
-    sortByCluster(counters, t);
-    runSegments(t);
+    if (!converged) {
+        buildPointTree(false, counters);
+        addPointTreeWork(t);
+        assign(false, false, counters, t);
+        sortByCluster(counters, t);
+        runSegments(t);
+    }
     const std::uint32_t zero = 0;
     counters.update(kCounterClusters * 4, 4, &zero);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);

@@ -52,7 +52,8 @@ inline constexpr std::uint32_t kNoCluster = 0xFFFFFFFFu, kUnclassified = 0xFFFFF
 struct ShadingClusterSettings {
     int clusters = 1600;      // K (the paper: 1000-6000)
     float alpha = 0.3f;       // Eq. 2's weight of position, in 1 / scene size (the paper: 0.1-0.5)
-    int iterations = 4;       // k-means iterations
+    int iterations = 4;       // k-means iterations, at most
+    float tolerance = 0.002f; // converged: an iteration moved at most this fraction of the pixels
     bool temporal = true;     // reuse the previous frame's clusters
     float errorSlack = 0.05f; // temporal: a point joins a previous cluster within 1 + this of its largest error
     std::uint32_t seed = 1;
@@ -73,6 +74,7 @@ public:
     std::uint32_t seedsPlaced() const { return seeds_; }   // this frame's new seeds
     std::uint32_t survivors() const { return survivors_; } // clusters kept from the previous frame
     std::uint32_t nonEmpty() const { return nonEmpty_; }   // clusters with members (and samples)
+    int iterationsRun() const { return iterationsRun_; }   // this frame's k-means iterations (until converged)
     const Buffer& clusters() const { return clusters_; }
     Buffer& clusters() { return clusters_; } // tests write sample irradiances through it
     const Buffer& clusterOfPixel() const { return clusterOfPixel_; }
@@ -107,6 +109,7 @@ private:
         marksBuffer_;
     int width_ = 0, height_ = 0, quadSize_ = 1, quadLevels_ = 0, pointDepth_ = 0;
     std::uint32_t count_ = 0, seeds_ = 0, survivors_ = 0, nonEmpty_ = 0;
+    int iterationsRun_ = 0;
     float alpha_ = 0.0f;
     glm::vec3 lo_{0.0f}, extent_{1.0f};
     bool havePrevious_ = false;
@@ -115,7 +118,8 @@ private:
     // Each step adds its kernels' work to `t`, the "kmeans" scope.
     void buildQuadtree(bool onlyUnclassified, PassTimers::Scope& t);
     void placeSeeds(std::uint32_t first, std::uint32_t count, Buffer& counters, PassTimers::Scope& t);
-    void assign(bool onlyClassify, PassTimers::Scope& t);
+    // countMoves: returns the pixels whose cluster changed (a read-back), else 0.
+    std::uint32_t assign(bool onlyClassify, bool countMoves, Buffer& counters, PassTimers::Scope& t);
     void sortByCluster(Buffer& counters, PassTimers::Scope& t);
     void runSegments(PassTimers::Scope& t);
     void setCommon(Program& p) const;

@@ -4,7 +4,8 @@
 // alpha times the distance to its box plus the distance from the normal to its normals' box) exceeds the
 // best error so far; the previous assignment's error starts the bound. Ties go to the lower cluster
 // index, so the result is the brute force's (bruteForce: every centre, for tests). Writes the cluster and
-// the (cluster, pixel) pair the sort by cluster takes.
+// the (cluster, pixel) pair the sort by cluster takes, and with countMoves counts the pixels whose cluster
+// changed (k-means has converged when none did).
 #include "common/gbuffer.glsl"
 #include "technique/photon/shading_clusters.glsl"
 
@@ -13,12 +14,14 @@ layout(local_size_x = 8, local_size_y = 8) in;
 layout(std430, binding = SSBO_CLUSTER_OF_PIXEL) buffer ClusterOfPixel { uint clusterOfPixel[]; };
 layout(std430, binding = SSBO_SORT_KEYS) writeonly buffer Keys { uint keys[]; };
 layout(std430, binding = SSBO_SORT_VALUES) writeonly buffer Values { uint values[]; };
+layout(std430, binding = SSBO_PHOTON_COUNTERS) buffer Counters { uint counters[]; };
 
 uniform ivec2 viewport;
 uniform uint clusterCount;
 uniform int bruteForce;
 uniform int onlyClassify;   // temporal reuse: keep a pixel only when its error is within the cluster's largest
 uniform float errorSlack;   //   (times 1 + errorSlack), else mark it unclassified
+uniform int countMoves;     // count the pixels whose cluster changed in counters[kCounterFirst]
 
 void consider(uint c, vec3 x, vec3 n, inout float best, inout uint bestCluster)
 {
@@ -37,14 +40,13 @@ void main()
     if (q.x >= viewport.x || q.y >= viewport.y) return;
     uint pixel = uint(q.y * viewport.x + q.x);
     GSurface s = gbufferSurface(q);
-    uint bestCluster = kNoCluster;
+    uint bestCluster = kNoCluster, previous = clusterOfPixel[pixel];
     if (s.geometry) {
         vec3 x = s.position, n = s.normal;
         float best = 3.0e38;
         if (bruteForce != 0) {
             for (uint c = 0u; c < clusterCount; ++c) consider(c, x, n, best, bestCluster);
         } else {
-            uint previous = clusterOfPixel[pixel];
             if (previous < clusterCount) consider(previous, x, n, best, bestCluster);
             uint i = 1u;
             while (i != 0u) {
@@ -64,6 +66,7 @@ void main()
             bestCluster = kUnclassified;
         if (bestCluster == kNoCluster) bestCluster = kUnclassified;
     }
+    if (countMoves != 0 && bestCluster != previous) atomicAdd(counters[kCounterFirst], 1u);
     clusterOfPixel[pixel] = bestCluster;
     keys[pixel] = bestCluster < clusterCount ? bestCluster : clusterCount;
     values[pixel] = pixel;
