@@ -245,6 +245,31 @@ TEST_F(PhotonTechniqueTest, GlossyLastBounceMatchesTheIndirectLight)
     EXPECT_LT(errors[1], 0.6 * errors[0]) << "sampling the lobe must beat its albedo";
 }
 
+// The caustic map's errors against the path tracer's `full` at kSize^2 (rendered at kSuper x kSuper and
+// box-downsampled): relative RMSE and mean, without the map (index 0) and with it at `roughness` (1).
+struct CausticErrors {
+    double rmse[2] = {0.0, 0.0}, mean[2] = {0.0, 0.0};
+};
+
+CausticErrors causticErrors(const char* name, double roughness)
+{
+    const core::Scene scene = core::makeCornell(name);
+    const core::Image want = reference(scene, 8192);
+    CausticErrors e;
+    for (int with = 0; with < 2; ++with) {
+        const double r = with ? roughness : 0.0;
+        const Rendered got = render(scene, kSize * kSuper, kSize * kSuper, testValues({{"causticRoughness", r}}));
+        EXPECT_TRUE(allFiniteNonNegative(got.indirect));
+        const std::vector<bool> mask = notEmitters(got.emission);
+        const core::Image image = core::boxDownsample(got.image, kSize, kSize);
+        e.rmse[with] = testing::measureImages(image, want, testing::ImageMetric::relativeRmse(), &mask);
+        e.mean[with] = testing::measureImages(image, want, testing::ImageMetric::meanRelative(), &mask);
+        std::printf("[ measured ] %s, causticRoughness=%g: relative RMSE %.4f, mean off by %.4f\n", name, r,
+                    e.rmse[with], e.mean[with]);
+    }
+    return e;
+}
+
 // The caustic map on cornell-mirror (the tall block a polished metal): its caustics on the floor, the red
 // wall and the ceiling are L S D paths, which the final gather can only find by its rays meeting the
 // emitter's image in the block. With the caustic map (causticRoughness 0.1) the caustic photons are read
@@ -253,22 +278,23 @@ TEST_F(PhotonTechniqueTest, GlossyLastBounceMatchesTheIndirectLight)
 // tracer's `full` at 32 x 32, the image with the map must be closer.
 TEST_F(PhotonTechniqueTest, CausticMapBringsCornellMirrorCloser)
 {
-    const core::Scene scene = core::makeCornell("cornell-mirror");
-    const core::Image want = reference(scene, 8192);
-    double errors[2] = {0.0, 0.0}, means[2] = {0.0, 0.0};
-    for (double roughness : {0.0, 0.1}) {
-        const Rendered r = render(scene, kSize * kSuper, kSize * kSuper, testValues({{"causticRoughness", roughness}}));
-        EXPECT_TRUE(allFiniteNonNegative(r.indirect));
-        const std::vector<bool> mask = notEmitters(r.emission);
-        const core::Image got = core::boxDownsample(r.image, kSize, kSize);
-        errors[roughness > 0.0] = testing::measureImages(got, want, testing::ImageMetric::relativeRmse(), &mask);
-        means[roughness > 0.0] = testing::measureImages(got, want, testing::ImageMetric::meanRelative(), &mask);
-        std::printf("[ measured ] cornell-mirror, causticRoughness=%g: relative RMSE %.4f, mean off by %.4f\n",
-                    roughness, errors[roughness > 0.0], means[roughness > 0.0]);
-    }
-    EXPECT_LT(errors[1], 0.25);
-    EXPECT_LT(errors[1], 0.5 * errors[0]) << "the caustic map must bring the image closer";
-    EXPECT_LT(means[1], 0.03) << "the caustics' energy";
+    const CausticErrors e = causticErrors("cornell-mirror", 0.1);
+    EXPECT_LT(e.rmse[1], 0.25);
+    EXPECT_LT(e.rmse[1], 0.5 * e.rmse[0]) << "the caustic map must bring the image closer";
+    EXPECT_LT(e.mean[1], 0.03) << "the caustics' energy";
+}
+
+// The same on cornell-glossy (the tall block a rough metal, roughness 0.3): the block's glossy reflection
+// of the light on the red wall and the floor comes from the caustic photons (causticRoughness 0.35, the
+// default), and the gather's rays that meet the block pass on along a direction drawn from its lobe.
+// Without the map the gather finds the block's highlight with few of its rays. Measured: relative RMSE
+// 0.1814 and the mean 1.95% low without the map, 0.1624 and 0.11% with it (256 x 256 against `full` at
+// 1024 samples, 4 x 4 blocks: 0.1244 and 0.0770).
+TEST_F(PhotonTechniqueTest, CausticMapBringsCornellGlossyCloser)
+{
+    const CausticErrors e = causticErrors("cornell-glossy", 0.35);
+    EXPECT_LT(e.rmse[1], e.rmse[0]) << "the glossy caustics must bring the image closer";
+    EXPECT_LT(e.mean[1], 0.01) << "the glossy caustics' energy";
 }
 
 // A plane mirror on a Lambertian floor (albedo 0.5), a spot aimed at the mirror: the caustic map against

@@ -176,7 +176,7 @@ TechniqueInfo photonTechniqueInfo()
         {"guidedEmission", ParamType::Bool, 1, 0, 1,
          "a directional light's cells send photons in proportion to what a pilot trace stored from them, with the "
          "power scaled to stay unbiased (0: every cell alike)"},
-        {"causticRoughness", ParamType::Float, 0.1, 0.0, 1.0,
+        {"causticRoughness", ParamType::Float, 0.35, 0.0, 1.0,
          "photons whose every bounce drew a lobe this smooth or smoother are caustic photons, read at the pixels "
          "(0: no caustic map; the final gather then sees the lights in near-specular surfaces)"},
         {"causticRadius", ParamType::Float, 0.01, 1e-5, 1.0, "the caustic map's estimate radius, per scene size"},

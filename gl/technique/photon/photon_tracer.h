@@ -73,7 +73,9 @@ struct PhotonTracerSettings {
     // cell's weight so the estimate stays unbiased), or every cell alike (false).
     bool guidedEmission = true;
     // Caustic photons (L S+ D): the roughest lobe a caustic path may bounce off; 0: no caustic photons.
-    float causticRoughness = 0.1f;
+    // 0.35 takes glossy lobes such as cornell-glossy's (0.3), whose highlights the final gather's rays
+    // sample poorly (photon/README.md, "The caustic map").
+    float causticRoughness = 0.35f;
     // The photons in kd order (orderAsKdTree, on the CPU) after the Hilbert sort, so that the photon tree's
     // nodes are the paper's kd-tree cells; false: Hilbert order.
     bool kdOrder = true;

@@ -11,6 +11,7 @@
 #include "common/raycast.glsl"
 #include "technique/photon/cut_lookup.glsl"
 #include "technique/photon/density.glsl"
+#include "technique/photon/scatter.glsl"
 
 layout(binding = UNIT_BASE_COLOR) uniform sampler2DArray baseColorTextures;
 
@@ -89,29 +90,33 @@ vec3 hitRadiance(GatherHit h, vec3 wo, vec2 rotation, bool lobe, out int coverag
 }
 
 // Radiance leaving the hit of a ray along `dir` back towards its origin (hitRadiance). With the caustic map
-// (CAUSTIC_MAP: lobes no rougher than causticAlpha), a near-specular hit passes the ray on along its mirror
-// direction, once, as the paper's shading points seen through specular surfaces: its lobe reflects neither
-// the lights (L S D at the origin: the caustic map's) nor the photons' mean direction (a spike for a
-// mirror), but what the reflected ray's hit sends, weighted by w F.
+// (CAUSTIC_MAP: lobes no rougher than causticAlpha), a hit on such a lobe passes the ray on once, along a
+// direction drawn from the lobe (visible normals; for a mirror, its mirror direction), as the paper's
+// shading points seen through specular surfaces: its lobe reflects neither the lights (L S D at the
+// origin: the caustic map's) nor the photons' mean direction (a spike for a mirror), but what the passed-on
+// ray's hit sends, weighted by the lobe's f cos / pdf.
 vec3 gatherRadiance(vec3 dir, Hit hit, vec2 rotation, out int coverage)
 {
     coverage = 2;
     GatherHit h = gatherHit(dir, hit);
     if (!h.visible) return vec3(0.0);
 #ifdef CAUSTIC_MAP
-    bool mirror = h.b.alpha <= causticAlpha;
+    bool passOn = h.b.alpha <= causticAlpha;
 #else
-    bool mirror = false;
+    bool passOn = false;
 #endif
-    vec3 radiance = hitRadiance(h, -dir, rotation, !mirror, coverage);
+    // A lobe passed on without a diffuse part (a metal) reflects nothing more here.
+    vec3 radiance = passOn && !brdfHasDiffuse(h.b) ? vec3(0.0) : hitRadiance(h, -dir, rotation, !passOn, coverage);
 #ifdef CAUSTIC_MAP
-    vec3 wi = reflect(dir, h.n);
-    float cosine = dot(h.n, wi);
+    // The lobe's sample from the ray's own random pair, hashed apart from the light points it rotates.
+    uint r = pcgHash(floatBitsToUint(rotation.x) ^ pcgHash(floatBitsToUint(rotation.y)));
+    vec2 u = vec2(float(r >> 8), float(pcgHash(r) >> 8)) * (1.0 / 16777216.0);
+    vec3 wi;
+    vec3 f = passOn ? sampleGlossyLobe(h.b, h.n, -dir, u, wi) : vec3(0.0);
     Hit next;
-    if (mirror && cosine > 0.0 && dot(h.ng, wi) > 0.0 && closestHit(h.y + h.ng * rayEpsilon, wi, 0.0, 3.0e38, next)) {
+    if (f != vec3(0.0) && dot(h.ng, wi) > 0.0 && closestHit(h.y + h.ng * rayEpsilon, wi, 0.0, 3.0e38, next)) {
         GatherHit g = gatherHit(wi, next);
         int ignored;
-        vec3 f = h.b.weight * (h.b.f0 + (1.0 - h.b.f0) * schlickWeight(cosine));
         if (g.visible) radiance += f * hitRadiance(g, -wi, rotation, true, ignored);
     }
 #endif

@@ -23,16 +23,6 @@ uniform uint rayIndex; // this dispatch's ray, of rayCount per pixel
 uniform uint rayCount;
 uniform uint seed;     // a new set of directions for every still frame
 
-// The glossy lobe's sample, f_glossy cos / pdf along wi, with pdf the visible-normal density (brdfPdf's
-// glossy term); 0 where wi falls below the surface.
-vec3 glossyWeight(BrdfParams b, vec3 n, vec3 wo, vec3 wi)
-{
-    float nDotWi = dot(n, wi);
-    if (nDotWi <= 0.0) return vec3(0.0);
-    float pdf = visibleNormalPdf(b.alpha, dot(n, normalize(wo + wi)), dot(n, wo));
-    return pdf > 0.0 ? brdfGlossy(b, n, wo, wi) * (nDotWi / pdf) : vec3(0.0);
-}
-
 void main()
 {
     ivec2 q = ivec2(gl_GlobalInvocationID.xy);
@@ -42,17 +32,13 @@ void main()
     BrdfParams b = gbufferBrdf(q);
     vec3 n = g.normal, x = g.position;
     vec3 wo = normalize(cameraPosition - x);
-    vec3 t, bt;
-    basisAround(n, t, bt);
-    vec3 woLocal = vec3(dot(wo, t), dot(wo, bt), dot(wo, n));
-    if (b.weight <= 0.0 || woLocal.z <= 0.0) return;
+    if (b.weight <= 0.0 || dot(n, wo) <= 0.0) return;
     // Ray j of the pixel's stratified set (rows of a Hammersley set), the set rotated per pixel and frame.
     uint h = pcgHash(uint(q.y * viewport.x + q.x) ^ pcgHash(seed));
     vec2 shift = vec2(float(h >> 8), float(pcgHash(h) >> 8)) * (1.0 / 16777216.0);
     vec2 u = fract(vec2((float(rayIndex) + 0.5) / float(rayCount), radicalInverse2(rayIndex)) + shift);
-    vec3 hl = sampleVisibleNormal(normalize(woLocal), b.alpha, u);
-    vec3 wi = reflect(-wo, hl.x * t + hl.y * bt + hl.z * n);
-    vec3 weight = glossyWeight(b, n, wo, wi);
+    vec3 wi;
+    vec3 weight = sampleGlossyLobe(b, n, wo, u, wi);
     Hit hit;
     if (weight == vec3(0.0) || !closestHit(x + n * rayEpsilon, wi, 0.0, 3.0e38, hit)) return;
     int coverage;

@@ -86,6 +86,20 @@ float visibleNormalPdf(float alpha, float nDotH, float nDotWo)
     return ggxD(max(nDotH, 0.0), a2) / (2.0 * (nDotWo + sqrt(a2 + (1.0 - a2) * nDotWo * nDotWo)));
 }
 
+// Draws wi from the glossy lobe alone (its visible normals, seen from wo); returns f_glossy (n.wi) / pdf
+// with pdf brdfPdf's glossy term, 0 where wi falls below the surface.
+vec3 sampleGlossyLobe(BrdfParams b, vec3 n, vec3 wo, vec2 u, out vec3 wi)
+{
+    vec3 t, bt;
+    basisAround(n, t, bt);
+    vec3 hl = sampleVisibleNormal(normalize(vec3(dot(wo, t), dot(wo, bt), dot(wo, n))), b.alpha, u);
+    wi = reflect(-wo, hl.x * t + hl.y * bt + hl.z * n);
+    float nDotWi = dot(n, wi);
+    if (nDotWi <= 0.0) return vec3(0.0);
+    float pdf = visibleNormalPdf(b.alpha, dot(n, normalize(wo + wi)), dot(n, wo));
+    return pdf > 0.0 ? brdfGlossy(b, n, wo, wi) * (nDotWi / pdf) : vec3(0.0);
+}
+
 // core::pdfBrdf: the mixture's solid-angle density of wi.
 float brdfPdf(BrdfParams p, vec3 n, vec3 wo, vec3 wi)
 {
