@@ -31,7 +31,9 @@ struct Clustered {
     float alpha = 0.0f;
 };
 
-Clustered clusterScene(const core::Scene& scene, int w, int h, const gl::ShadingClusterSettings& s, int frames = 1)
+// `frames` clusterings of the scene's G-buffer; with `move`, the camera moves by it after the first.
+Clustered clusterScene(const core::Scene& scene, int w, int h, const gl::ShadingClusterSettings& s, int frames = 1,
+                       glm::vec3 move = glm::vec3(0.0f))
 {
     gl::Frame frame(scene, photontest::smallFrame(w, h));
     gl::PassTimers timers;
@@ -40,7 +42,16 @@ Clustered clusterScene(const core::Scene& scene, int w, int h, const gl::Shading
     gl::Buffer counters("photon.counters", gl::kCounterSlots * 4);
     gl::ShadingClusters clusters(s);
     const float size = glm::length(scene.bounds().extent());
-    for (int i = 0; i < frames; ++i) clusters.cluster(frame, size, counters, timers);
+    for (int i = 0; i < frames; ++i) {
+        if (i == 1 && move != glm::vec3(0.0f)) {
+            core::Camera camera = scene.camera;
+            camera.position += move;
+            frame.setCamera(camera);
+            frame.beginFrame();
+            frame.renderGBuffer(timers);
+        }
+        clusters.cluster(frame, size, counters, timers);
+    }
     Clustered c;
     c.clusters = clusters.download();
     c.ofPixel = clusters.downloadClusterOfPixel();
@@ -202,6 +213,29 @@ TEST_F(PhotonClustersTest, TreeSearchAgreesWithBruteForce)
     ASSERT_EQ(tree.clusters.size(), brute.clusters.size());
     EXPECT_EQ(std::memcmp(tree.clusters.data(), brute.clusters.data(), tree.clusters.size() * sizeof(gl::GpuCluster)),
               0);
+}
+
+// Temporal reuse's shortcut (kmeans_assign.comp): in the frame after the camera moved a little, every pixel
+// the classification kept tries only its survivor and the new clusters, which the pixels the move uncovered
+// seeded. Its clusters must be the brute force's, bit for bit.
+TEST_F(PhotonClustersTest, SurvivorShortcutAgreesWithBruteForce)
+{
+    const core::Scene scene = core::makeCornell("cornell-area");
+    gl::ShadingClusterSettings s;
+    s.clusters = 200;
+    s.iterations = 3;
+    const glm::vec3 move(0.02f, 0.01f, 0.0f);
+    const Clustered tree = clusterScene(scene, 64, 64, s, 2, move);
+    s.bruteForce = true;
+    const Clustered brute = clusterScene(scene, 64, 64, s, 2, move);
+    std::printf("[ measured ] second frame: %u new clusters of %zu\n", tree.seeds, tree.clusters.size());
+    EXPECT_GT(tree.seeds, 0u) << "no new cluster: the shortcut's new clusters go untested";
+    EXPECT_LE(tree.seeds, gl::ShadingClusters::kShortcutNew) << "too many new clusters: the shortcut is not taken";
+    EXPECT_EQ(tree.ofPixel, brute.ofPixel);
+    ASSERT_EQ(tree.clusters.size(), brute.clusters.size());
+    EXPECT_EQ(std::memcmp(tree.clusters.data(), brute.clusters.data(), tree.clusters.size() * sizeof(gl::GpuCluster)),
+              0);
+    expectPartition(tree);
 }
 
 // A CPU reference of the classification and sample steps: every point's cluster is one of least Eq. 2

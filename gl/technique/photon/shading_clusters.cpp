@@ -47,6 +47,7 @@ ShadingClusters::ShadingClusters(const ShadingClusterSettings& settings)
       sample_(compute("kmeansSample", "kmeans_sample.comp")),
       marks_(compute("kmeansMarks", "kmeans_marks.comp")),
       survivorsProgram_(compute("kmeansSurvivors", "kmeans_survivors.comp")),
+      survivorOfPixel_(compute("kmeansSurvivorOfPixel", "kmeans_survivor_of_pixel.comp")),
       perPixel_(compute("clustersPerPixel", "clusters_per_pixel.comp"))
 {}
 
@@ -65,6 +66,7 @@ void ShadingClusters::allocate(int width, int height)
     const std::size_t pixels = std::size_t(width) * std::size_t(height);
     clusterOfPixel_ = Buffer("photon.clusterOfPixel", pixels * 4);
     clusterOfPixel_.clearToZero();
+    survivorOfPixelBuffer_ = Buffer("photon.survivorOfPixel", pixels * 4);
     const std::size_t k =
         settings_.everyPixel ? std::max<std::size_t>(pixels, 1) : std::size_t(std::max(settings_.clusters, 1));
     clusters_ = Buffer("photon.clusters", k * sizeof(GpuCluster));
@@ -243,16 +245,23 @@ std::uint32_t ShadingClusters::assign(bool onlyClassify, bool countMoves, Buffer
     assign_.set("onlyClassify", onlyClassify ? 1 : 0);
     assign_.set("errorSlack", settings_.errorSlack);
     assign_.set("countMoves", countMoves ? 1 : 0);
+    // The survivors' shortcut (kmeans_assign.comp): tries the new clusters at every kept pixel, so only
+    // while they are few.
+    const bool shortcut = !onlyClassify && settings_.temporal && survivors_ > 0 && count_ - survivors_ <= kShortcutNew;
+    assign_.set("fixedClusters", shortcut ? survivors_ : 0u);
+    survivorOfPixelBuffer_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_CLUSTER_SEEDS);
     dispatchCompute(assign_, {width_, height_, 1}, {8, 8, 1});
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
     std::uint32_t moved = 0;
     if (countMoves) counters.download(kCounterFirst * 4, 4, &moved);
     // kmeans_assign.comp per pixel: its surface and previous cluster read and Eq. 2 to that centre, then
     // the walk of the tree of centres, taken as two nodes per level (a box bound each) and two leaves'
-    // centres (an estimate: the walk's length is known only on the GPU; bruteForce: every centre);
-    // cluster, key and value written.
-    const double boxes = settings_.bruteForce ? 0.0 : 2.0 * pointDepth_,
-                 centres = 1.0 + (settings_.bruteForce ? double(count_) : 2.0);
+    // centres (an estimate: the walk's length is known only on the GPU; bruteForce: every centre; the
+    // survivors' shortcut: its survivor and the new clusters); cluster, key and value written.
+    const bool walk = !settings_.bruteForce && !shortcut;
+    const double boxes = walk ? 2.0 * pointDepth_ : 0.0, centres = 1.0 + (settings_.bruteForce ? double(count_)
+                                                                          : shortcut ? 1.0 + double(count_ - survivors_)
+                                                                                     : 2.0);
     t.addWork(
         kernelWork(double(width_) * height_, {.flops = kSurfaceFlops + 35 * boxes + kErrorFlops * centres,
                                               .fetches = 1,
@@ -333,12 +342,23 @@ void ShadingClusters::cluster(const Frame& frame, float sceneSize, Buffer& count
         dispatchCompute(survivorsProgram_, {int(count_), 1, 1}, {64, 1, 1});
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
         counters.download(kCounterFirst * 4, 4, &survivors_);
+        bind();
+        clusterOfPixel_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_CLUSTER_OF_PIXEL);
+        marksBuffer_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_PHOTON_SCAN);
+        survivorOfPixelBuffer_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_CLUSTER_SEEDS);
+        const auto pixelCount = std::uint32_t(width_ * height_);
+        survivorOfPixel_.set("pixelCount", pixelCount);
+        survivorOfPixel_.set("previousCount", count_);
+        dispatchCompute(survivorOfPixel_, {int(pixelCount), 1, 1}, {64, 1, 1});
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
         // kmeans_marks.comp per previous cluster: its members' range read, its mark written; the scan of the
         // marks; kmeans_survivors.comp per previous cluster: it and its position read, a survivor written.
         t.addWork(kernelWork(count_, {.flops = 1, .bytesRead = 16, .bytesWritten = 4}));
         t.addWork(GpuScan::work(count_));
         t.addWork(kernelWork(count_, {.bytesRead = kClusterBytes + 4}));
         t.addWork(kernelWork(survivors_, {.bytesWritten = kClusterBytes}));
+        // kmeans_survivor_of_pixel.comp per pixel: its cluster and that cluster's position read, one word written.
+        t.addWork(kernelWork(double(width_) * height_, {.bytesRead = 8, .bytesWritten = 4}));
         buildQuadtree(true, t);
     } else {
         buildQuadtree(false, t);
@@ -427,7 +447,7 @@ std::size_t ShadingClusters::bytes() const
 {
     return quad_.bytes() + seedsBuffer_.bytes() + clusterOfPixel_.bytes() + clusters_.bytes() + spare_.bytes() +
            keys_.bytes() + values_.bytes() + keysTmp_.bytes() + valuesTmp_.bytes() + pointTree_.bytes() +
-           marksBuffer_.bytes() + sort_.bytes();
+           marksBuffer_.bytes() + survivorOfPixelBuffer_.bytes() + sort_.bytes();
 }
 
 } // namespace bounce::gl

@@ -63,6 +63,10 @@ struct ShadingClusterSettings {
 
 class ShadingClusters {
 public:
+    // With temporal reuse and at most this many new clusters, a kept pixel's k-means assignment tries its
+    // survivor and every new cluster instead of walking the tree of centres (kmeans_assign.comp).
+    static constexpr std::uint32_t kShortcutNew = 128;
+
     explicit ShadingClusters(const ShadingClusterSettings& settings);
 
     // Clusters the frame's shading points. counters: the family's counters buffer.
@@ -102,11 +106,12 @@ public:
 private:
     ShadingClusterSettings settings_;
     Program quadLeaves_, quadReduce_, quadError_, quadErrorGroup_, seedDistribute_, seedWrite_, pointKeys_,
-        pointLeaves_, pointReduce_, assign_, segments_, update_, sample_, marks_, survivorsProgram_, perPixel_;
+        pointLeaves_, pointReduce_, assign_, segments_, update_, sample_, marks_, survivorsProgram_, survivorOfPixel_,
+        perPixel_;
     GpuScan scan_;
     RadixSort sort_;
     Buffer quad_, seedsBuffer_, clusterOfPixel_, clusters_, spare_, keys_, values_, keysTmp_, valuesTmp_, pointTree_,
-        marksBuffer_;
+        marksBuffer_, survivorOfPixelBuffer_;
     int width_ = 0, height_ = 0, quadSize_ = 1, quadLevels_ = 0, pointDepth_ = 0;
     std::uint32_t count_ = 0, seeds_ = 0, survivors_ = 0, nonEmpty_ = 0;
     int iterationsRun_ = 0;
