@@ -170,6 +170,9 @@ TechniqueInfo photonTechniqueInfo()
         {"photons", ParamType::Int, 65536, 0, 16777216, "photon paths emitted per frame (split among lights by power)"},
         {"maxBounces", ParamType::Int, 16, 1, 64, "surfaces one photon path may reach"},
         {"russianRoulette", ParamType::Bool, 1, 0, 1, "end photon paths by Russian roulette (0: only at maxBounces)"},
+        choiceParam("firstSurfaceRoulette", {"auto", "all", "none"}, 0,
+                    "Russian roulette at a photon path's first surface (not stored: its light is direct): auto at "
+                    "every light's but a directional light's, whose guided photons it would mostly end there"),
         {"projectionMap", ParamType::Bool, 1, 0, 1,
          "a directional light's photons leave only from where its projection map meets the scene (0: across the "
          "whole scene)"},
@@ -221,6 +224,10 @@ TechniqueInfo photonTechniqueInfo()
         s.tracer.photons = v.getInt("photons");
         s.tracer.maxBounces = v.getInt("maxBounces");
         s.tracer.russianRoulette = v.getBool("russianRoulette");
+        const std::string first = v.getChoice(photonTechniqueInfo().params, "firstSurfaceRoulette");
+        s.tracer.firstSurfaceRoulette = first == "auto"  ? kRouletteExceptDirectional
+                                        : first == "all" ? kRouletteEveryLight
+                                                         : 0u;
         s.tracer.projectionMap = v.getBool("projectionMap");
         s.tracer.guidedEmission = v.getBool("guidedEmission");
         s.tracer.causticRoughness = float(v.get("causticRoughness"));

@@ -341,6 +341,7 @@ void PhotonTracer::dispatchTrace(const Frame& frame, const RayCaster& caster, Bu
         trace_.set("capacity", unsigned(capacity_));
         trace_.set("maxBounces", settings_.maxBounces);
         trace_.set("russianRoulette", settings_.russianRoulette ? 1 : 0);
+        trace_.set("firstSurfaceRoulette", settings_.firstSurfaceRoulette);
         trace_.set("rayEpsilon", 1e-5f * size_);
         trace_.set("causticAlpha", causticAlpha(settings_.causticRoughness));
         trace_.set("seed", settings_.seed);

@@ -7,7 +7,9 @@
 //   - from the second surface on it is stored (the first surface's light is direct light, which the
 //     frame's shadow maps give: the photon map holds indirect light only);
 //   - it scatters by the BRDF (scatter.glsl), with Russian roulette on the ratio of its power after and
-//     before, so that a surviving photon keeps its power and the stored power is unbiased;
+//     before, so that a surviving photon keeps its power and the stored power is unbiased; at the first
+//     surface only for the light kinds firstSurfaceRoulette names (a directional light's guided photons
+//     take the bounce's weight there instead: PhotonTracerSettings::firstSurfaceRoulette);
 //   - a photon whose every bounce so far drew the glossy lobe of a near-specular surface (GGX alpha at
 //     most causticAlpha) is a caustic photon, L S+ D (Jensen 2001): stored with incoming.w = 1, read at the
 //     pixels by photon_caustic.comp.
@@ -49,6 +51,7 @@ uniform int emitterCount;
 uniform uint capacity;      // staging slots
 uniform int maxBounces;     // surfaces a photon may reach
 uniform int russianRoulette;
+uniform uint firstSurfaceRoulette; // bit k: roulette at the first surface for the photons of kLight* kind k
 uniform float rayEpsilon;   // scene units: how far a scattered ray starts off its surface
 uniform float causticAlpha; // the roughest lobe (GGX alpha) a caustic path may bounce off (-1: none)
 uniform uint seed;
@@ -126,6 +129,7 @@ void main()
     emitted[path] = vec4(power, 0.0);
     uint rng = pcgHash(path ^ pcgHash(seed));
     bool caustic = true; // every bounce so far off a near-specular lobe
+    bool firstRoulette = ((firstSurfaceRoulette >> uint(e.positionType.w)) & 1u) != 0u;
 
     for (int bounce = 0; bounce < maxBounces; ++bounce) {
         if (max(power.r, max(power.g, power.b)) <= 0.0) break;
@@ -172,7 +176,7 @@ void main()
         vec3 weight = scatterPhoton(b, nf, wo, u1, u, wi);
         if (dot(ng, wi) <= 0.0) break;
         vec3 next = power * weight;
-        if (russianRoulette != 0) {
+        if (russianRoulette != 0 && (bounce > 0 || firstRoulette)) {
             float keep = min(1.0, max(next.r, max(next.g, next.b)) / max(power.r, max(power.g, power.b)));
             if (nextRandom(rng) >= keep) break;
             next /= keep;
