@@ -60,19 +60,19 @@ enum PhotonCounter : std::uint32_t {
 // cells of its projection map), an emitting triangle pi L A.
 glm::vec3 emittedPower(const LightSource& light, float directionalArea);
 
-// PhotonTracerSettings::firstSurfaceRoulette's masks.
+// PhotonTracerSettings::firstSurfaceRoulette's masks: bit k for the lights of kind k (gpu_scene.h's kLight*).
 inline constexpr std::uint32_t kRouletteEveryLight = 0xFu;
-inline constexpr std::uint32_t kRouletteExceptDirectional = 0xFu & ~(1u << 2);
+inline constexpr std::uint32_t kRouletteExceptDirectional = kRouletteEveryLight & ~(1u << kLightDirectional);
 
 struct PhotonTracerSettings {
     int photons = 65536; // emitted paths
     int maxBounces = 16; // surfaces one path may reach
     bool russianRoulette = true;
-    // Russian roulette at a path's first surface, per light kind (bit k: photon_trace.comp's emitter kind
-    // k: 0 point, 1 spot, 2 directional, 3 emitting triangle). A directional light's photons come from the cells where they were seen to be
-    // stored (guidedEmission); roulette at the first surface, whose light is direct and not stored, would
-    // end most of them there (Sponza's floor: albedo about 0.3). Without it a path's first stored photon
-    // carries the power times the first bounce's weight: unequal powers, the same expectation.
+    // Russian roulette at a path's first surface, per light kind (the masks above). A directional light's
+    // photons come from the cells where they were seen to be stored (guidedEmission); roulette at the
+    // first surface, whose light is direct and not stored, would end most of them there (Sponza's floor:
+    // albedo about 0.3). Without it a path's first stored photon carries the power times the first
+    // bounce's weight: unequal powers, the same expectation.
     std::uint32_t firstSurfaceRoulette = kRouletteExceptDirectional;
     std::uint32_t seed = 1; // the same in every frame: a moving light moves the same photons
     // Directional lights: photons leave from the cells of a projection map where the light meets the
