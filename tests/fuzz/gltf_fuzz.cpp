@@ -22,10 +22,12 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// One folder per process (libFuzzer's -jobs and -fork run several), removed at exit.
+// One folder per process (libFuzzer's -jobs and -fork run several), removed at exit. The path is never
+// destroyed: a handler that atexit() takes while a function-local static is being built runs after that
+// static's destructor, and a destroyed path would leave the folder behind.
 const fs::path& scratchFolder()
 {
-    static const fs::path folder = [] {
+    static const fs::path* const folder = [] {
         std::string pattern = (fs::temp_directory_path() / "bounce-gltf-fuzz-XXXXXX").string();
         if (!::mkdtemp(pattern.data())) {
             std::perror("gltf_fuzz: mkdtemp");
@@ -35,9 +37,9 @@ const fs::path& scratchFolder()
             std::error_code ec;
             fs::remove_all(scratchFolder(), ec);
         });
-        return fs::path(pattern);
+        return new fs::path(pattern);
     }();
-    return folder;
+    return *folder;
 }
 
 void writeInput(const fs::path& path, const std::uint8_t* data, std::size_t size)
