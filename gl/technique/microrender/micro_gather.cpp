@@ -123,7 +123,11 @@ Program MicroGather::makeProgram(Frame& frame, const PointHierarchy& hierarchy, 
         {"LIST_CAP", std::to_string(res * res)}, // §3.1: "the post-traversal list of the same size"
         {"MICRO_STAGES", std::to_string(settings_.stages)},
     };
-    if (settings_.rayCast) d.push_back({"RAY_CAST", "1"});
+    if (settings_.rayCast) {
+        d.push_back({"RAY_CAST", "1"});
+        // Rays pass through the holes of alpha masks (raycast.glsl), as the path tracer's do.
+        for (const Define& k : frame.gpuScene().alphaMaskDefines()) d.push_back(k);
+    }
     if (settings_.rayCast && settings_.rayDiscs) d.push_back({"RAY_DISCS", "1"});
     if (settings_.rayCast && !settings_.rayDiscs && settings_.silhouetteRays) {
         d.push_back({"SILHOUETTE_RAYS", "1"});

@@ -21,8 +21,9 @@ namespace {
 // Only the kinds of light the scene has (as the frame's direct pass), and the density it gathers from.
 std::vector<Define> gatherDefines(const Frame& frame, const FinalGatherSettings& s)
 {
-    std::vector<Define> d;
+    // Gather rays pass through the holes of alpha masks (raycast.glsl, ALPHA_MASK).
     const GpuScene& scene = frame.gpuScene();
+    std::vector<Define> d = scene.alphaMaskDefines();
     if (scene.punctualLightCount() > 0) d.push_back({"PUNCTUAL_LIGHTS", "1"});
     if (int(scene.lights().size()) > scene.punctualLightCount()) d.push_back({"AREA_LIGHTS", "1"});
     // No glossy terms at the hits (common/brdf.glsl) where the scene has no lobe.

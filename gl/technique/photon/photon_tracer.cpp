@@ -110,8 +110,7 @@ PassCost bvhWalkWork(const core::Bvh& bvh, double walks)
 PhotonTracer::PhotonTracer(const PhotonTracerSettings& settings)
     : settings_(settings),
       place_(Program::compute("photon.place", "technique/photon/photon_place.comp")),
-      permute_(Program::compute("photon.permute", "technique/photon/photon_permute.comp")),
-      project_(Program::compute("photon.project", "technique/photon/photon_project.comp"))
+      permute_(Program::compute("photon.permute", "technique/photon/photon_permute.comp"))
 {
     const std::size_t n = std::size_t(std::max(settings_.photons, 1));
     pathCounts_ = Buffer("photon.pathCounts", n * 4);
@@ -173,6 +172,9 @@ ProjectionMap PhotonTracer::project(const Frame& frame, const RayCaster& caster,
     map.corner = centre - direction * (2.0f * radius) - radius * (map.axisU + map.axisV);
     std::vector<std::uint32_t> marks(kGrid * kGrid, 1u);
     if (settings_.projectionMap) {
+        // Probes pass through the holes of alpha masks, as the photons do.
+        if (!project_)
+            project_ = Program::compute("photon.project", "technique/photon/photon_project.comp", caster.defines());
         Buffer buffer("photon.projectionMarks", marks.size() * 4);
         frame.bindSceneData();
         caster.bind();
@@ -376,7 +378,9 @@ void PhotonTracer::trace(const Frame& frame, const RayCaster& caster, Buffer& co
         buildEmitters(frame, caster);
         const bool directional = !projections_.empty();
         if (!trace_ || traceDirectional_ != directional) {
-            std::vector<Define> defines;
+            // Photons pass through the holes of alpha masks (raycast.glsl, ALPHA_MASK), as the path tracer's
+            // rays do (ref/embree_scene.cpp).
+            std::vector<Define> defines = caster.defines();
             if (directional) defines.push_back({"DIRECTIONAL_LIGHTS", "1"});
             trace_ = Program::compute("photon.trace", "technique/photon/photon_trace.comp", defines);
             traceDirectional_ = directional;

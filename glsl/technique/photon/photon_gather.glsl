@@ -13,7 +13,7 @@
 #include "technique/photon/density.glsl"
 #include "technique/photon/scatter.glsl"
 
-layout(binding = UNIT_BASE_COLOR) uniform sampler2DArray baseColorTextures;
+#include "common/base_color.glsl"
 
 uniform int punctualLightCount; // lights [0, punctualLightCount): point, spot, directional
 uniform int lightCount;         // lights [punctualLightCount, lightCount): emitting triangles

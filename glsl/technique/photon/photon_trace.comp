@@ -44,7 +44,7 @@ layout(std430, binding = SSBO_PHOTON_COUNTERS) buffer Counters { uint counters[]
 layout(std430, binding = SSBO_PHOTON_STAGING) writeonly buffer Staging { Photon staging[]; };
 layout(std430, binding = SSBO_PHOTON_PATHS) writeonly buffer PathCounts { uint pathCounts[]; };
 layout(std430, binding = SSBO_PHOTON_EMITTED) writeonly buffer Emitted { vec4 emitted[]; };
-layout(binding = UNIT_BASE_COLOR) uniform sampler2DArray baseColorTextures;
+#include "common/base_color.glsl"
 
 uniform uint pathCount;
 uniform int emitterCount;
