@@ -1,6 +1,7 @@
 // Alpha-masked materials (glTF MASK) in every pass of the frame that sees the scene: the G-buffer, the
 // reflective shadow map and GPU ray casting cut the holes of the masked quad of tests/alpha_mask_scene.h
-// (the shadow maps: tests/gl/setup_direct_test.cpp), and so do the photons of `photon`. Ray casting is held against Embree, whose filter
+// (the shadow maps: tests/gl/setup_direct_test.cpp), and so do the photons of `photon` and the k-buffer
+// of global ray-bundles. Ray casting is held against Embree, whose filter
 // function cuts the same holes in the path tracer (tests/ref/alpha_mask_test.cpp).
 #include <cmath>
 #include <cstdio>
@@ -19,6 +20,7 @@
 #include "ref/embree_scene.h"
 #include "tests/alpha_mask_scene.h"
 #include "tests/gl/gl_test_fixture.h"
+#include "tests/gl/grb_harness.h"
 
 namespace bounce {
 namespace {
@@ -221,6 +223,32 @@ TEST_F(AlphaMaskTest, PhotonsPassThroughTheHoles)
                 hole, opaque);
     EXPECT_EQ(hole, 0);
     EXPECT_GT(opaque, 100);
+}
+
+// A global ray-bundle's rays pass through the mask's holes: captured along slanted directions from above
+// and below, no k-buffer entry is an atlas texel in the hole, while the opaque half is hit. (Captured as
+// if the mask were opaque, 278 entries lay in the hole.)
+TEST_F(AlphaMaskTest, RayBundlesPassThroughTheHoles)
+{
+    gl::KBufferSettings ks = grbtest::kbufferSettings(gl::KBufferCapture::Atomic, 64, 8);
+    ks.alphaMask = true;
+    grbtest::Harness h(floorUnderMask(), ks, 32.0f);
+    const std::vector<grbtest::Texel> texels = h.texels();
+    int hole = 0, opaque = 0;
+    for (const glm::vec3 dir : {glm::vec3(0.2f, -1.0f, 0.1f), glm::vec3(-0.1f, 1.0f, 0.3f)}) {
+        h.kbuffer().capture(h.frame(), h.atlas(), h.view(glm::normalize(dir)), h.timers());
+        for (const auto& pixel : h.kbuffer().readBack())
+            for (const auto& [depth, texel] : pixel.entries) {
+                const glm::vec3 x = texels[texel].position;
+                if (std::abs(x.y - testing::kMaskQuadHeight) > 1e-3f) continue;
+                hole += under(x) == Under::Hole;
+                opaque += under(x) == Under::Opaque;
+            }
+        h.timers().endFrame(false);
+    }
+    std::printf("[ measured ] k-buffer entries on the quad: %d in the hole, %d on the opaque half\n", hole, opaque);
+    EXPECT_EQ(hole, 0);
+    EXPECT_GT(opaque, 200);
 }
 
 } // namespace

@@ -84,6 +84,7 @@ public:
             choice_.kbuffer.k = v.getInt("k");
         }
         setup.endFrame(false);
+        choice_.kbuffer.alphaMask = frame.gpuScene().hasAlphaMask();
         kbuffer_ = std::make_unique<KBuffer>(choice_.kbuffer);
         RadianceSettings rs;
         rs.glossy = frame.scene().hasGlossy();

@@ -24,9 +24,13 @@ namespace {
 // is still above 0 after k fragments and at 0 after more: the overflow mark (kbuffer.glsl).
 constexpr int kRoutingRef = 2;
 
-std::vector<Define> captureDefines(const char* mode, int k)
+// alphaMask: the fragments in the holes of alpha masks are discarded (capture.frag, ALPHA_MASK), so that a
+// bundle's rays pass through them as the path tracer's do.
+std::vector<Define> captureDefines(const char* mode, int k, bool alphaMask)
 {
-    return {{mode, "1"}, {"KBUFFER_K", std::to_string(std::max(k, 1))}};
+    std::vector<Define> d = {{mode, "1"}, {"KBUFFER_K", std::to_string(std::max(k, 1))}};
+    if (alphaMask) d.push_back({"ALPHA_MASK", "1"});
+    return d;
 }
 
 void clearUint(Texture& t)
@@ -141,8 +145,9 @@ KBuffer::KBuffer(const KBufferSettings& settings)
         stencil_ = Texture::create2DMultisample("grb.kbuffer.stencil", GL_DEPTH24_STENCIL8, n, n, samples_);
         glTextureParameteri(stencil_.id(), GL_DEPTH_STENCIL_TEXTURE_MODE, GL_STENCIL_INDEX);
         fbo_.attach(GL_DEPTH_STENCIL_ATTACHMENT, stencil_);
-        captureProgram_ = Program::graphics("grb.capture.stencil", "technique/grb/capture.vert",
-                                            "technique/grb/capture.frag", captureDefines("CAPTURE_STENCIL", k_));
+        captureProgram_ =
+            Program::graphics("grb.capture.stencil", "technique/grb/capture.vert", "technique/grb/capture.frag",
+                              captureDefines("CAPTURE_STENCIL", k_, settings.alphaMask));
         initProgram_ =
             Program::graphics("grb.stencil.init", "frame/fullscreen.vert", "technique/grb/stencil_init.frag");
         break;
@@ -152,8 +157,9 @@ KBuffer::KBuffer(const KBufferSettings& settings)
         entries_ = Texture::create2DArray("grb.kbuffer.entries", GL_RG32F, n, n, k_);
         count_ = Texture::create2D("grb.kbuffer.count", GL_R32UI, n, n);
         fbo_.setDefaultSize(n, n);
-        captureProgram_ = Program::graphics("grb.capture.atomic", "technique/grb/capture.vert",
-                                            "technique/grb/capture.frag", captureDefines("CAPTURE_ATOMIC", k_));
+        captureProgram_ =
+            Program::graphics("grb.capture.atomic", "technique/grb/capture.vert", "technique/grb/capture.frag",
+                              captureDefines("CAPTURE_ATOMIC", k_, settings.alphaMask));
         break;
     case KBufferCapture::Peel:
         k_ = settings.k;
@@ -171,10 +177,12 @@ KBuffer::KBuffer(const KBufferSettings& settings)
         overflowFbo_.checkComplete();
         composeProgram_ =
             Program::graphics("grb.peel.compose", "frame/fullscreen.vert", "technique/grb/peel_compose.frag");
-        captureProgram_ = Program::graphics("grb.capture.peel", "technique/grb/capture.vert",
-                                            "technique/grb/capture.frag", captureDefines("CAPTURE_PEEL", k_));
-        overflowProgram_ = Program::graphics("grb.capture.overflow", "technique/grb/capture.vert",
-                                             "technique/grb/capture.frag", captureDefines("CAPTURE_OVERFLOW", k_));
+        captureProgram_ =
+            Program::graphics("grb.capture.peel", "technique/grb/capture.vert", "technique/grb/capture.frag",
+                              captureDefines("CAPTURE_PEEL", k_, settings.alphaMask));
+        overflowProgram_ =
+            Program::graphics("grb.capture.overflow", "technique/grb/capture.vert", "technique/grb/capture.frag",
+                              captureDefines("CAPTURE_OVERFLOW", k_, settings.alphaMask));
         break;
     }
 }
@@ -422,7 +430,7 @@ DepthComplexity measureDepthComplexity(const Frame& frame, const GrbAtlas& atlas
     fbo.setDefaultSize(size, size);
     VertexArray vao("grb.depthComplexity.scene");
     Program program = Program::graphics("grb.capture.count", "technique/grb/capture.vert", "technique/grb/capture.frag",
-                                        captureDefines("CAPTURE_COUNT", 1));
+                                        captureDefines("CAPTURE_COUNT", 1, frame.gpuScene().hasAlphaMask()));
     frame.bindSceneData();
     atlas.bind();
     DepthComplexity dc;

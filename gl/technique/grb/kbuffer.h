@@ -33,6 +33,7 @@ struct KBufferSettings {
     int k = 8;                // entries per pixel (Stencil: rounded up to a multiple of the samples)
     int samples = 8;          // Stencil: samples per slice (at most the driver's)
     bool multisample = false; // Stencil: GL_MULTISAMPLE during the capture (see StencilProbe)
+    bool alphaMask = false;   // the scene has alpha-masked materials: their holes capture nothing
 };
 
 // The driver's largest sample count for the stencil-routed k-buffer (colour RG32F and depth-stencil).

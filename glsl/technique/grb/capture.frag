@@ -8,10 +8,18 @@
 //     fragments at one depth (both faces of an edge seen edge-on) are peeled one by one.
 //   CAPTURE_COUNT: only counts (the depth complexity that k=auto measures).
 //   CAPTURE_OVERFLOW: peel's last pass, marks pixels with a layer beyond the last.
+// ALPHA_MASK (a scene with masked materials): a fragment in a mask's hole is no hit; the ray goes on.
 #include "technique/grb/bindings.glsl"
 
 in vec2 vAtlas;
 in float vDepth;
+#ifdef ALPHA_MASK
+#define SCENE_GEOMETRY
+#include "common/scene.glsl"
+#include "common/base_color.glsl"
+flat in uint vTriangle;
+in vec2 vUv;
+#endif
 
 uniform int atlasWidth;
 uniform float depthScale; // 1 / (2 radius): gl_FragDepth for the peel's depth test
@@ -35,6 +43,10 @@ layout(location = 0) out uvec4 outOverflow;
 
 void main()
 {
+#ifdef ALPHA_MASK
+    Material m = materials[sceneTriangleMaterial(vTriangle)];
+    if (intBitsToFloat(m.flags.z) > 0.0 && alphaCutOut(m, baseColorTexel(m, vUv).a)) discard;
+#endif
     ivec2 t = ivec2(floor(vAtlas));
     vec4 entry = vec4(uintBitsToFloat(uint(t.y) * uint(atlasWidth) + uint(t.x) + 1u), vDepth, 0.0, 0.0);
 #if defined(CAPTURE_ATOMIC)

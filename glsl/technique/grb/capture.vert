@@ -10,6 +10,10 @@ uniform mat4 bundleViewProj; // orthographic, the jitter included (bundle_direct
 
 out vec2 vAtlas;
 out float vDepth;
+#ifdef ALPHA_MASK
+flat out uint vTriangle;
+out vec2 vUv;
+#endif
 
 void main()
 {
@@ -18,5 +22,9 @@ void main()
     vec3 p = sceneVertexPosition(sceneVertexIndex(t, c));
     vAtlas = atlasCorner(t, c);
     vDepth = bundleDepth(p);
+#ifdef ALPHA_MASK
+    vTriangle = t;
+    vUv = sceneVertexUv(sceneVertexIndex(t, c));
+#endif
     gl_Position = bundleViewProj * vec4(p, 1.0);
 }
