@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "core/sampling.h"
+#include "core/texture_sampling.h"
 
 namespace bounce::core {
 
@@ -36,7 +37,11 @@ TriangleRef findTriangle(const Scene& scene, const std::vector<std::size_t>& off
     return {&scene.meshes[mesh], (triangle - offsets[mesh]) * 3};
 }
 
-glm::vec3 interpolate(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c, glm::vec2 bary)
+// Draws per candidate after which the masks are taken to leave no surface (an opaque share under 1/64).
+constexpr std::size_t kMaxDrawsPerCandidate = 64;
+
+template <class V>
+V interpolate(const V& a, const V& b, const V& c, glm::vec2 bary)
 {
     return bary.x * a + bary.y * b + (1.0f - bary.x - bary.y) * c;
 }
@@ -235,22 +240,35 @@ SurfacePoints sampleSurfacePoints(const Scene& scene, std::size_t count, std::ui
     if (count > (std::size_t(1) << 31) / kCandidatesPerPoint)
         throw SurfacePointError("too many surface points: " + std::to_string(count));
 
-    // Step 1: candidates uniform by area, in random order (their index order).
+    // Step 1: candidates uniform by area, in random order (their index order). A candidate in a hole of an
+    // alpha mask is drawn again, and the surface area becomes the opaque part's: the total times the share
+    // of draws that landed outside the holes.
     const std::vector<std::size_t> offsets = triangleOffsets(scene);
     const std::size_t candidateCount = count * kCandidatesPerPoint;
     std::vector<SurfacePoint> candidates(candidateCount);
     std::vector<glm::vec3> positions(candidateCount);
     Pcg32 rng(mixBits(seed), mixBits(seed ^ 0x5eed5eed5eedull));
-    for (std::size_t i = 0; i < candidateCount; ++i) {
+    const AlphaMasks masks(scene);
+    std::size_t draws = 0;
+    for (std::size_t i = 0; i < candidateCount; ++draws) {
+        if (draws == kMaxDrawsPerCandidate * candidateCount)
+            throw SurfacePointError("cannot place surface points: the alpha masks cut out nearly all of the surface");
         float remapped = 0.0f;
         const auto triangle = std::uint32_t(pick.sample(rng.nextFloat(), &remapped));
         const glm::vec2 bary = sampleUniformTriangle({remapped, rng.nextFloat()});
-        candidates[i] = {triangle, bary, 0.0f};
         const TriangleRef t = findTriangle(scene, offsets, triangle);
         const auto& idx = t.mesh->indices;
+        const Material& material = scene.materials[t.mesh->material];
+        if (masks.any() && material.isMasked() && t.mesh->uvs.size() == t.mesh->positions.size() &&
+            masks.cutOut(material, interpolate(t.mesh->uvs[idx[t.first]], t.mesh->uvs[idx[t.first + 1]],
+                                               t.mesh->uvs[idx[t.first + 2]], bary)))
+            continue;
+        candidates[i] = {triangle, bary, 0.0f};
         positions[i] = interpolate(t.mesh->positions[idx[t.first]], t.mesh->positions[idx[t.first + 1]],
                                    t.mesh->positions[idx[t.first + 2]], bary);
+        ++i;
     }
+    out.totalAreaM2 *= double(candidateCount) / double(draws);
 
     // Step 2, restarting with a smaller radius while fewer than `count` darts land. After 60 restarts
     // (r below 1e-6 of the first) every candidate lands: 5N candidates are always enough.

@@ -10,6 +10,8 @@
 // The method (sampleSurfacePoints):
 //   1. kCandidatesPerPoint x N candidates, uniform by area (triangle chosen with probability
 //      proportional to its area, then the square-root warp of sampling.h).
+//      A candidate in a hole of an alpha mask (glTF MASK, core/texture_sampling.h) is drawn again, and
+//      A below is the opaque area: the total times the share of draws that landed outside the holes.
 //   2. Dart throwing over the candidates in their (random) order with the hard radius
 //      r = kMinDistanceFactor * sqrt(A / N), distances in 3D (what a splat or a gather sees), so the
 //      points stay apart across edges too. If fewer than N darts land (tiny N, a few large
@@ -56,7 +58,8 @@ struct SurfacePoint {
 
 struct SurfacePoints {
     std::vector<SurfacePoint> points;
-    double totalAreaM2 = 0.0; // the scene's surface area (degenerate triangles add nothing)
+    double totalAreaM2 = 0.0; // the scene's surface area (degenerate triangles add nothing; alpha masks' holes
+                              // left out, estimated from the candidates' draws)
     double minDistance = 0.0; // every two points are at least this far apart (metres, 3D)
     int restarts = 0;         // radius reductions of step 2 (0 on ordinary scenes)
 };

@@ -61,21 +61,6 @@ void alphaMaskFilter(const RTCFilterFunctionNArguments* args)
     }
 }
 
-// Bilinear with repeat wrapping; texel centres at half-integers, row 0 at v = 0 (glTF).
-template <class T>
-T bilinear(const std::vector<T>& texels, int width, int height, const glm::vec2& uv)
-{
-    const float x = uv.x * float(width) - 0.5f;
-    const float y = uv.y * float(height) - 0.5f;
-    const float fx = std::floor(x), fy = std::floor(y);
-    const float ax = x - fx, ay = y - fy;
-    const auto wrap = [](long i, int n) { return int(((i % n) + n) % n); };
-    const int x0 = wrap(long(fx), width), x1 = wrap(long(fx) + 1, width);
-    const int y0 = wrap(long(fy), height), y1 = wrap(long(fy) + 1, height);
-    const auto at = [&](int xx, int yy) { return texels[std::size_t(yy) * std::size_t(width) + std::size_t(xx)]; };
-    return glm::mix(glm::mix(at(x0, y0), at(x1, y0), ax), glm::mix(at(x0, y1), at(x1, y1), ax), ay);
-}
-
 RTCRayHit makeRayHit(const glm::vec3& o, const glm::vec3& d, float tmin, float tmax)
 {
     RTCRayHit rh;
@@ -99,7 +84,8 @@ RTCRayHit makeRayHit(const glm::vec3& o, const glm::vec3& d, float tmin, float t
 
 } // namespace
 
-EmbreeScene::EmbreeScene(const core::Scene& scene, bool withAllHits) : scene_(scene), withAllHits_(withAllHits)
+EmbreeScene::EmbreeScene(const core::Scene& scene, bool withAllHits)
+    : scene_(scene), masks_(scene), withAllHits_(withAllHits)
 {
     if (const std::string err = scene.validate(); !err.empty()) throw std::invalid_argument("invalid scene: " + err);
 
@@ -169,14 +155,6 @@ EmbreeScene::EmbreeScene(const core::Scene& scene, bool withAllHits) : scene_(sc
         lt.texels.resize(std::size_t(t.width) * std::size_t(t.height));
         for (std::size_t p = 0; p < lt.texels.size(); ++p)
             lt.texels[p] = {lut[t.rgba8[4 * p]], lut[t.rgba8[4 * p + 1]], lut[t.rgba8[4 * p + 2]]};
-    }
-    for (const core::Material& m : scene.materials) {
-        if (!m.isMasked() || m.baseColorTexture < 0 || std::size_t(m.baseColorTexture) >= textures_.size()) continue;
-        LinearTexture& lt = textures_[std::size_t(m.baseColorTexture)];
-        if (lt.texels.empty() || !lt.alpha.empty()) continue;
-        const std::vector<std::uint8_t>& rgba = scene.textures[std::size_t(m.baseColorTexture)].rgba8;
-        lt.alpha.resize(lt.texels.size());
-        for (std::size_t p = 0; p < lt.alpha.size(); ++p) lt.alpha[p] = float(rgba[4 * p + 3]) / 255.0f;
     }
 }
 
@@ -263,15 +241,12 @@ glm::vec3 EmbreeScene::textureColor(const core::Material& m, const glm::vec2& uv
     if (m.baseColorTexture < 0 || std::size_t(m.baseColorTexture) >= textures_.size()) return glm::vec3(1.0f);
     const LinearTexture& t = textures_[std::size_t(m.baseColorTexture)];
     if (t.texels.empty()) return glm::vec3(1.0f);
-    return bilinear(t.texels, t.width, t.height, uv);
+    return core::bilinearRepeat(t.texels, t.width, t.height, uv);
 }
 
 float EmbreeScene::textureAlpha(const core::Material& m, const glm::vec2& uv) const
 {
-    if (m.baseColorTexture < 0 || std::size_t(m.baseColorTexture) >= textures_.size()) return 1.0f;
-    const LinearTexture& t = textures_[std::size_t(m.baseColorTexture)];
-    if (t.alpha.empty()) return 1.0f;
-    return bilinear(t.alpha, t.width, t.height, uv);
+    return masks_.alpha(m, uv);
 }
 
 bool EmbreeScene::cutOut(std::uint32_t mesh, std::uint32_t prim, float u, float v) const

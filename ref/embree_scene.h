@@ -15,6 +15,7 @@
 #include <glm/glm.hpp>
 
 #include "core/scene.h"
+#include "core/texture_sampling.h"
 
 namespace bounce::ref {
 
@@ -80,7 +81,6 @@ private:
     struct LinearTexture {
         int width = 0, height = 0;
         std::vector<glm::vec3> texels; // linear RGB
-        std::vector<float> alpha;      // 0..1; only for textures of masked materials
     };
 
     const core::Scene& scene_;
@@ -99,6 +99,7 @@ private:
     std::vector<std::uint32_t> triangleOffset_; // per mesh, plus the total at the end
     std::vector<TriangleRecord> triangles_;     // by global triangle index
     std::vector<LinearTexture> textures_;
+    core::AlphaMasks masks_;
     bool withAllHits_ = false;
 };
 

@@ -14,6 +14,7 @@
 #include "core/cornell.h"
 #include "core/sampling.h"
 #include "core/surface_points.h"
+#include "tests/alpha_mask_scene.h"
 
 namespace bounce {
 namespace {
@@ -335,6 +336,35 @@ TEST(SurfacePoints, DISABLED_Timing)
         const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         std::printf("[ measured ] %zu points in %.2f s (%d restarts)\n", sp.points.size(), s, sp.restarts);
     }
+}
+
+// Alpha masks: no point lands in a hole, and the area the points share is the opaque part's. A 2 m floor
+// under the masked quad of tests/alpha_mask_scene.h, whose left half (x < 0) is a hole: 4.5 m^2 opaque of
+// 5. Taken as opaque, 208 of the 2000 points lay in the hole and the area was 5.
+TEST(SurfacePoints, PointsLeaveTheHolesOfAlphaMasks)
+{
+    core::Scene scene;
+    core::Material white;
+    scene.materials.push_back(white);
+    core::Mesh floor;
+    floor.positions = {{-1, 0, -1}, {-1, 0, 1}, {1, 0, 1}, {1, 0, -1}};
+    floor.normals.assign(4, glm::vec3(0, 1, 0));
+    floor.indices = {0, 1, 2, 0, 2, 3};
+    scene.meshes.push_back(floor);
+    testing::addMaskedQuad(scene);
+    const core::SurfacePoints sp = core::sampleSurfacePoints(scene, 2000, 7);
+    ASSERT_EQ(sp.points.size(), 2000u);
+    int hole = 0, opaque = 0;
+    for (const core::SurfaceSample& s : core::evaluateSurfacePoints(scene, sp.points)) {
+        if (std::abs(s.position.y - testing::kMaskQuadHeight) > 1e-4f) continue;
+        hole += s.position.x < -1e-3f;
+        opaque += s.position.x > 1e-3f;
+    }
+    std::printf("[ measured ] %d points in the hole, %d on the opaque half, area %.4f m^2\n", hole, opaque,
+                sp.totalAreaM2);
+    EXPECT_EQ(hole, 0);
+    EXPECT_GT(opaque, 150); // 2000 x 0.5 / 4.5 = 222 expected
+    EXPECT_NEAR(sp.totalAreaM2, 4.5, 0.05);
 }
 
 } // namespace
