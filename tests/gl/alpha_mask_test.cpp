@@ -15,12 +15,11 @@
 #include "gl/frame/ray_caster.h"
 #include "gl/frame/rsm.h"
 #include "gl/gl.h"
-#include "gl/resource/timer.h"
-#include "gl/technique/photon/photon_tracer.h"
 #include "ref/embree_scene.h"
 #include "tests/alpha_mask_scene.h"
 #include "tests/gl/gl_test_fixture.h"
 #include "tests/gl/grb_harness.h"
+#include "tests/gl/photon_test_scenes.h"
 
 namespace bounce {
 namespace {
@@ -200,27 +199,17 @@ TEST_F(AlphaMaskTest, GpuRayCastingCutsTheHolesLikeEmbree)
 // (Traced as if the mask were opaque: 903 of the 2,934 photons stored lay in the hole.)
 TEST_F(AlphaMaskTest, PhotonsPassThroughTheHoles)
 {
-    const core::Scene scene = floorUnderMask();
-    gl::FrameSettings fs;
-    fs.width = fs.height = 8;
-    gl::Frame frame(scene, fs);
-    gl::RayCaster caster(scene);
-    gl::Buffer counters("photon.counters", gl::kCounterSlots * 4);
-    gl::PhotonTracerSettings ts;
-    ts.photons = 32768;
-    gl::PhotonTracer tracer(ts);
-    gl::PassTimers timers;
-    tracer.trace(frame, caster, counters, timers);
+    photontest::TracedPhotons traced(floorUnderMask(), photontest::photonPaths(32768));
     int hole = 0, opaque = 0;
-    for (const gl::GpuPhoton& p : tracer.downloadPhotons()) {
+    for (const gl::GpuPhoton& p : traced.tracer.downloadPhotons()) {
         const glm::vec3 x(p.positionPath);
         if (std::abs(x.y - testing::kMaskQuadHeight) > 1e-3f) continue;
         const Under u = under(x);
         hole += u == Under::Hole;
         opaque += u == Under::Opaque;
     }
-    std::printf("[ measured ] %u photons stored: %d in the hole, %d under the opaque half\n", tracer.storedCount(),
-                hole, opaque);
+    std::printf("[ measured ] %u photons stored: %d in the hole, %d under the opaque half\n",
+                traced.tracer.storedCount(), hole, opaque);
     EXPECT_EQ(hole, 0);
     EXPECT_GT(opaque, 100);
 }

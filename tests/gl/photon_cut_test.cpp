@@ -58,17 +58,10 @@ Built buildFrom(const gl::Buffer& photons, std::uint32_t count, int leafPhotons,
 Built buildScene(const core::Scene& scene, int photons, const gl::IlluminationCutSettings& cutSettings,
                  int leafPhotons = 16)
 {
-    gl::Frame frame(scene, photontest::smallFrame(8, 8));
-    gl::RayCaster caster(scene);
-    gl::Buffer counters("photon.counters", gl::kCounterSlots * 4);
-    gl::PhotonTracerSettings ts;
-    ts.photons = photons;
-    gl::PhotonTracer tracer(ts);
-    gl::PassTimers timers;
-    tracer.trace(frame, caster, counters, timers);
-    Built b = buildFrom(tracer.photons(), tracer.storedCount(), leafPhotons, cutSettings, counters,
-                        tracer.sceneSize() / 4096.0f);
-    b.photons = tracer.downloadPhotons();
+    photontest::TracedPhotons t(scene, photontest::photonPaths(photons));
+    Built b = buildFrom(t.tracer.photons(), t.tracer.storedCount(), leafPhotons, cutSettings, t.counters,
+                        t.tracer.sceneSize() / 4096.0f);
+    b.photons = t.tracer.downloadPhotons();
     return b;
 }
 
@@ -352,15 +345,10 @@ TEST_F(PhotonCutTest, OnePhotonNodesStayFinite)
 // leaves (31,316 nodes).
 TEST_F(PhotonCutTest, CutIrradianceMatchesBruteForceDensity)
 {
-    const core::Scene scene = core::makeCornell("cornell-spot");
-    gl::Frame frame(scene, photontest::smallFrame(8, 8));
-    gl::RayCaster caster(scene);
-    gl::Buffer counters("photon.counters", gl::kCounterSlots * 4);
-    gl::PhotonTracerSettings ts;
-    ts.photons = 32768;
-    gl::PhotonTracer tracer(ts);
-    gl::PassTimers timers;
-    tracer.trace(frame, caster, counters, timers);
+    photontest::TracedPhotons traced(core::makeCornell("cornell-spot"), photontest::photonPaths(32768));
+    gl::PhotonTracer& tracer = traced.tracer;
+    gl::Buffer& counters = traced.counters;
+    gl::PassTimers& timers = traced.timers;
     gl::PhotonTree tree(1);
     tree.build(tracer.photons(), tracer.storedCount(), tracer.sceneSize() / 4096.0f, timers);
     const std::vector<gl::GpuPhoton> photons = tracer.downloadPhotons();

@@ -8,6 +8,8 @@
 
 #include "core/scene.h"
 #include "gl/frame/frame.h"
+#include "gl/frame/ray_caster.h"
+#include "gl/resource/timer.h"
 #include "gl/technique/photon/photon_tracer.h"
 #include "gl/technique/photon/shading_clusters.h"
 #include "tests/gl/closed_box.h"
@@ -45,6 +47,31 @@ inline gl::FrameSettings smallFrame(int w, int h)
     s.width = w;
     s.height = h;
     s.shadowMapSize = 256;
+    return s;
+}
+
+// A scene's photons traced once on a small frame, with what traced them kept for the passes that read
+// them next (a tree, a cut).
+struct TracedPhotons {
+    TracedPhotons(const core::Scene& scene, const gl::PhotonTracerSettings& settings)
+        : frame(scene, smallFrame(8, 8)),
+          caster(scene),
+          counters("photon.counters", gl::kCounterSlots * 4),
+          tracer(settings)
+    {
+        tracer.trace(frame, caster, counters, timers);
+    }
+    gl::Frame frame;
+    gl::RayCaster caster;
+    gl::Buffer counters;
+    gl::PhotonTracer tracer;
+    gl::PassTimers timers;
+};
+
+inline gl::PhotonTracerSettings photonPaths(int paths)
+{
+    gl::PhotonTracerSettings s;
+    s.photons = paths;
     return s;
 }
 

@@ -31,12 +31,8 @@ struct Traced {
 
 Traced trace(const core::Scene& scene, const gl::PhotonTracerSettings& settings)
 {
-    gl::Frame frame(scene, photontest::smallFrame(8, 8));
-    gl::RayCaster caster(scene);
-    gl::Buffer counters("photon.counters", gl::kCounterSlots * 4);
-    gl::PhotonTracer tracer(settings);
-    gl::PassTimers timers;
-    tracer.trace(frame, caster, counters, timers);
+    photontest::TracedPhotons traced(scene, settings);
+    const gl::PhotonTracer& tracer = traced.tracer;
     Traced t;
     t.emitted = tracer.emittedTotal();
     t.photons = tracer.downloadPhotons();
