@@ -250,12 +250,7 @@ TEST_F(AlphaMaskTest, RayBundlesPassThroughTheHoles)
 TEST_F(AlphaMaskTest, MicroRenderingSeesThroughTheHoles)
 {
     core::Scene scene = floorUnderMask();
-    scene.lights.clear();
-    core::Light lamp;
-    lamp.type = core::LightType::Point;
-    lamp.position = {0.0f, 1.0f, 0.0f};
-    lamp.intensity = glm::vec3(1.0f);
-    scene.lights.push_back(lamp);
+    scene.lights = {core::Light{.name = "lamp", .position = {0.0f, 1.0f, 0.0f}}}; // a point light of 1 W/sr
     scene.camera.position = {0.0f, 1.3f, 0.0f};
     scene.camera.yfovRad = 2.0f * std::atan(0.9f / 1.3f);
     constexpr int size = 24;
