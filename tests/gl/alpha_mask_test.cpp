@@ -1,11 +1,15 @@
-// Alpha-masked materials (glTF MASK) in every pass of the frame that sees the scene: the G-buffer, the
-// reflective shadow map and GPU ray casting cut the holes of the masked quad of tests/alpha_mask_scene.h
-// (the shadow maps: tests/gl/setup_direct_test.cpp), and so do the photons of `photon` and the k-buffer
-// of global ray-bundles. Ray casting is held against Embree, whose filter
-// function cuts the same holes in the path tracer (tests/ref/alpha_mask_test.cpp).
+// Alpha-masked materials (glTF MASK) in every pass that sees the scene: the G-buffer, the reflective shadow
+// map and GPU ray casting cut the holes of the masked quad of tests/alpha_mask_scene.h (the shadow maps:
+// tests/gl/setup_direct_test.cpp), and so do the techniques' own rays: `photon`'s photons and final
+// gather, the k-buffer of global ray-bundles, micro-rendering's rays (its points: the surface sampler,
+// tests/core/surface_points_test.cpp). Ray casting is held against Embree, whose filter function cuts the
+// same holes in the path tracer (tests/ref/alpha_mask_test.cpp), and the techniques' light against its
+// images.
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <random>
+#include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -241,33 +245,62 @@ TEST_F(AlphaMaskTest, RayBundlesPassThroughTheHoles)
     EXPECT_GT(opaque, 200);
 }
 
-// Micro-rendering's rays pass through the holes (and its points leave them): a point light between the
-// floor and the half-masked quad lights the floor and the quad's underside, whose opaque half sends light
-// back down; seen from under the quad, looking down. The floor's one-bounce light under each half against
-// the path tracer's, which cuts the same holes. Measured mean ratios: 1.145 under the hole (the opaque
-// half's nodes dilate into the black sky beside the seam), 1.018 under the opaque half; with the rays
-// meeting the holes 2.405 and 1.788, with points in the holes 1.622 and 1.390.
-TEST_F(AlphaMaskTest, MicroRenderingSeesThroughTheHoles)
+// A point light between the floor and the half-masked quad lights the floor and the quad's underside,
+// whose opaque half sends light back down; seen from under the quad, looking down.
+core::Scene floorLitUnderMask()
 {
     core::Scene scene = floorUnderMask();
     scene.lights = {core::Light{.name = "lamp", .position = {0.0f, 1.0f, 0.0f}}}; // a point light of 1 W/sr
     scene.camera.position = {0.0f, 1.3f, 0.0f};
     scene.camera.yfovRad = 2.0f * std::atan(0.9f / 1.3f);
+    return scene;
+}
+
+// A technique's indirect light on the floor of floorLitUnderMask() against the path tracer's one bounce,
+// which cuts the same holes: the mean ratio under the transparent half, then under the opaque half. The
+// image's left half looks at the floor under the hole (x < 0), its right half under the opaque half; the
+// border, the columns about the seam and the shelf's (left of 4) are left out.
+std::array<double, 2> floorRatios(const std::string& technique, const testing::Sets& sets)
+{
     constexpr int size = 24;
+    const core::Scene scene = floorLitUnderMask();
     const core::Image want = testing::pathTracedOneBounce(scene, size, size, 4096);
-    const testing::PointRender got = testing::renderPoints(scene, "microrender", {{"coarsestLevel", "0"}}, size, size);
-    // The image's left half looks at the floor under the hole (x < 0), its right half under the opaque half;
-    // the border, the columns about the seam and the shelf's (left of 4) are left out.
+    const testing::PointRender got = testing::renderPoints(scene, technique, sets, size, size);
+    std::array<double, 2> ratios{};
     for (const bool holeSide : {true, false}) {
         std::vector<bool> mask(std::size_t(size) * size, false);
         for (int y = 2; y < size - 2; ++y)
             for (int x = 4; x < size - 2; ++x)
                 if (holeSide ? x < size / 2 - 2 : x >= size / 2 + 2) mask[std::size_t(y) * size + x] = true;
         const testing::Versus v = testing::versus(got.indirect, want, mask);
-        std::printf("[ vs ref   ] the floor under the %s half: mean ratio %.4f, relative RMSE %.4f\n",
-                    holeSide ? "transparent" : "opaque", v.meanRatio, v.relRmse);
-        EXPECT_GT(v.meanRatio, holeSide ? 0.85 : 0.9);
-        EXPECT_LT(v.meanRatio, holeSide ? 1.25 : 1.1);
+        std::printf("[ vs ref   ] %s, the floor under the %s half: mean ratio %.4f, relative RMSE %.4f\n",
+                    technique.c_str(), holeSide ? "transparent" : "opaque", v.meanRatio, v.relRmse);
+        ratios[holeSide ? 0 : 1] = v.meanRatio;
+    }
+    return ratios;
+}
+
+// Micro-rendering's rays pass through the holes, and its points leave them. Measured mean ratios: 1.145
+// under the hole (the opaque half's nodes dilate into the black sky beside the seam), 1.018 under the
+// opaque half; with the rays meeting the holes 2.405 and 1.788, with points in the holes 1.622 and 1.390.
+TEST_F(AlphaMaskTest, MicroRenderingSeesThroughTheHoles)
+{
+    const std::array<double, 2> r = floorRatios("microrender", {{"coarsestLevel", "0"}});
+    EXPECT_GT(r[0], 0.85);
+    EXPECT_LT(r[0], 1.25);
+    EXPECT_GT(r[1], 0.9);
+    EXPECT_LT(r[1], 1.1);
+}
+
+// The photon final gather's rays pass through the holes (the photons: PhotonsPassThroughTheHoles). Measured
+// mean ratios (its light is every bounce's, the reference's one bounce's): 1.006 under the hole, 1.009 under
+// the opaque half; with the gather's rays meeting the holes 2.265 and 1.782.
+TEST_F(AlphaMaskTest, PhotonGatherSeesThroughTheHoles)
+{
+    const std::array<double, 2> r = floorRatios("photon", {});
+    for (double ratio : r) {
+        EXPECT_GT(ratio, 0.85);
+        EXPECT_LT(ratio, 1.15);
     }
 }
 
