@@ -29,7 +29,8 @@ struct Built {
     std::vector<gl::GpuPhoton> photons;
     std::vector<gl::GpuPhotonNode> nodes;
     std::vector<gl::GpuCutNode> cut;
-    std::vector<std::uint32_t> list;
+    std::vector<std::uint32_t> list; // compacted again from the flags
+    std::uint32_t size = 0;          // the cut's size as the refinement counted it
     std::vector<std::uint32_t> splits;
     int depth = 0;
     float eMin = 0.0f;
@@ -47,7 +48,8 @@ Built buildFrom(const gl::Buffer& photons, std::uint32_t count, int leafPhotons,
     Built b;
     b.nodes = tree.download();
     b.cut = cut.download();
-    b.list = cut.downloadList();
+    b.size = cut.size();
+    b.list = cut.downloadList(tree, counters);
     b.splits = cut.splitsPerIteration();
     b.depth = tree.depth();
     b.eMin = cut.eMin();
@@ -123,6 +125,7 @@ void expectValidCut(const Built& b)
             power += glm::dvec3(glm::vec3(b.nodes[i].power));
         }
     EXPECT_EQ(flagged, b.list);
+    EXPECT_EQ(b.size, std::uint32_t(flagged.size())) << "the refinement's count of the cut";
     EXPECT_EQ(count, double(b.nodes[1].lo.w));
     for (int c = 0; c < 3; ++c) EXPECT_NEAR(power[c], b.nodes[1].power[c], 1e-5 * b.nodes[1].power[c] + 1e-12);
 }

@@ -28,6 +28,7 @@ IlluminationCut::IlluminationCut()
       mark_(Program::compute("photon.cutMark", "technique/photon/cut_mark.comp")),
       flags_(Program::compute("photon.cutFlags", "technique/photon/cut_flags.comp")),
       listProgram_(Program::compute("photon.cutList", "technique/photon/cut_list.comp")),
+      enter_(Program::compute("photon.cutEnter", "technique/photon/cut_enter.comp")),
       influence_(Program::compute("photon.cutInfluence", "technique/photon/cut_influence.comp"))
 {}
 
@@ -70,7 +71,7 @@ void IlluminationCut::build(const PhotonTree& tree, const Buffer& photons, const
     const std::size_t bytes = std::size_t(nodeCount_) * sizeof(GpuCutNode);
     if (!nodes_ || nodes_.bytes() < bytes) {
         nodes_ = Buffer("photon.cutNodes", bytes);
-        list_ = Buffer("photon.cutList", std::size_t(nodeCount_) * 4);
+        list_ = Buffer("photon.cutList", std::size_t(nodeCount_) * 2 * 4); // two lists: one read, one written
         marks_ = Buffer("photon.cutMarks", std::size_t(nodeCount_) * 4);
     }
     splits_.clear();
@@ -111,33 +112,35 @@ void IlluminationCut::build(const PhotonTree& tree, const Buffer& photons, const
                                    {{"NEAREST_K", std::to_string(s.densityPhotons)}});
         refineK_ = s.densityPhotons;
     }
-    for (int iteration = 0; iteration <= s.iterations; ++iteration) {
-        size_ = compact(tree, counters, t);
-        if (iteration == 0) coarseSize_ = size_;
+    // The coarse cut, compacted in heap order; then each iteration refines only the nodes that entered
+    // the cut in the one before (cut_refine.comp), and lists the children it sends in (cut_enter.comp):
+    // the others have passed or are leaves. The lists alternate between the two halves of list_.
+    size_ = compact(tree, counters, t);
+    coarseSize_ = size_;
+    std::uint32_t entering = size_, offset = 0, next = nodeCount_;
+    for (int iteration = 0; iteration <= s.iterations && entering > 0; ++iteration) {
         const bool split = iteration < s.iterations;
         const std::uint32_t zero = 0;
         counters.update(kCounterCutSplits * 4, 4, &zero);
         glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-        if (size_ > 0) {
-            bind();
-            photons.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_PHOTONS);
-            list_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_PHOTON_CUT_LIST);
-            counters.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_PHOTON_COUNTERS);
-            tree.bind(refine_);
-            refine_.set("cutSize", size_);
-            refine_.set("threshold", s.threshold);
-            refine_.set("split", split ? 1 : 0);
-            refine_.set("iteration", unsigned(iteration + 1));
-            dispatchCompute(refine_, {int(size_), 1, 1}, {64, 1, 1});
-            glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
-            // cut_refine.comp per cut node: its list entry, node and flags read; a node entering the cut (all
-            // of them at first, then at most two per split of the last iteration) searches its k nearest
-            // photons and writes E_p and its ratio.
-            const double entering = iteration == 0 ? size_ : std::min(double(size_), 2.0 * splits_.back());
-            t.addWork(kernelWork(size_, {.flops = 5, .bytesRead = 4 + 96 + 8}));
-            t.addWork(nearestPhotonsWork(tree, s.densityPhotons, entering));
-            t.addWork(kernelWork(entering, {.flops = 30, .bytesWritten = 24}));
-        }
+        bind();
+        photons.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_PHOTONS);
+        list_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_PHOTON_CUT_LIST);
+        marks_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_PHOTON_SCAN);
+        counters.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_PHOTON_COUNTERS);
+        tree.bind(refine_);
+        refine_.set("listOffset", offset);
+        refine_.set("enteringCount", entering);
+        refine_.set("threshold", s.threshold);
+        refine_.set("split", split ? 1 : 0);
+        refine_.set("iteration", unsigned(iteration + 1));
+        dispatchCompute(refine_, {int(entering), 1, 1}, {64, 1, 1});
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+        // cut_refine.comp per entering node: its list entry, node and flags read, its k nearest photons
+        // searched, E_p, its ratio and its count of children written.
+        t.addWork(kernelWork(entering, {.flops = 5, .bytesRead = 4 + 96 + 8, .bytesWritten = 4}));
+        t.addWork(nearestPhotonsWork(tree, s.densityPhotons, entering));
+        t.addWork(kernelWork(entering, {.flops = 30, .bytesWritten = 24}));
         if (!split) break;
         std::uint32_t splits = 0;
         counters.download(kCounterCutSplits * 4, 4, &splits);
@@ -145,10 +148,28 @@ void IlluminationCut::build(const PhotonTree& tree, const Buffer& photons, const
         // Per split: the node's flags and the counter written, its children's photon counts and flags read,
         // their flags and generations written.
         t.addWork(kernelWork(splits, {.bytesRead = 16, .bytesWritten = 4 + 4 + 16}));
-        if (splits == 0) { // nothing changed: the last pass has nothing new to evaluate
-            size_ = compact(tree, counters, t);
-            break;
-        }
+        if (splits == 0) break; // nothing changed: nothing new to evaluate
+        // The children counts scanned into positions; cut_enter.comp per entering node: its list entry and
+        // flags read, and where it split, its position, its children's photon counts read and their indices
+        // written.
+        scan_.run(marks_, entering, counters, kCounterCutSize);
+        t.addWork(GpuScan::work(entering));
+        t.addWork(kernelWork(entering, {.flops = 4, .bytesRead = 8}));
+        t.addWork(kernelWork(splits, {.bytesRead = 4 + 8, .bytesWritten = 8}));
+        bind();
+        marks_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_PHOTON_SCAN);
+        list_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_PHOTON_CUT_LIST);
+        tree.bind(enter_);
+        enter_.set("listOffset", offset);
+        enter_.set("enteringCount", entering);
+        enter_.set("nextOffset", next);
+        dispatchLinear(enter_, entering);
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+        std::uint32_t entered = 0;
+        counters.download(kCounterCutSize * 4, 4, &entered);
+        size_ += entered - splits; // each split node left the cut, its children entered it
+        entering = entered;
+        std::swap(offset, next);
     }
 
     // cut_influence.comp per node: its flags and its kernel, or its children's four boxes (128 bytes, the
@@ -170,10 +191,14 @@ std::vector<GpuCutNode> IlluminationCut::download() const
     return n;
 }
 
-std::vector<std::uint32_t> IlluminationCut::downloadList() const
+std::vector<std::uint32_t> IlluminationCut::downloadList(const PhotonTree& tree, Buffer& counters)
 {
+    PassTimers timers;
+    auto t = timers.scope("cut");
+    counters.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_PHOTON_COUNTERS);
+    const std::uint32_t size = compact(tree, counters, t);
     std::vector<std::uint32_t> l = list_.download<std::uint32_t>();
-    l.resize(size_);
+    l.resize(size);
     return l;
 }
 

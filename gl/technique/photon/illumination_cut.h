@@ -11,7 +11,8 @@
 //      nodes the last split made;
 //   4. E_p stays cached per cut node, and each node above the cut learns the box its cut descendants'
 //      kernels reach (cut_influence.comp), so the gather can walk the tree down to the cut.
-// The cut list is compacted by a scan in heap order after every pass: the same cut in every run.
+// The coarse cut is listed by a scan in heap order; each refinement pass runs over the nodes the last one
+// sent into the cut, listed in their parents' order (cut_enter.comp): the same cut in every run.
 #pragma once
 
 #include <cstdint>
@@ -67,11 +68,13 @@ public:
     const std::vector<std::uint32_t>& splitsPerIteration() const { return splits_; }
     const Buffer& nodes() const { return nodes_; }
     std::vector<GpuCutNode> download() const;
-    std::vector<std::uint32_t> downloadList() const;
+    // The cut's nodes in heap order, compacted again from the nodes' flags (for tests: the refinement
+    // keeps only the list of the nodes entering it); counters: as build()'s.
+    std::vector<std::uint32_t> downloadList(const PhotonTree& tree, Buffer& counters);
     std::size_t bytes() const { return nodes_.bytes() + list_.bytes() + marks_.bytes(); }
 
 private:
-    Program emin_, select_, mark_, flags_, listProgram_, refine_, influence_;
+    Program emin_, select_, mark_, flags_, listProgram_, enter_, refine_, influence_;
     GpuScan scan_;
     Buffer nodes_, list_, marks_;
     int refineK_ = 0; // the k refine_ was compiled for

@@ -12,7 +12,7 @@
 #define SSBO_PHOTONS 13              // photon.glsl: the photons in Morton order
 #define SSBO_PHOTON_NODES 14         // photon_tree.glsl: the photon tree, one PhotonNode per node
 #define SSBO_PHOTON_CUT 15           // illumination_cut.glsl: per node: cut state, generation, E_p
-#define SSBO_PHOTON_CUT_LIST 16      // illumination_cut.glsl: the cut's nodes, in heap order
+#define SSBO_PHOTON_CUT_LIST 16      // illumination_cut.glsl: lists of cut nodes (the coarse cut, those entering it)
 #define SSBO_PHOTON_SCAN 17          // scan_*.comp: the array a prefix sum runs over, in place
 #define SSBO_SORT_KEYS 22            // radix_*.comp: keys and values in, then out (ping-pong)
 #define SSBO_SORT_VALUES 23

@@ -5,14 +5,19 @@
 // photons (by w_i . n_p), which is compared with E~_p. When |E_p - E~_p| > threshold x E~_p (the paper:
 // Delta E = 1.2 E~_p) and splitting is allowed, the node leaves the cut and its non-empty children enter
 // it. Each invocation writes only its node and its children: no two touch the same node.
+// The invocations are the nodes that entered the cut in the last iteration (all of the coarse cut's at
+// first), not the whole cut: the others have passed, or are leaves, and have nothing to do. Each writes
+// how many children it sent into the cut, for cut_enter.comp, which lists them for the next iteration.
 #include "technique/photon/density.glsl"
 
 layout(local_size_x = 64) in;
 
 layout(std430, binding = SSBO_PHOTON_CUT_LIST) readonly buffer CutList { uint cutList[]; };
 layout(std430, binding = SSBO_PHOTON_COUNTERS) buffer Counters { uint counters[]; };
+layout(std430, binding = SSBO_PHOTON_SCAN) writeonly buffer Entered { uint entered[]; };
 
-uniform uint cutSize;
+uniform uint listOffset;    // where the entering nodes' list starts in cutList
+uniform uint enteringCount; // its length
 uniform float threshold; // Delta E over E~_p: 1.2
 uniform int split;       // 0: the last pass, which only evaluates
 uniform uint iteration;  // the generation children get
@@ -20,8 +25,9 @@ uniform uint iteration;  // the generation children get
 void main()
 {
     uint c = gl_GlobalInvocationID.x;
-    if (c >= cutSize) return;
-    uint i = cutList[c];
+    if (c >= enteringCount) return;
+    entered[c] = 0u;
+    uint i = cutList[listOffset + c];
     PhotonNode node = photonNodes[i];
     uint f = cutFlags(i);
     if (cutNodes[i].irradiance.w == 0.0) {
@@ -47,9 +53,12 @@ void main()
     if (split == 0 || (f & kCutPassed) != 0u || nodeIsLeaf(i)) return;
     setCutFlags(i, f & ~kCutIn);
     atomicAdd(counters[kCounterCutSplits], 1u);
+    uint children = 0u;
     for (uint child = 2u * i; child <= 2u * i + 1u; ++child) {
         if (photonNodes[child].lo.w <= 0.0) continue;
         setCutFlags(child, cutFlags(child) | kCutIn);
         cutNodes[child].influenceHi.w = float(iteration);
+        ++children;
     }
+    entered[c] = children;
 }
