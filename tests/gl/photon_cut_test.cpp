@@ -213,6 +213,7 @@ TEST_F(PhotonCutTest, RefinedCutNodesPassOrAreLeavesOrHitTheCap)
 // the median along its box's longest side, and the photons are the same ones. Hard cases: counts that are
 // not powers of two, coincident photons (2 of 3 at one point), photons on one plane (a box side of 0), one
 // photon and none, and NaN coordinates (every 5th photon; only the photons are checked: NaN has no order).
+// 9,001 photons: large enough for the two halves of the root to be ordered on two threads.
 TEST(PhotonKdOrder, EveryNodeSplitsAtItsMedianAlongItsLongestSide)
 {
     std::uint32_t seed = 7;
@@ -220,7 +221,7 @@ TEST(PhotonKdOrder, EveryNodeSplitsAtItsMedianAlongItsLongestSide)
         seed = seed * 1664525u + 1013904223u;
         return float(seed >> 8) / 16777216.0f;
     };
-    for (const std::uint32_t n : {0u, 1u, 2u, 3u, 1000u, 4097u}) {
+    for (const std::uint32_t n : {0u, 1u, 2u, 3u, 1000u, 4097u, 9001u}) {
         for (const char* kind : {"random", "coincident", "planar", "nan"}) {
             SCOPED_TRACE(std::string(kind) + ", " + std::to_string(n) + " photons");
             std::vector<gl::GpuPhoton> photons(n);

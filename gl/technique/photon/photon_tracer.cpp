@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <thread>
 #include <vector>
 
 #include "gl/context/context.h"
@@ -39,14 +40,20 @@ glm::vec3 powerBeforeFalloff(const LightSource& light, const glm::vec3& power)
 void orderAsKdTree(std::vector<GpuPhoton>& photons)
 {
     // The splits move 16-byte items (position, photon index), not the 64-byte photons, which are permuted
-    // once at the end.
+    // once at the end. A NaN coordinate is ordered as +infinity: nth_element needs a strict weak order,
+    // which `<` on NaN is not.
     struct Item {
         glm::vec3 p;
         std::uint32_t photon;
     };
     const std::uint64_t n = photons.size();
     std::vector<Item> items(photons.size());
-    for (std::size_t i = 0; i < photons.size(); ++i) items[i] = {glm::vec3(photons[i].positionPath), std::uint32_t(i)};
+    for (std::size_t i = 0; i < photons.size(); ++i) {
+        glm::vec3 p(photons[i].positionPath);
+        for (int c = 0; c < 3; ++c)
+            if (std::isnan(p[c])) p[c] = std::numeric_limits<float>::infinity();
+        items[i] = {p, std::uint32_t(i)};
+    }
     // Node k of level l holds [floor(k n / 2^l), floor((k + 1) n / 2^l)) (photon_tree.glsl's nodeRange); its
     // children meet at floor((2k + 1) n / 2^(l + 1)), where the median along the box's longest side goes.
     const auto split = [&](auto&& self, std::uint32_t lo, std::uint32_t hi, std::uint64_t k, int l) -> void {
@@ -59,15 +66,23 @@ void orderAsKdTree(std::vector<GpuPhoton>& photons)
         const glm::vec3 side = b - a;
         const int axis = side.x >= side.y && side.x >= side.z ? 0 : (side.y >= side.z ? 1 : 2);
         const auto mid = std::uint32_t(((2 * k + 1) * n) >> (l + 1));
-        // NaN as +infinity: nth_element needs a strict weak order, which `<` on NaN is not.
-        const auto key = [axis](const Item& x) {
-            const float v = x.p[axis];
-            return std::isnan(v) ? std::numeric_limits<float>::infinity() : v;
-        };
-        std::nth_element(items.begin() + lo, items.begin() + mid, items.begin() + hi,
-                         [&key](const Item& x, const Item& y) { return key(x) < key(y); });
-        self(self, lo, mid, 2 * k, l + 1);
-        self(self, mid, hi, 2 * k + 1, l + 1);
+        const auto first = items.begin() + lo, nth = items.begin() + mid, last = items.begin() + hi;
+        if (axis == 0)
+            std::nth_element(first, nth, last, [](const Item& x, const Item& y) { return x.p.x < y.p.x; });
+        else if (axis == 1)
+            std::nth_element(first, nth, last, [](const Item& x, const Item& y) { return x.p.y < y.p.y; });
+        else
+            std::nth_element(first, nth, last, [](const Item& x, const Item& y) { return x.p.z < y.p.z; });
+        // The two halves are independent: below the root, the lower one on a second thread (the same
+        // order either way).
+        if (l == 0 && mid - lo >= 4096) {
+            std::thread lower([&] { self(self, lo, mid, 2 * k, l + 1); });
+            self(self, mid, hi, 2 * k + 1, l + 1);
+            lower.join();
+        } else {
+            self(self, lo, mid, 2 * k, l + 1);
+            self(self, mid, hi, 2 * k + 1, l + 1);
+        }
     };
     split(split, 0, std::uint32_t(n), 0, 0);
     std::vector<GpuPhoton> ordered(photons.size());
