@@ -32,6 +32,8 @@ std::vector<Define> gatherDefines(const Frame& frame, const FinalGatherSettings&
     if (s.fullPhotonMap) {
         d.push_back({"DENSITY_PHOTONS", "1"});
         d.push_back({"NEAREST_K", std::to_string(s.densityPhotons)});
+    } else if (s.cutGrid) {
+        d.push_back({"CUT_GRID", "1"});
     }
     return d;
 }
@@ -66,12 +68,17 @@ PassCost gatherRayWork(const Frame& frame, const RayCaster& caster, const Photon
         w.bytesFixed += density.bytesFixed;
         return w;
     }
-    // cut_lookup.glsl per hit: taken as 2 x log2(cut size) nodes visited, each its box, flags and, in the
-    // cut, its kernel (64 bytes, 20 flops; an estimate: the walk's length is known only on the GPU); again
-    // at twice the radius for the hits no kernel reached.
-    const double visits = 2.0 * std::max(double(std::bit_width(cut.size())), 1.0), lookups = rays + extraLookups;
-    w.flopsFixed += lookups * visits * 20;
-    w.bytesFixed += lookups * visits * 64;
+    // cut_lookup.glsl per hit: the walk taken as 2 x log2(cut size) nodes visited, each its box, flags and,
+    // in the cut, its kernel (64 bytes, 20 flops; an estimate: the walk's length is known only on the GPU);
+    // the grid's list taken as twice the mean list (cells on surfaces hold more than empty space), a kernel
+    // each. Again by the walk at twice the radius for the hits no kernel reached.
+    const double walk = 2.0 * std::max(double(std::bit_width(cut.size())), 1.0);
+    const glm::ivec3 d = cut.gridDims();
+    const double cells = double(d.x) * d.y * d.z;
+    const double list = settings.cutGrid && cells > 0 ? 2.0 * cut.gridEntries() / cells : walk;
+    const double visits = rays * list + extraLookups * walk;
+    w.flopsFixed += visits * 20;
+    w.bytesFixed += visits * 64;
     return w;
 }
 
@@ -114,7 +121,7 @@ void FinalGather::gather(const Frame& frame, const RayCaster& caster, const Phot
     caster.bind();
     tree.bind(program_);
     photons.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_PHOTONS);
-    cut.bind();
+    cut.bindLookup(program_);
     clusters.bind();
     counters.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_PHOTON_COUNTERS);
     program_.set("punctualLightCount", frame.gpuScene().punctualLightCount());
@@ -141,10 +148,13 @@ void FinalGather::gather(const Frame& frame, const RayCaster& caster, const Phot
                             double(fallback_) + double(uncovered_)));
 }
 
-GlossyGather::GlossyGather(const Frame& frame, int rays) : rays_(frame.scene().hasGlossy() ? std::max(rays, 0) : 0)
+GlossyGather::GlossyGather(const Frame& frame, int rays, bool cutGrid)
+    : rays_(frame.scene().hasGlossy() ? std::max(rays, 0) : 0), cutGrid_(cutGrid)
 {
     if (rays_ == 0) return;
-    std::vector<Define> d = gatherDefines(frame, FinalGatherSettings{});
+    FinalGatherSettings s;
+    s.cutGrid = cutGrid_;
+    std::vector<Define> d = gatherDefines(frame, s);
     const std::vector<Define> g = frame.gbufferDefines();
     d.insert(d.end(), g.begin(), g.end());
     program_ = Program::compute("photon.glossy", "technique/photon/photon_glossy.comp", d);
@@ -163,14 +173,15 @@ void GlossyGather::run(Frame& frame, const RayCaster& caster, const PhotonTree& 
     cost.bytesWritten = 16;
     auto t = timers.scope("glossy", cost); // timed in every scene, as every declared pass: empty without a lobe
     if (rays_ == 0) return;
-    t.addWork(gatherRayWork(frame, caster, tree, cut, FinalGatherSettings{},
-                            double(frame.width()) * frame.height() * rays_, 0.0));
+    FinalGatherSettings s;
+    s.cutGrid = cutGrid_;
+    t.addWork(gatherRayWork(frame, caster, tree, cut, s, double(frame.width()) * frame.height() * rays_, 0.0));
     frame.bindGBuffer();
     frame.bindSceneData();
     caster.bind();
     tree.bind(program_);
     photons.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_PHOTONS);
-    cut.bind();
+    cut.bindLookup(program_);
     program_.set("punctualLightCount", frame.gpuScene().punctualLightCount());
     program_.set("lightCount", frame.shadowMaps().lightCount());
     frame.shadowMaps().setPcfUniforms(program_, 0);

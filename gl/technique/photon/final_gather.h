@@ -24,6 +24,7 @@ struct FinalGatherSettings {
     int densityPhotons = 32;    // k, for fullPhotonMap
     std::uint32_t seed = 1;
     float causticAlpha = -1.0f; // hits whose lobe is this smooth do not reflect the lights (the caustic map's)
+    bool cutGrid = false;       // Eq. 4's cut nodes from the cut's grid (IlluminationCut::useGrid), not the walk
 };
 
 class FinalGather {
@@ -49,7 +50,7 @@ private:
 // ray's radiance (direct light and the cut's photon light at its hit).
 class GlossyGather {
 public:
-    GlossyGather(const Frame& frame, int rays);
+    GlossyGather(const Frame& frame, int rays, bool cutGrid);
     // Whether the scene has a lobe to sample and rays to sample it with: else run() does nothing and the
     // interpolation keeps the lobe's split-sum albedo.
     bool active() const { return rays_ > 0; }
@@ -58,6 +59,7 @@ public:
 
 private:
     int rays_;
+    bool cutGrid_;
     Program program_;
 };
 

@@ -1,6 +1,7 @@
 #include "gl/technique/photon/illumination_cut.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <string>
 
@@ -35,6 +36,106 @@ IlluminationCut::IlluminationCut()
 void IlluminationCut::bind() const
 {
     nodes_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_PHOTON_CUT);
+}
+
+void IlluminationCut::useGrid(const core::Bounds& domain, int cells)
+{
+    gridCells_ = 0;
+    gridDims_ = glm::ivec3(0);
+    cells = std::min(cells, kMaxGridCells);
+    if (cells <= 0 || domain.empty()) return;
+    // A flat or thin scene's grid keeps a thickness of a thousandth of its largest side.
+    const glm::vec3 e = domain.extent();
+    const glm::vec3 extent = glm::max(e, glm::vec3(1e-3f * std::max({e.x, e.y, e.z, 1e-30f})));
+    float side = std::cbrt(extent.x * extent.y * extent.z / float(cells));
+    for (;;) { // a side shorter than one cell still takes one: widen the cells until they fit
+        gridDims_ = glm::max(glm::ivec3(glm::floor(extent / side)), glm::ivec3(1));
+        if (gridDims_.x * gridDims_.y * gridDims_.z <= cells) break;
+        side *= 1.05f;
+    }
+    // The cells cover the domain: its far side falls in the last cell, which the clamp stretches.
+    gridOrigin_ = domain.lo;
+    gridInverseCell_ = 1.0f / side;
+    gridCells_ = std::uint32_t(gridDims_.x * gridDims_.y * gridDims_.z);
+    if (!gridCount_) {
+        gridCount_ = Program::compute("photon.cutGridCount", "technique/photon/cut_grid_cells.comp");
+        gridFill_ = Program::compute("photon.cutGridFill", "technique/photon/cut_grid_cells.comp", {{"FILL", "1"}});
+        gridSort_ = Program::compute("photon.cutGridSort", "technique/photon/cut_grid_sort.comp");
+    }
+}
+
+void IlluminationCut::setGridUniforms(Program& p) const
+{
+    p.set("cutGridOrigin", gridOrigin_);
+    p.set("cutGridInverseCell", gridInverseCell_);
+    p.set("cutGridDims", gridDims_);
+    p.set("cutGridCapacity", std::uint32_t(grid_.bytes() / 4 - (gridCells_ + 2)));
+}
+
+void IlluminationCut::bindLookup(Program& program) const
+{
+    bind();
+    if (gridCells_ == 0) return;
+    grid_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_CUT_GRID);
+    setGridUniforms(program);
+}
+
+bool IlluminationCut::gridUsable() const
+{
+    if (gridCells_ == 0 || !grid_) return false;
+    std::uint32_t words[2] = {0, 0}; // the total, the flag of a list too long to sort
+    grid_.download(std::size_t(gridCells_) * 4, sizeof words, words);
+    return words[0] <= grid_.bytes() / 4 - (gridCells_ + 2) && words[1] == 0;
+}
+
+void IlluminationCut::buildGrid(Buffer& counters, PassTimers::Scope& t)
+{
+    // The cells' starts, the flag word, and room for the lists kept from the last frame.
+    const std::size_t startBytes = (std::size_t(gridCells_) + 2) * 4;
+    if (!grid_ || grid_.bytes() < startBytes) grid_ = Buffer("photon.cutGrid", startBytes);
+    if (!gridCursors_ || gridCursors_.bytes() != std::size_t(gridCells_) * 4)
+        gridCursors_ = Buffer("photon.cutGridCursors", std::size_t(gridCells_) * 4);
+    grid_.clearToZero();
+    gridCursors_.clearToZero();
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+    auto run = [&](Program& p, std::uint32_t count) {
+        bind();
+        grid_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_CUT_GRID);
+        gridCursors_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_CUT_GRID_CURSORS);
+        setGridUniforms(p);
+        p.set("nodeCount", nodeCount_);
+        dispatchLinear(p, count);
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+    };
+    // Every cut node's kernel over its cells, counted; the counts scanned into starts (the scan's last
+    // word, an empty count, becomes the total).
+    run(gridCount_, nodeCount_);
+    scan_.run(grid_, gridCells_ + 1, counters, kCounterScratch);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+    counters.download(kCounterScratch * 4, 4, &gridEntries_);
+    // Room for the lists, grown with a quarter to spare (so that small changes do not reallocate), the
+    // starts copied over.
+    if (grid_.bytes() < startBytes + std::size_t(gridEntries_) * 4) {
+        Buffer grown("photon.cutGrid", startBytes + (std::size_t(gridEntries_) + gridEntries_ / 4) * 4);
+        glCopyNamedBufferSubData(grid_.id(), grown.id(), 0, 0, GLsizeiptr(startBytes));
+        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+        grid_ = std::move(grown);
+    }
+    run(gridFill_, nodeCount_);
+    run(gridSort_, gridCells_);
+    // cut_grid_cells.comp twice per heap slot: its flags and, in the cut, its kernel read, then per entry an
+    // atomic (and, filling, the cell's start read and the entry written); the scan of the cells; per cell
+    // its start and end read, its list heapsorted (about 2 log2 of its length reads and writes per entry).
+    const double entries = gridEntries_, perCell = entries / std::max(gridCells_, 1u);
+    t.addWork(kernelWork(nodeCount_, {.flops = 30, .bytesRead = 4 + 16}));
+    t.addWork(kernelWork(entries, {.flops = 8, .bytesRead = 4, .bytesWritten = 4}));
+    t.addWork(GpuScan::work(gridCells_ + 1));
+    t.addWork(kernelWork(nodeCount_, {.flops = 30, .bytesRead = 4 + 16}));
+    t.addWork(kernelWork(entries, {.flops = 8, .bytesRead = 12, .bytesWritten = 8}));
+    t.addWork(kernelWork(gridCells_, {.flops = 10, .bytesRead = 8}));
+    t.addWork(kernelWork(entries, {.flops = 10 * std::log2(perCell + 2.0),
+                                   .bytesRead = 16 * std::log2(perCell + 2.0),
+                                   .bytesWritten = 8 * std::log2(perCell + 2.0)}));
 }
 
 std::uint32_t IlluminationCut::compact(const PhotonTree& tree, Buffer& counters, PassTimers::Scope& t)
@@ -182,6 +283,7 @@ void IlluminationCut::build(const PhotonTree& tree, const Buffer& photons, const
         dispatchLinear(influence_, 1u << level);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     }
+    if (gridCells_ > 0) buildGrid(counters, t);
 }
 
 std::vector<GpuCutNode> IlluminationCut::download() const

@@ -10,7 +10,11 @@
 //      |E_p - E~_p| > `threshold` x E~_p (the paper: 1.2) (cut_refine.comp); a last pass evaluates the
 //      nodes the last split made;
 //   4. E_p stays cached per cut node, and each node above the cut learns the box its cut descendants'
-//      kernels reach (cut_influence.comp), so the gather can walk the tree down to the cut.
+//      kernels reach (cut_influence.comp), so the gather can walk the tree down to the cut;
+//   5. with useGrid(), the cut grid (cut_grid.glsl): per cell of a uniform grid, the cut nodes whose kernel
+//      reaches into it, in the walk's order: counted per cell (cut_grid_cells.comp), the counts scanned into
+//      starts, the lists filled (cut_grid_cells.comp, FILL) and sorted (cut_grid_sort.comp). Lookups compiled
+//      with CUT_GRID read the grid instead of walking the tree, with the same result.
 // The coarse cut is listed by a scan in heap order; each refinement pass runs over the nodes the last one
 // sent into the cut, listed in their parents' order (cut_enter.comp): the same cut in every run.
 #pragma once
@@ -20,6 +24,7 @@
 
 #include <glm/glm.hpp>
 
+#include "core/scene.h"
 #include "gl/resource/buffer.h"
 #include "gl/resource/program.h"
 #include "gl/resource/timer.h"
@@ -61,6 +66,17 @@ public:
                PassTimers& timers);
     // Binds the per-node cut data at SSBO_PHOTON_CUT.
     void bind() const;
+    // From the next build() on, builds the cut grid over `domain` (the scene's bounds), in cubic cells, at
+    // most `cells` of them (kMaxGridCells at most); 0 cells or an empty domain: no grid.
+    void useGrid(const core::Bounds& domain, int cells);
+    bool gridEnabled() const { return gridCells_ > 0; }
+    static constexpr int kMaxGridCells = 32768; // cut_grid_cells.comp: a node's loop over every cell
+    // Binds what cut_lookup.glsl reads: the cut (bind()) and, with the grid, its cells, lists and uniforms.
+    void bindLookup(Program& program) const;
+    std::uint32_t gridEntries() const { return gridEntries_; } // the lists' length, the last build
+    // Whether the last build's lists fit and were sorted, so that lookups read the grid (read back: tests).
+    bool gridUsable() const;
+    glm::ivec3 gridDims() const { return gridDims_; }
 
     std::uint32_t size() const { return size_; }
     std::uint32_t coarseSize() const { return coarseSize_; } // before refinement
@@ -71,7 +87,10 @@ public:
     // The cut's nodes in heap order, compacted again from the nodes' flags (for tests: the refinement
     // keeps only the list of the nodes entering it); counters: as build()'s.
     std::vector<std::uint32_t> downloadList(const PhotonTree& tree, Buffer& counters);
-    std::size_t bytes() const { return nodes_.bytes() + list_.bytes() + marks_.bytes(); }
+    std::size_t bytes() const
+    {
+        return nodes_.bytes() + list_.bytes() + marks_.bytes() + grid_.bytes() + gridCursors_.bytes();
+    }
 
 private:
     Program emin_, select_, mark_, flags_, listProgram_, enter_, refine_, influence_;
@@ -82,7 +101,17 @@ private:
     float eMin_ = 0.0f;
     std::vector<std::uint32_t> splits_;
 
+    // The grid's cells and uniforms; none while gridCells_ is 0.
+    glm::vec3 gridOrigin_{0.0f};
+    float gridInverseCell_ = 0.0f;
+    glm::ivec3 gridDims_{0};
+    std::uint32_t gridCells_ = 0, gridEntries_ = 0;
+    Program gridCount_, gridFill_, gridSort_;
+    Buffer grid_, gridCursors_; // cut_grid.glsl's CutGrid; the fill's cursors
+
     std::uint32_t compact(const PhotonTree& tree, Buffer& counters, PassTimers::Scope& t);
+    void buildGrid(Buffer& counters, PassTimers::Scope& t);
+    void setGridUniforms(Program& program) const;
 };
 
 } // namespace bounce::gl

@@ -14,6 +14,10 @@
 #define SSBO_PHOTON_CUT 15           // illumination_cut.glsl: per node: cut state, generation, E_p
 #define SSBO_PHOTON_CUT_LIST 16      // illumination_cut.glsl: lists of cut nodes (the coarse cut, those entering it)
 #define SSBO_PHOTON_SCAN 17          // scan_*.comp: the array a prefix sum runs over, in place
+// cut_grid.glsl: the cut grid, its cell starts scanned in place as a scan's data, read by the gather
+// after the cut's scans; its fill's cursors in the sort's slot, free while it is built.
+#define SSBO_CUT_GRID SSBO_PHOTON_SCAN
+#define SSBO_CUT_GRID_CURSORS SSBO_SORT_KEYS
 #define SSBO_SORT_KEYS 22            // radix_*.comp: keys and values in, then out (ping-pong)
 #define SSBO_SORT_VALUES 23
 #define SSBO_SORT_KEYS_OUT 24

@@ -10,7 +10,9 @@
 #include "common/lighting.glsl"
 #include "common/raycast.glsl"
 #include "technique/photon/cut_lookup.glsl"
+#ifdef DENSITY_PHOTONS
 #include "technique/photon/density.glsl"
+#endif
 #include "technique/photon/scatter.glsl"
 
 #include "common/base_color.glsl"
