@@ -95,7 +95,9 @@ void IlluminationCut::buildGrid(Buffer& counters, PassTimers::Scope& t)
     if (!grid_ || grid_.bytes() < startBytes) grid_ = Buffer("photon.cutGrid", startBytes);
     if (!gridCursors_ || gridCursors_.bytes() != std::size_t(gridCells_) * 4)
         gridCursors_ = Buffer("photon.cutGridCursors", std::size_t(gridCells_) * 4);
-    grid_.clearToZero();
+    // Only the starts and the flag: the lists' words are all written by the fill before anything reads them.
+    const unsigned zero = 0;
+    glClearNamedBufferSubData(grid_.id(), GL_R32UI, 0, GLsizeiptr(startBytes), GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
     gridCursors_.clearToZero();
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
     auto run = [&](Program& p, std::uint32_t count) {

@@ -69,7 +69,6 @@ public:
     // From the next build() on, builds the cut grid over `domain` (the scene's bounds), in cubic cells, at
     // most `cells` of them (kMaxGridCells at most); 0 cells or an empty domain: no grid.
     void useGrid(const core::Bounds& domain, int cells);
-    bool gridEnabled() const { return gridCells_ > 0; }
     static constexpr int kMaxGridCells = 32768; // cut_grid_cells.comp: a node's loop over every cell
     // Binds what cut_lookup.glsl reads: the cut (bind()) and, with the grid, its cells, lists and uniforms.
     void bindLookup(Program& program) const;

@@ -10,7 +10,7 @@
 
 // One buffer (one storage block: the gather has no more to spare): the cells' starts (an exclusive scan
 // of their counts, in place: cells + 1 words, the last the total), one word set when a cell's list was
-// too long to sort, then the lists, one after another (cutGridEntry).
+// too long to sort, then the lists, one after another (cutGridEntryWord).
 layout(std430, binding = SSBO_CUT_GRID) buffer CutGrid { uint cutGrid[]; };
 
 uniform vec3 cutGridOrigin;
@@ -19,7 +19,6 @@ uniform ivec3 cutGridDims;
 uniform uint cutGridCapacity; // entries the lists may hold
 
 uint cutGridCells() { return uint(cutGridDims.x * cutGridDims.y * cutGridDims.z); }
-uint cutGridStart(uint c) { return cutGrid[c]; }
 // Where entry a of the lists lies in the buffer.
 uint cutGridEntryWord(uint a) { return cutGridCells() + 2u + a; }
 
