@@ -82,6 +82,15 @@ void Renderer::advanceStill()
     frame_->setStill(stillIndex_, stillIndex_ > 0 ? stillJitter(stillIndex_) : glm::vec2(0.0f));
 }
 
+bool Renderer::moveVertices(const std::vector<glm::vec3>& positions, const std::vector<glm::vec3>& normals)
+{
+    if (!frame_->moveVertices(positions, normals)) return false;
+    movedPositions_ = positions;
+    movedNormals_ = normals;
+    if (coarse_) coarse_->moveVertices(positions, normals);
+    return true;
+}
+
 void Renderer::renderCoarseIndirect()
 {
     const int w = (frame_->width() + indirectScale_ - 1) / indirectScale_;
@@ -93,6 +102,7 @@ void Renderer::renderCoarseIndirect()
         coarse_ = std::make_unique<Frame>(frame_->scene(), s);
         coarse_->setLights(frame_->gpuScene().punctualLights());
         coarseLights_ = frame_->version().lights;
+        if (!movedPositions_.empty()) coarse_->moveVertices(movedPositions_, movedNormals_);
         coarseTechnique_ = info_->create(*coarse_, techniqueValues_);
         if (!upsample_) upsample_ = std::make_unique<JointUpsample>();
     }

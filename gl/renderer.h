@@ -4,6 +4,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "core/scene.h"
 #include "gl/frame/frame.h"
@@ -59,6 +60,8 @@ public:
     int indirectHeight() const { return (frame_->height() + indirectScale_ - 1) / indirectScale_; }
 
     Frame& frame() { return *frame_; }
+    // Frame::moveVertices on the frame and on the coarse frame of setIndirectScale, now and when it is made.
+    bool moveVertices(const std::vector<glm::vec3>& positions, const std::vector<glm::vec3>& normals);
     const TechniqueInfo& technique() const { return *info_; }
     // The technique writes the emitters' reflected light into indirect() (Technique::carriesEmittersLight).
     bool indirectCarriesEmittersLight() const { return technique_->carriesEmittersLight(); }
@@ -84,7 +87,8 @@ private:
     std::unique_ptr<Frame> coarse_;              // indirectScale_ > 1: the coarse frame the technique runs on
     std::unique_ptr<Technique> coarseTechnique_; //   and its technique
     std::unique_ptr<JointUpsample> upsample_;
-    std::uint64_t coarseLights_ = 0; // the full frame's lights version the coarse frame has
+    std::uint64_t coarseLights_ = 0;                       // the full frame's lights version the coarse frame has
+    std::vector<glm::vec3> movedPositions_, movedNormals_; // the last moveVertices, for a coarse frame made later
     void renderCoarseIndirect();
     int stillIndex_ = 0;
     bool stillReady_ = false; // the last frame's version below is comparable (no technique change since)

@@ -1,6 +1,7 @@
 #include "gl/frame/frame.h"
 
 #include <algorithm>
+#include <tuple>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -141,14 +142,29 @@ void Frame::setCamera(const core::Camera& camera)
 
 void Frame::setLights(const std::vector<core::Light>& lights)
 {
-    const auto directional = [&] { return hasLightOfType(gpu_.lights(), kLightDirectional); };
-    const int punctualBefore = gpu_.punctualLightCount();
-    const bool directionalBefore = directional();
-    gpu_.setLights(lights);
-    shadows_.update(gpu_);
+    changeLights([&] { gpu_.setLights(lights); });
     ++version_.lights;
-    if ((punctualBefore > 0) != (gpu_.punctualLightCount() > 0) || directionalBefore != directional())
-        rebuildDirectPrograms();
+}
+
+bool Frame::moveVertices(const std::vector<glm::vec3>& positions, const std::vector<glm::vec3>& normals)
+{
+    bool moved = false;
+    changeLights([&] { moved = gpu_.moveVertices(positions, normals); });
+    if (moved) ++version_.scene;
+    return moved;
+}
+
+void Frame::changeLights(const std::function<void()>& change)
+{
+    const auto kinds = [&] {
+        const int punctual = gpu_.punctualLightCount();
+        return std::tuple(punctual > 0, hasLightOfType(gpu_.lights(), kLightDirectional),
+                          int(gpu_.lights().size()) > punctual);
+    };
+    const auto before = kinds();
+    change();
+    shadows_.update(gpu_);
+    if (kinds() != before) rebuildDirectPrograms();
 }
 
 void Frame::setAreaLightsInDirect(bool on, bool keepAreaShadowMaps)

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 
 #include <glm/glm.hpp>
@@ -40,7 +41,7 @@ struct FrameSettings {
 // Counters that change when the scene, a light or the camera moves (and only then): progressive
 // techniques compare them with what they accumulated for and start over.
 struct FrameVersion {
-    std::uint64_t scene = 0;  // geometry and materials (a Frame holds one scene: changes once scenes move)
+    std::uint64_t scene = 0;  // geometry: moveVertices() (a Frame holds one scene)
     std::uint64_t lights = 0; // setLights()
     std::uint64_t camera = 0; // setCamera() with a different camera, resize()
     bool operator==(const FrameVersion&) const = default;
@@ -52,6 +53,14 @@ public:
 
     void setCamera(const core::Camera& camera);
     void setLights(const std::vector<core::Light>& lights); // moves punctual lights, re-renders shadows
+    // Deforming geometry (micro-rendering §2.1, point projection §4 "Scene Manipulation"): every vertex's new
+    // position and normal (GpuScene::moveVertices), and version().scene changes. The rasterised passes
+    // (G-buffer, shadow maps, RSMs), the area lights and emissive triangles, and the shared point clouds
+    // follow: their points ride on their triangles' barycentrics and their areas scale with their triangles'
+    // (PointCloud). What was built on the CPU from scene() stays as it was: the ray casters' BVHs and the
+    // path tracer.
+    // False (nothing changed) for counts that differ from the scene's vertices or a value that is not finite.
+    bool moveVertices(const std::vector<glm::vec3>& positions, const std::vector<glm::vec3>& normals);
     // Whether the direct pass adds the light that emitting triangles reflect (on by default). Off for a
     // technique that carries the emitters' light itself and writes it into indirect() (grb's
     // emitters=bundles): the direct pass then holds emission and punctual lights only. The Renderer sets
@@ -159,6 +168,9 @@ private:
     FrameVersion version_;
     void allocateTargets();
     void rebuildDirectPrograms();
+    // Runs `change` on the GPU scene's lights or geometry, then fits the shadow maps' views to what it left,
+    // and rebuilds the direct pass's programs where a kind of light (punctual, directional, area) came or went.
+    void changeLights(const std::function<void()>& change);
     void updateGBufferCamera();
     std::vector<float> decode(int output) const;
 };

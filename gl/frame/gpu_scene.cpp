@@ -36,6 +36,8 @@ GpuScene::GpuScene(const core::Scene& scene, int textureSize)
     std::vector<Vertex> vertices;
     std::vector<std::uint32_t> indices;
     vertices.reserve(scene.triangleCount() * 3);
+    int lightCount = 0;
+    bool warned = false;
     for (std::size_t mi = 0; mi < scene.meshes.size(); ++mi) {
         const core::Mesh& m = scene.meshes[mi];
         const auto base = std::uint32_t(vertices.size());
@@ -43,37 +45,33 @@ GpuScene::GpuScene(const core::Scene& scene, int textureSize)
             vertices.push_back({m.positions[i], m.normals[i], m.uvs.empty() ? glm::vec2(0.0f) : m.uvs[i], m.material});
         for (std::uint32_t idx : m.indices) indices.push_back(base + idx);
 
+        // Every emitting triangle is an area light (up to kMaxAreaTriangles); those of one mesh share a
+        // shadow cube. placeEmitters() puts them where the vertices are.
         const core::Material& mat = scene.materials[m.material];
         if (!mat.isEmissive()) continue;
-        // Each emitting triangle is an area light; the triangles of one mesh share one shadow cube.
+        const double luminance = 0.2126 * mat.emission.x + 0.7152 * mat.emission.y + 0.0722 * mat.emission.z;
+        const auto first = std::uint32_t((indices.size() - m.indices.size()) / 3);
         for (std::size_t t = 0; t + 2 < m.indices.size(); t += 3) {
-            if (int(area_.size()) >= kMaxAreaTriangles) {
+            Emitter e;
+            e.triangle = first + std::uint32_t(t / 3);
+            e.material = m.material;
+            for (int k = 0; k < 3; ++k) e.corners[k] = base + m.indices[t + k];
+            e.emission = mat.emission;
+            e.luminance = luminance;
+            e.group = int(mi);
+            const glm::vec3 a = m.positions[m.indices[t]], b = m.positions[m.indices[t + 1]],
+                            c = m.positions[m.indices[t + 2]];
+            if (glm::length(glm::cross(b - a, c - a)) <= 0.0f) continue; // degenerate: emits nothing
+            e.light = lightCount < kMaxAreaTriangles;
+            if (e.light)
+                ++lightCount;
+            else if (!warned) {
                 std::fprintf(stderr, "bounce: more than %d emissive triangles; the rest light nothing directly\n",
                              kMaxAreaTriangles);
-                break;
+                warned = true;
             }
-            LightSource s;
-            s.type = kLightArea;
-            for (int k = 0; k < 3; ++k) s.triangle[k] = m.positions[m.indices[t + k]];
-            const glm::vec3 c = glm::cross(s.triangle[1] - s.triangle[0], s.triangle[2] - s.triangle[0]);
-            if (glm::length(c) <= 0.0f) continue; // degenerate: emits nothing
-            s.direction = glm::normalize(c);
-            s.intensity = mat.emission;
-            s.group = int(mi);
-            area_.push_back(s);
+            emitters_.push_back(e);
         }
-    }
-    // Area lights of one mesh: their shadow cube sits at the mesh's emitting centroid, nudged off the
-    // surface along the normal so the emitter does not shadow itself.
-    for (LightSource& s : area_) {
-        glm::vec3 sum(0.0f);
-        int n = 0;
-        for (const LightSource& o : area_)
-            if (o.group == s.group) {
-                sum += (o.triangle[0] + o.triangle[1] + o.triangle[2]) / 3.0f;
-                ++n;
-            }
-        s.position = sum / float(n) + s.direction * 1e-3f;
     }
 
     if (hasAlphaMask_) {
@@ -128,32 +126,10 @@ GpuScene::GpuScene(const core::Scene& scene, int textureSize)
     textures_.setFilter(GL_LINEAR, GL_LINEAR);
     textures_.setWrap(GL_REPEAT);
 
-    // Emissive triangles with a power CDF (luminance of pi L A), for sampling emission by power.
-    std::vector<GpuEmissiveTriangle> emissive;
-    double totalPower = 0.0;
-    std::uint32_t triangle = 0;
-    for (const core::Mesh& m : scene.meshes) {
-        const core::Material& mat = scene.materials[m.material];
-        const double luminance = 0.2126 * mat.emission.x + 0.7152 * mat.emission.y + 0.0722 * mat.emission.z;
-        for (std::size_t t = 0; t + 2 < m.indices.size(); t += 3, ++triangle) {
-            if (!mat.isEmissive()) continue;
-            const glm::vec3 a = m.positions[m.indices[t]], b = m.positions[m.indices[t + 1]],
-                            c = m.positions[m.indices[t + 2]];
-            const float area = 0.5f * glm::length(glm::cross(b - a, c - a));
-            if (!(area > 0.0f)) continue; // degenerate: emits nothing
-            totalPower += core::kPi * luminance * area;
-            emissive.push_back({triangle, m.material, area, float(totalPower)});
-        }
-    }
-    for (GpuEmissiveTriangle& e : emissive) e.powerCdf = totalPower > 0.0 ? float(e.powerCdf / totalPower) : 1.0f;
-    if (!emissive.empty()) emissive.back().powerCdf = 1.0f;
-    emissiveCount_ = int(emissive.size());
-    const GpuEmissiveHeader header{std::uint32_t(emissive.size()), float(totalPower), {0, 0}};
-    emissive_ = Buffer("scene.emissiveTriangles",
-                       sizeof header + std::max<std::size_t>(emissive.size(), 1) * sizeof(GpuEmissiveTriangle));
-    emissive_.update(0, sizeof header, &header);
-    if (!emissive.empty())
-        emissive_.update(sizeof header, emissive.size() * sizeof(GpuEmissiveTriangle), emissive.data());
+    emissive_ =
+        Buffer("scene.emissiveTriangles",
+               sizeof(GpuEmissiveHeader) + std::max<std::size_t>(emitters_.size(), 1) * sizeof(GpuEmissiveTriangle));
+    placeEmitters(vertices);
 
     std::vector<GpuMaterial> mats;
     for (const core::Material& m : scene.materials) {
@@ -168,6 +144,53 @@ GpuScene::GpuScene(const core::Scene& scene, int textureSize)
     materials_ = Buffer::fromVector("scene.materials", mats);
 
     setLights(scene.lights);
+}
+
+void GpuScene::placeEmitters(const std::vector<Vertex>& vertices)
+{
+    // The area lights, and the emissive triangles with a power CDF (luminance of pi L A), for sampling
+    // emission by power.
+    area_.clear();
+    std::vector<GpuEmissiveTriangle> emissive;
+    double totalPower = 0.0;
+    for (const Emitter& e : emitters_) {
+        const glm::vec3 a = vertices[e.corners[0]].position, b = vertices[e.corners[1]].position,
+                        c = vertices[e.corners[2]].position;
+        const glm::vec3 cross = glm::cross(b - a, c - a);
+        const float area = 0.5f * glm::length(cross);
+        if (!(area > 0.0f)) continue; // degenerate (flattened by moveVertices): emits nothing
+        totalPower += core::kPi * e.luminance * area;
+        emissive.push_back({e.triangle, e.material, area, float(totalPower)});
+        if (!e.light) continue;
+        LightSource s;
+        s.type = kLightArea;
+        s.triangle[0] = a;
+        s.triangle[1] = b;
+        s.triangle[2] = c;
+        s.direction = glm::normalize(cross);
+        s.intensity = e.emission;
+        s.group = e.group;
+        area_.push_back(s);
+    }
+    // Area lights of one mesh: their shadow cube sits at the mesh's emitting centroid, nudged off the
+    // surface along the normal so the emitter does not shadow itself.
+    for (LightSource& s : area_) {
+        glm::vec3 sum(0.0f);
+        int n = 0;
+        for (const LightSource& o : area_)
+            if (o.group == s.group) {
+                sum += (o.triangle[0] + o.triangle[1] + o.triangle[2]) / 3.0f;
+                ++n;
+            }
+        s.position = sum / float(n) + s.direction * 1e-3f;
+    }
+    for (GpuEmissiveTriangle& e : emissive) e.powerCdf = totalPower > 0.0 ? float(e.powerCdf / totalPower) : 1.0f;
+    if (!emissive.empty()) emissive.back().powerCdf = 1.0f;
+    emissiveCount_ = int(emissive.size());
+    const GpuEmissiveHeader header{std::uint32_t(emissive.size()), float(totalPower), {0, 0}};
+    emissive_.update(0, sizeof header, &header);
+    if (!emissive.empty())
+        emissive_.update(sizeof header, emissive.size() * sizeof(GpuEmissiveTriangle), emissive.data());
 }
 
 void GpuScene::setLights(const std::vector<core::Light>& punctual)
@@ -194,6 +217,29 @@ std::vector<Define> GpuScene::alphaMaskDefines() const
 {
     if (!hasAlphaMask_) return {};
     return {{"ALPHA_MASK", "1"}};
+}
+
+bool GpuScene::moveVertices(const std::vector<glm::vec3>& positions, const std::vector<glm::vec3>& normals)
+{
+    const std::size_t n = vertexCount();
+    if (positions.size() != n || normals.size() != n) return false;
+    const auto finite = [](const glm::vec3& v) {
+        return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+    };
+    for (std::size_t i = 0; i < n; ++i)
+        if (!finite(positions[i]) || !finite(normals[i])) return false;
+    std::vector<Vertex> vertices = vertices_.download<Vertex>();
+    core::Bounds bounds;
+    for (std::size_t i = 0; i < n; ++i) {
+        vertices[i].position = positions[i];
+        vertices[i].normal = normals[i];
+        bounds.extend(positions[i]);
+    }
+    vertices_.update(0, n * sizeof(Vertex), vertices.data());
+    bounds_ = bounds;
+    placeEmitters(vertices); // the area lights and the emissive triangles where the vertices now are
+    setLights(punctual_);
+    return true;
 }
 
 void GpuScene::bindGeometry() const

@@ -99,7 +99,14 @@ public:
     bool hasAlphaMask() const { return hasAlphaMask_; }
     std::vector<Define> alphaMaskDefines() const;
     std::size_t triangleCount() const { return indexCount_ / 3; }
+    std::size_t vertexCount() const { return vertices_.bytes() / sizeof(Vertex); }
     const core::Bounds& bounds() const { return bounds_; }
+    // Deforming geometry: new positions and normals for every vertex (vertexCount() each, the order of the
+    // meshes), rewritten in the buffer that the rasteriser and SCENE_GEOMETRY read; the area lights and the
+    // emissive triangles follow (one that becomes degenerate emits nothing). Returns false, changing nothing,
+    // where a count differs or a value is not finite. What was built from core::Scene on the CPU (BVHs) stays
+    // where it was: see Frame::moveVertices.
+    bool moveVertices(const std::vector<glm::vec3>& positions, const std::vector<glm::vec3>& normals);
 
     // Lights of the scene: the punctual ones (from core::Light) first, then one per emissive triangle;
     // the demo may move punctual lights, which rebuilds this list through setLights().
@@ -127,6 +134,18 @@ private:
     std::size_t indexCount_ = 0;
     core::Bounds bounds_;
     std::vector<core::Light> punctual_;
+    // The emitting triangles (not degenerate when the scene was loaded), where placeEmitters() finds them.
+    struct Emitter {
+        std::uint32_t triangle = 0, material = 0;
+        std::uint32_t corners[3] = {0, 0, 0}; // vertex indices
+        glm::vec3 emission{0.0f};
+        double luminance = 0.0;
+        int group = -1;     // the mesh: its triangles share a shadow cube
+        bool light = false; // one of the first kMaxAreaTriangles: an area light
+    };
+    std::vector<Emitter> emitters_;
+    // area_ and the emissive triangles' buffer from the emitters' corners in `vertices`.
+    void placeEmitters(const std::vector<Vertex>& vertices);
     std::vector<LightSource> area_;
     std::vector<LightSource> lights_;
 };

@@ -87,6 +87,13 @@ vec3 sceneTrianglePoint(uint triangle, vec2 b)
     return (1.0 - b.x - b.y) * sceneVertexPosition(sceneVertexIndex(triangle, 0)) +
            b.x * sceneVertexPosition(sceneVertexIndex(triangle, 1)) + b.y * sceneVertexPosition(sceneVertexIndex(triangle, 2));
 }
+// The triangle's area as the vertices are now, m^2.
+float sceneTriangleArea(uint triangle)
+{
+    vec3 p0 = sceneVertexPosition(sceneVertexIndex(triangle, 0));
+    return 0.5 * length(cross(sceneVertexPosition(sceneVertexIndex(triangle, 1)) - p0,
+                              sceneVertexPosition(sceneVertexIndex(triangle, 2)) - p0));
+}
 vec3 sceneTriangleNormal(uint triangle, vec2 b)
 {
     vec3 n = (1.0 - b.x - b.y) * sceneVertexNormal(sceneVertexIndex(triangle, 0)) +

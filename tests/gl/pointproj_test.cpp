@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -18,6 +19,7 @@
 #include "core/image.h"
 #include "gl/frame/frame.h"
 #include "gl/frame/points/adaptive_pixels.h"
+#include "gl/frame/points/point_cloud.h"
 #include "gl/gl.h"
 #include "tests/form_factor.h"
 #include "tests/gl/gl_test_fixture.h"
@@ -93,6 +95,104 @@ TEST_F(PointprojTest, FurnaceReturnsRhoL)
             EXPECT_LT(empty, 0.07 * 32 * 32);
         }
     }
+}
+
+// How many of the first `levels` levels of median splits do not hold for the points in their order: a run
+// of n / 2^l points whose halves lie on both sides of every plane across its longest axis (any of the axes
+// of equal longest extent, as a cube's are).
+int brokenSplits(const std::vector<glm::vec3>& p, int levels)
+{
+    int broken = 0;
+    for (int l = 0; l < levels && (p.size() >> l) >= 2; ++l) {
+        const std::size_t run = p.size() >> l, half = run / 2;
+        for (std::size_t s = 0; s + run <= p.size(); s += run) {
+            core::Bounds b;
+            for (std::size_t k = s; k < s + run; ++k) b.extend(p[k]);
+            const glm::vec3 e = b.extent();
+            const float longest = std::max({e.x, e.y, e.z});
+            bool held = false;
+            for (int axis = 0; axis < 3 && !held; ++axis) {
+                if (e[axis] < longest * (1.0f - 1e-6f)) continue;
+                float lowMax = -INFINITY, highMin = INFINITY;
+                for (std::size_t k = s; k < s + half; ++k) lowMax = std::max(lowMax, p[k][axis]);
+                for (std::size_t k = s + half; k < s + run; ++k) highMin = std::min(highMin, p[k][axis]);
+                held = lowMax <= highMin;
+            }
+            if (!held) ++broken;
+        }
+    }
+    return broken;
+}
+
+// Deforming geometry (§4, "Scene Manipulation": "we re-cluster the points"): the furnace box stretched to
+// twice its depth. In the points' old order the first 9 levels' median splits (512 clusters) no longer hold
+// where the points now are; after PointCloud::reorder they hold again, and the points are the same points.
+// The technique re-clusters once when the scene's version changes, and its furnace still returns rho L
+// with every point projected (the points' areas follow their triangles': the walls along z are splatted
+// twice as large).
+TEST_F(PointprojTest, DeformedGeometryReclustersThePoints)
+{
+    constexpr float rho = 0.5f, le = 1.0f;
+    const core::Scene scene = testing::pointFurnaceBox(rho, le);
+    const testing::MovedVertices stretched = testing::scaledVertices(scene, {1.0f, 1.0f, 2.0f});
+    {
+        gl::FrameSettings fs;
+        fs.width = 8;
+        fs.height = 8;
+        fs.shadowMapSize = 64;
+        gl::Frame frame(scene, fs);
+        gl::PointCloud cloud(frame, 4096, 1, false);
+        gl::PassTimers timers;
+        struct Surfel {
+            glm::vec3 position;
+            float areaM2;
+            glm::vec3 normal;
+            std::uint32_t diffuse;
+        };
+        static_assert(sizeof(Surfel) == 32, "point_cloud.glsl's PointSurfel");
+        const auto positions = [&] {
+            std::vector<glm::vec3> p;
+            for (const Surfel& s : cloud.surfels().download<Surfel>()) p.push_back(s.position);
+            return p;
+        };
+        const auto sorted = [](std::vector<glm::vec3> p) {
+            std::sort(p.begin(), p.end(), [](const glm::vec3& a, const glm::vec3& b) {
+                return std::tie(a.x, a.y, a.z) < std::tie(b.x, b.y, b.z);
+            });
+            return p;
+        };
+        cloud.update(frame, timers);
+        EXPECT_EQ(brokenSplits(positions(), 9), 0) << "at rest";
+        ASSERT_TRUE(frame.moveVertices(stretched.positions, stretched.normals));
+        cloud.update(frame, timers);
+        const std::vector<glm::vec3> moved = positions();
+        EXPECT_GT(brokenSplits(moved, 9), 0) << "the old order, stretched";
+        const double ms = cloud.reorder(frame, timers);
+        const std::vector<glm::vec3> reordered = positions();
+        EXPECT_EQ(brokenSplits(reordered, 9), 0) << "re-clustered";
+        EXPECT_TRUE(sorted(reordered) == sorted(moved)) << "the same points";
+        std::printf("[ recluster] 4096 points: %.2f ms on the CPU\n", ms);
+    }
+
+    const gl::TechniqueInfo& info = gl::findTechnique("pointproj");
+    gl::ParamValues frameValues(gl::frameParams()), values(info.params);
+    frameValues.setValue("shadow.size", 64);
+    for (const auto& [k, v] : with(kSmall, {{"projection", "all"}})) values.set(info.params, k, v);
+    gl::Renderer r(scene, "pointproj", frameValues, values, 10, 10);
+    r.renderFrame();
+    ASSERT_TRUE(r.moveVertices(stretched.positions, stretched.normals));
+    r.renderFrame();
+    r.renderFrame();
+    const PointRender out{r.frame().read(r.frame().indirect()), core::Image(10, 10), core::Image(10, 10), r.counters()};
+    EXPECT_EQ(out.counter("reclusters"), 1.0);
+    double mean = 0.0;
+    for (int y = 0; y < 10; ++y)
+        for (int x = 0; x < 10; ++x) mean += out.indirect.at(x, y).x / 100.0;
+    const double empty = out.counter("emptyTexelsPerPixel");
+    std::printf("[ stretched] mean %.4f (closed form %.4f), empty texels per pixel %.1f\n", mean, rho * rho * le,
+                empty);
+    EXPECT_NEAR(mean, rho * rho * le, 0.015 * rho * rho * le);
+    EXPECT_LT(empty, 0.03 * 32 * 32);
 }
 
 // Two parallel unit squares h apart and open at the sides: the lower one emits L_e, the upper one

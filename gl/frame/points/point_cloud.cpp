@@ -1,6 +1,7 @@
 #include "gl/frame/points/point_cloud.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <map>
 #include <mutex>
@@ -71,11 +72,12 @@ std::shared_ptr<const std::vector<core::SurfacePoint>> orderedSurfacePoints(cons
     return ordered;
 }
 
-GpuPointSample toGpuPointSample(const core::SurfacePoint& p)
+GpuPointSample toGpuPointSample(const core::SurfacePoint& p, double triangleAreaM2)
 {
     const float b0 = p.barycentrics.x, b1 = p.barycentrics.y;
+    const float share = triangleAreaM2 > 0.0 ? float(p.areaM2 / triangleAreaM2) : 0.0f;
     // core: p = b0 p0 + b1 p1 + (1 - b0 - b1) p2; scene.glsl: (1 - x - y) v0 + x v1 + y v2.
-    return {p.triangle, p.areaM2, glm::vec2(b1, 1.0f - b0 - b1)};
+    return {p.triangle, share, glm::vec2(b1, 1.0f - b0 - b1)};
 }
 
 std::vector<Define> lightKindDefines(const GpuScene& scene)
@@ -98,10 +100,11 @@ PointCloud::PointCloud(Frame& frame, std::size_t count, std::uint64_t seed, bool
 {
     const auto points = orderedSurfacePoints(frame.scene(), count, seed);
     count_ = int(points->size());
+    const std::vector<double> triangleAreas = core::triangleAreas(frame.scene());
     std::vector<GpuPointSample> gpu;
     gpu.reserve(points->size());
     for (const core::SurfacePoint& p : *points) {
-        gpu.push_back(toGpuPointSample(p));
+        gpu.push_back(toGpuPointSample(p, triangleAreas[p.triangle]));
         totalArea_ += p.areaM2;
     }
     discRadius_ = count_ > 0 ? float(std::sqrt(totalArea_ / count_ / M_PI)) : 0.0f;
@@ -145,12 +148,13 @@ void PointCloud::bind() const
 void PointCloud::update(Frame& frame, PassTimers& timers)
 {
     // point_update.comp per point: its sample, three indices, the three vertices' positions and normals and
-    // the material word, the point, unit normal and BRDF parameters (materials stay in cache); with
+    // the material word, the point, unit normal, the triangle's area and BRDF parameters (materials stay in
+    // cache); with
     // textures the three uvs and one bilinear sample (a bound: every material textured); one 32-byte
     // surfel out, and where glossy the lobe's material word.
     const bool textured = frame.gpuScene().hasTextures();
     PassCost cost;
-    cost.flops = 90 + (textured ? 16 : 0) + (glossy_ ? 8 : 0);
+    cost.flops = 110 + (textured ? 16 : 0) + (glossy_ ? 8 : 0);
     cost.fetches = textured ? 4 : 0;
     cost.bytesRead = 16 + 3 * 4 + 3 * (12 + 12) + 4 + (textured ? 3 * 8 + 4 * 4 : 0);
     cost.bytesWritten = sizeof(GpuSurfel) + (glossy_ ? 4 : 0);
@@ -161,6 +165,24 @@ void PointCloud::update(Frame& frame, PassTimers& timers)
     update_.set("pointCount", unsigned(count_));
     dispatchCompute(update_, {count_, 1, 1}, {kLocal, 1, 1});
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
+double PointCloud::reorder(Frame& frame, PassTimers& timers)
+{
+    if (count_ == 0) return 0.0;
+    const auto start = std::chrono::steady_clock::now();
+    const std::vector<GpuSurfel> surfels = surfels_.download<GpuSurfel>();
+    std::vector<glm::vec3> positions(surfels.size());
+    for (std::size_t i = 0; i < surfels.size(); ++i) positions[i] = surfels[i].position;
+    // Every level, as at creation: micro-rendering's complete tree, point projection's clusters its first levels.
+    const std::vector<std::uint32_t> order = core::medianSplitOrder(positions, 64);
+    const std::vector<GpuPointSample> samples = samples_.download<GpuPointSample>();
+    std::vector<GpuPointSample> reordered(samples.size());
+    for (std::size_t i = 0; i < order.size(); ++i) reordered[i] = samples[order[i]];
+    samples_.update(0, reordered.size() * sizeof(GpuPointSample), reordered.data());
+    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    update(frame, timers);
+    return ms;
 }
 
 void PointCloud::light(Frame& frame, PassTimers& timers)

@@ -26,8 +26,8 @@ namespace bounce::gl {
 // std430 mirror of point_cloud.glsl's PointSample.
 struct GpuPointSample {
     std::uint32_t triangle;
-    float areaM2;
-    glm::vec2 barycentrics; // scene.glsl's (b1, b2); after areaM2 so that std430 packs it at offset 8
+    float triangleShare;    // the point's area over its triangle's, at creation (the area follows deformation)
+    glm::vec2 barycentrics; // scene.glsl's (b1, b2); after the share so that std430 packs it at offset 8
 };
 
 // The points of `scene`, `count` of them from the surface sampler with `seed`, in median-split order:
@@ -37,8 +37,9 @@ std::shared_ptr<const std::vector<core::SurfacePoint>> orderedSurfacePoints(cons
                                                                             std::uint64_t seed);
 
 // The surface point as the GPU reads it: core's (b0, b1) with p = b0 p0 + b1 p1 + (1 - b0 - b1) p2 become
-// scene.glsl's (b1, b2) with p = (1 - b1 - b2) v0 + b1 v1 + b2 v2.
-GpuPointSample toGpuPointSample(const core::SurfacePoint& p);
+// scene.glsl's (b1, b2) with p = (1 - b1 - b2) v0 + b1 v1 + b2 v2; its area becomes its share of its
+// triangle's area (triangleAreaM2, > 0 where the sampler put a point).
+GpuPointSample toGpuPointSample(const core::SurfacePoint& p, double triangleAreaM2);
 
 class PointCloud {
 public:
@@ -46,7 +47,13 @@ public:
     PointCloud(Frame& frame, std::size_t count, std::uint64_t seed, bool keepDirect);
 
     void update(Frame& frame, PassTimers& timers); // "point-update"
-    void light(Frame& frame, PassTimers& timers);  // "point-light"
+    // Puts the points back into the median-split order (core/point_order.h) of where they are now, after
+    // update(): reads their positions back, orders them on the CPU and uploads the samples in that order
+    // (point projection re-clusters when the scene is manipulated, Maletz et al. §4). Runs update() again so
+    // that the surfels follow; what else was per point (radiance, lobes) is stale until light(). Returns
+    // the milliseconds the CPU spent (read-back, order, upload).
+    double reorder(Frame& frame, PassTimers& timers);
+    void light(Frame& frame, PassTimers& timers); // "point-light"
     // "relight": radiance = direct + diffuse colour x gathered[i / stride] (vec4 per representative).
     void relight(const Buffer& gathered, int stride, PassTimers& timers);
     // Samples, surfels, radiance (and direct) at their SSBO slots.
@@ -54,7 +61,8 @@ public:
 
     int count() const { return count_; }
     double totalAreaM2() const { return totalArea_; }
-    // The radius of a point's disc, sqrt(area / pi), over the cloud (all points carry the same area).
+    // The radius of a point's disc, sqrt(area / pi), over the cloud (all points carry the same area at
+    // creation; under deformation each point's area scales with its triangle's, and this stays).
     float discRadius() const { return discRadius_; }
     const Buffer& radiance() const { return radiance_; }
     // The scene has a glossy material: the points carry their glossy lobes (SSBO_POINT_GLOSSY), and every

@@ -1,7 +1,9 @@
 // The shared lit point cloud (gl/frame/points/point_cloud.h): N surface points of the frame's sampler
 // (core/surface_points.h) in the order of core/point_order.h, as three std430 arrays.
-//   PointSample  (triangle, barycentrics, area): fixed at creation; the geometry may move under it
-//   PointSurfel  position, area, normal, diffuse colour: recomputed every frame (point_update.comp)
+//   PointSample  (triangle, barycentrics, share of the triangle's area): fixed at creation; the geometry may
+//                move under it (Frame::moveVertices)
+//   PointSurfel  position, area, normal, diffuse colour: recomputed every frame (point_update.comp); the
+//                area is the share times the triangle's area as it is now
 //   radiance     outgoing (diffuse) radiance towards any direction, RGB as half floats (point_light.comp):
 //                micro-rendering §3.1 stores "the reflected radiance as half-floats in a separate array";
 //                the slot holds direct light, or direct plus gathered bounces (point_relight.comp).
@@ -28,7 +30,7 @@
 
 struct PointSample {
     uint triangle;
-    float areaM2;
+    float triangleShare; // the point's area over its triangle's, at creation
     vec2 barycentrics;   // (b1, b2) of scene.glsl's sceneTrianglePoint: p = (1 - b1 - b2) v0 + b1 v1 + b2 v2
 };
 

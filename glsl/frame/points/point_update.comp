@@ -35,7 +35,9 @@ void main()
                               m.specularColorSpecular.rgb);
     PointSurfel o;
     o.position = sceneTrianglePoint(tri, b);
-    o.areaM2 = s.areaM2;
+    // "Under deformations we scale the points' radii to compensate for the varying point densities"
+    // (micro-rendering §2.1): the points of a triangle share its area as it is now.
+    o.areaM2 = s.triangleShare * sceneTriangleArea(tri);
     o.normal = sceneTriangleNormal(tri, b);
     // The fourth byte: the glossy lobe's weight w (point_light.comp folds it into the glossy irradiance).
     o.diffuse = packUnorm4x8(vec4(clamp(p.diffuse, 0.0, 1.0), clamp(p.weight, 0.0, 1.0)));
