@@ -67,8 +67,8 @@ std::unique_ptr<gl::Frame> cornellSpotGBuffer(int w, int h)
 // 32 points a cluster, so the clusters next to a pixel are drawn more often than they have points (the
 // hard case of a point drawn twice: each copy must keep at least its own disc, or the octant of the buffer
 // its cluster fills stays empty). Measured with the hole fill (4 passes) and splats sized by the points
-// drawn from their cluster: every point projected 0.4% low, 14 empty texels a pixel (52 without the fill);
-// about 3K sampled points 1.3% / 2.9% low with 37 / 56 empty texels (importance / uniform; the paper's
+// drawn from their cluster: every point projected 0.4% low, 13 empty texels a pixel (50 without the fill);
+// about 3K sampled points 1.2% / 2.8% low with 34 / 54 empty texels (importance / uniform; the paper's
 // splats without a fill: 5.4% / 6.8% low, 119 / 114 empty).
 TEST_F(PointprojTest, FurnaceReturnsRhoL)
 {

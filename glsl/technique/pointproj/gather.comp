@@ -101,7 +101,8 @@ void splat(uint j, float area)
     float d = sqrt(d2);
     vec3 wl = vec3(dot(v, gt), dot(v, gb), dot(v, gn)) / d;
     if (wl.z <= 0.0) return; // behind the tangent plane: outside the hemisphere
-    ivec2 c = clamp(ivec2(hemiOctEncode(wl) * float(PROJ_RES)), ivec2(0), ivec2(PROJ_RES - 1));
+    vec2 f = hemiOctEncode(wl) * float(PROJ_RES);
+    ivec2 c = clamp(ivec2(f), ivec2(0), ivec2(PROJ_RES - 1));
 #if SPLAT_FIXED > 0
     int side = SPLAT_FIXED;
 #else
@@ -114,8 +115,12 @@ void splat(uint j, float area)
     }
 #endif
     uint key = (uint(min(d * depthScale, kDepthMax)) << KEY_INDEX_BITS) | j;
-    ivec2 lo = max(c - (side - 1) / 2, ivec2(0));
-    ivec2 hi = min(c - (side - 1) / 2 + side - 1, ivec2(PROJ_RES - 1));
+    // The side x side texels whose centres lie nearest the point's projection f: an odd side centred on its
+    // texel, an even one leaning towards the side of the texel that f lies on. The point's own texel c is
+    // always among them (f on the buffer's far edge is clamped into it).
+    ivec2 first = clamp(ivec2(floor(f - 0.5 * float(side - 1))), c - (side - 1), c);
+    ivec2 lo = max(first, ivec2(0));
+    ivec2 hi = min(first + side - 1, ivec2(PROJ_RES - 1));
     for (int y = lo.y; y <= hi.y; ++y)
         for (int x = lo.x; x <= hi.x; ++x) atomicMin(projKeys[y * PROJ_RES + x], key);
     atomicAdd(groupStats[1], 1u);
