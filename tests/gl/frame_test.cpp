@@ -19,9 +19,9 @@
 #include "gl/resource/dispatch.h"
 #include "gl/resource/program.h"
 #include "tests/gl/cpu_raycast.h"
-#include "tests/gl/point_test_util.h"
 #include "tests/gl/gl_test_fixture.h"
 #include "tests/gl/photon_test_scenes.h"
+#include "tests/gl/point_test_util.h"
 
 namespace bounce {
 namespace {
@@ -239,7 +239,8 @@ TEST_F(FrameTest, MovedVerticesRenderAsTheMovedScene)
                     sum += b.at(x, y)[c];
                 }
         const double mean = sum / (3.0 * kSize * kSize);
-        std::printf("[ moved    ] %s, %s: largest difference %.3g (mean %.3g)\n", name, technique.c_str(), largest, mean);
+        std::printf("[ moved    ] %s, %s: largest difference %.3g (mean %.3g)\n", name, technique.c_str(), largest,
+                    mean);
         EXPECT_LE(largest, 1e-4 * mean);
     }
 }
