@@ -200,7 +200,7 @@ TEST_F(FrameTest, AreaEmitterSeenWithItsRadiance)
 // cornell-spot scaled by (1.2, 1.1, 0.9) after a first frame render the direct light of the scene made with
 // those vertices: the G-buffer, the shadow maps' views fitted to the new bounds, the area lights and their
 // shadow cube where the emitter now is. A renderer that kept the emitter or the views where they were
-// differs by far more (the emitter's light on the walls alone moves by 10-20%).
+// differs by far more (the emitter's light on the walls alone moves by 10-20%). Then flattened onto a plane.
 TEST_F(FrameTest, MovedVerticesRenderAsTheMovedScene)
 {
     const glm::vec3 scale(1.2f, 1.1f, 0.9f);
@@ -242,6 +242,14 @@ TEST_F(FrameTest, MovedVerticesRenderAsTheMovedScene)
         std::printf("[ moved    ] %s, %s: largest difference %.3g (mean %.3g)\n", name, technique.c_str(), largest,
                     mean);
         EXPECT_LE(largest, 1e-4 * mean);
+
+        // The hard case of a scene flattened onto the plane x = 0: every emitter degenerate, no area light left (the
+        // direct pass loses AREA_LIGHTS), and what is drawn stays finite and non-negative.
+        const testing::MovedVertices flat = testing::scaledVertices(scene, {0.0f, 1.0f, 1.0f});
+        ASSERT_TRUE(deformed.moveVertices(flat.positions, flat.normals));
+        deformed.renderFrame();
+        EXPECT_EQ(int(deformed.frame().gpuScene().lights().size()), deformed.frame().gpuScene().punctualLightCount());
+        EXPECT_TRUE(testing::allFiniteNonNegative(deformed.image()));
     }
 }
 
