@@ -149,9 +149,8 @@ void PointCloud::update(Frame& frame, PassTimers& timers)
 {
     // point_update.comp per point: its sample, three indices, the three vertices' positions and normals and
     // the material word, the point, unit normal, the triangle's area and BRDF parameters (materials stay in
-    // cache); with
-    // textures the three uvs and one bilinear sample (a bound: every material textured); one 32-byte
-    // surfel out, and where glossy the lobe's material word.
+    // cache); with textures the three uvs and one bilinear sample (a bound: every material textured); one
+    // 32-byte surfel out, and where glossy the lobe's material word.
     const bool textured = frame.gpuScene().hasTextures();
     PassCost cost;
     cost.flops = 110 + (textured ? 16 : 0) + (glossy_ ? 8 : 0);

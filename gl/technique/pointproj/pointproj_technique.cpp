@@ -44,8 +44,8 @@ public:
         cloud_.update(frame, timers);
         if (!(frame.version() == version_)) {
             // "Upon manipulation ... we re-cluster the points" (§4 "Scene Manipulation"): where the geometry
-            // moved, the clusters are cut again where the points are now. The paper does it on the GPU in
-            // under 12 ms; here the CPU orders the points (reclusterMs).
+            // moved, the clusters are cut again where the points are now. The paper sorts on the GPU (under
+            // 12 ms with the points' direct light); here the CPU orders the points (reclusterMs).
             if (frame.version().scene != version_.scene && version_.scene != ~0ull) {
                 reclusterMs_ = cloud_.reorder(frame, timers);
                 ++reclusters_;
