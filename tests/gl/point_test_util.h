@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -63,15 +64,20 @@ inline double PointRender::counter(const std::string& name) const
     return -1.0;
 }
 
-// Renders `frames` frames of `technique` with its defaults changed by `sets` (shadow maps 512^2).
+// Renders `frames` frames of `technique` with its defaults changed by `sets` (shadow maps 512^2); with `moved`,
+// one frame first, then the scene's vertices moved there (gl::Renderer::moveVertices), then the frames.
 inline PointRender renderPoints(const core::Scene& scene, const std::string& technique, const Sets& sets, int w, int h,
-                                int frames = 1)
+                                int frames = 1, const MovedVertices* moved = nullptr)
 {
     const gl::TechniqueInfo& info = gl::findTechnique(technique);
     gl::ParamValues frameValues(gl::frameParams()), values(info.params);
     frameValues.setValue("shadow.size", 512);
     for (const auto& [k, v] : sets) values.set(info.params, k, v);
     gl::Renderer r(scene, technique, frameValues, values, w, h);
+    if (moved) {
+        r.renderFrame();
+        if (!r.moveVertices(moved->positions, moved->normals)) throw std::invalid_argument("vertices not moved");
+    }
     for (int f = 0; f < frames; ++f) r.renderFrame();
     PointRender out{r.frame().read(r.frame().indirect()), core::Image(w, h), core::Image(w, h), r.counters()};
     const std::vector<float> p = r.frame().readPositions();
