@@ -210,13 +210,7 @@ TEST_F(FrameTest, MovedVerticesRenderAsTheMovedScene)
         SCOPED_TRACE(name);
         const core::Scene scene = core::makeCornell(name);
         const testing::MovedVertices moved = testing::scaledVertices(scene, scale);
-        core::Scene loaded = scene;
-        std::size_t v = 0;
-        for (core::Mesh& m : loaded.meshes)
-            for (std::size_t i = 0; i < m.positions.size(); ++i, ++v) {
-                m.positions[i] = moved.positions[v];
-                m.normals[i] = moved.normals[v];
-            }
+        const core::Scene loaded = testing::withVertices(scene, moved);
         // Direct light, and on cornell-spot reflective shadow maps on a coarse frame (Renderer::setIndirectScale),
         // made after the move: the coarse frame moves as well.
         const bool coarse = std::string(name) == "cornell-spot";

@@ -287,14 +287,8 @@ TEST_F(PointprojTest, DeformedCloudGathersAsACloudOfTheDeformedScene)
     constexpr int size = 24;
     const core::Scene scene = core::makeCornell("cornell-spot");
     const testing::MovedVertices moved = testing::scaledVertices(scene, {1.3f, 1.0f, 1.0f});
-    core::Scene stretched = scene;
+    core::Scene stretched = testing::withVertices(scene, moved);
     stretched.name = "cornell-spot-stretched";
-    std::size_t v = 0;
-    for (core::Mesh& m : stretched.meshes)
-        for (std::size_t i = 0; i < m.positions.size(); ++i, ++v) {
-            m.positions[i] = moved.positions[v];
-            m.normals[i] = moved.normals[v];
-        }
     const core::Image want = testing::pathTracedOneBounce(stretched, size, size, 8192);
     const testing::Sets sets = {{"adaptive", "0"}, {"progressive", "0"}};
     const PointRender deformed = renderPoints(scene, "pointproj", sets, size, size, 1, &moved);
