@@ -133,6 +133,11 @@ TEST(Bindings, NoTwoNamesShareASlot)
         else
             checkTogether({&frame, &own});
     }
+    // The scan and the sort borrow a family's slots for the length of a call (sort_bindings.glsl), never
+    // the frame's.
+    const auto sort = table(root() / "glsl/frame/sort_bindings.glsl");
+    ASSERT_FALSE(sort.empty());
+    checkTogether({&frame, &sort});
     // The C++ side is the same file: spot-check that the macros are what the table says.
     EXPECT_EQ(SSBO_BVH_NODES, frame.at("SSBO_BVH_NODES"));
     EXPECT_EQ(UNIT_ISR_VPL_TREE_TEXELS,

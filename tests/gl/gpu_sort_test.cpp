@@ -1,4 +1,4 @@
-// The photon family's parallel primitives (gl/technique/photon/gpu_sort.h) against the CPU: GpuScan's
+// The frame's parallel primitives (gl/frame/gpu_sort.h) against the CPU: GpuScan's
 // exclusive prefix sums and total against std::exclusive_scan, RadixSort against std::stable_sort on the
 // same bits, with words past the count left as they were. The counts are the hard cases of a scan over
 // work groups: no word, one word, one less and one more than a group's block, and a count whose block
@@ -11,9 +11,9 @@
 
 #include <gtest/gtest.h>
 
+#include "gl/frame/gpu_sort.h"
 #include "gl/gl.h"
 #include "gl/resource/buffer.h"
-#include "gl/technique/photon/gpu_sort.h"
 #include "tests/gl/gl_test_fixture.h"
 
 namespace bounce {

@@ -148,14 +148,14 @@ std::uint32_t IlluminationCut::compact(const PhotonTree& tree, Buffer& counters,
     t.addWork(GpuScan::work(nodeCount_));
     t.addWork(kernelWork(nodeCount_, {.flops = 3, .bytesRead = 8, .bytesWritten = 4}));
     bind();
-    marks_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_PHOTON_SCAN);
+    marks_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_SCAN);
     tree.bind(flags_);
     flags_.set("nodeCount", nodeCount_);
     dispatchLinear(flags_, nodeCount_);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     scan_.run(marks_, nodeCount_, counters, kCounterCutSize);
     bind();
-    marks_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_PHOTON_SCAN);
+    marks_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_SCAN);
     list_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_PHOTON_CUT_LIST);
     tree.bind(listProgram_);
     listProgram_.set("nodeCount", nodeCount_);
@@ -229,7 +229,7 @@ void IlluminationCut::build(const PhotonTree& tree, const Buffer& photons, const
         bind();
         photons.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_PHOTONS);
         list_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_PHOTON_CUT_LIST);
-        marks_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_PHOTON_SCAN);
+        marks_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_SCAN);
         counters.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_PHOTON_COUNTERS);
         tree.bind(refine_);
         refine_.set("listOffset", offset);
@@ -260,7 +260,7 @@ void IlluminationCut::build(const PhotonTree& tree, const Buffer& photons, const
         t.addWork(kernelWork(entering, {.flops = 4, .bytesRead = 8}));
         t.addWork(kernelWork(splits, {.bytesRead = 4 + 8, .bytesWritten = 8}));
         bind();
-        marks_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_PHOTON_SCAN);
+        marks_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_SCAN);
         list_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_PHOTON_CUT_LIST);
         tree.bind(enter_);
         enter_.set("listOffset", offset);

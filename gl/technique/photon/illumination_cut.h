@@ -25,10 +25,10 @@
 #include <glm/glm.hpp>
 
 #include "core/scene.h"
+#include "gl/frame/gpu_sort.h"
 #include "gl/resource/buffer.h"
 #include "gl/resource/program.h"
 #include "gl/resource/timer.h"
-#include "gl/technique/photon/gpu_sort.h"
 #include "gl/technique/photon/photon_tree.h"
 
 namespace bounce::gl {

@@ -193,7 +193,7 @@ ProjectionMap PhotonTracer::project(const Frame& frame, const RayCaster& caster,
         Buffer buffer("photon.projectionMarks", marks.size() * 4);
         frame.bindSceneData();
         caster.bind();
-        buffer.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_PHOTON_SCAN);
+        buffer.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_SCAN);
         project_.set("corner", map.corner);
         project_.set("axisU", map.axisU);
         project_.set("axisV", map.axisV);

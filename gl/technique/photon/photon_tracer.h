@@ -13,12 +13,12 @@
 #include <glm/glm.hpp>
 
 #include "gl/frame/frame.h"
+#include "gl/frame/gpu_sort.h"
 #include "gl/frame/ray_caster.h"
 #include "gl/resource/buffer.h"
 #include "gl/resource/program.h"
 #include "gl/resource/texture.h"
 #include "gl/resource/timer.h"
-#include "gl/technique/photon/gpu_sort.h"
 
 namespace bounce::gl {
 

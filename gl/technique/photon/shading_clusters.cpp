@@ -328,7 +328,7 @@ void ShadingClusters::cluster(const Frame& frame, float sceneSize, Buffer& count
         sortByCluster(counters, t);
         runSegments(t);
         bind();
-        marksBuffer_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_PHOTON_SCAN);
+        marksBuffer_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_SCAN);
         marks_.set("clusterCount", count_);
         dispatchCompute(marks_, {int(count_), 1, 1}, {64, 1, 1});
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
@@ -337,14 +337,14 @@ void ShadingClusters::cluster(const Frame& frame, float sceneSize, Buffer& count
         if (!clusters_) clusters_ = Buffer("photon.clusters", std::size_t(k) * sizeof(GpuCluster));
         spare_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_CLUSTER_SEEDS);
         bind();
-        marksBuffer_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_PHOTON_SCAN);
+        marksBuffer_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_SCAN);
         survivorsProgram_.set("clusterCount", count_);
         dispatchCompute(survivorsProgram_, {int(count_), 1, 1}, {64, 1, 1});
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
         counters.download(kCounterFirst * 4, 4, &survivors_);
         bind();
         clusterOfPixel_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_CLUSTER_OF_PIXEL);
-        marksBuffer_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_PHOTON_SCAN);
+        marksBuffer_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_SCAN);
         survivorOfPixelBuffer_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_CLUSTER_SEEDS);
         const auto pixelCount = std::uint32_t(width_ * height_);
         survivorOfPixel_.set("pixelCount", pixelCount);

@@ -5,7 +5,10 @@
 #define BOUNCE_PHOTON_BINDINGS_GLSL
 
 #define SSBO_PHOTON_EMITTERS 7       // photon_trace.comp: one PhotonEmitter per light, with its photon range
-#define SSBO_PHOTON_COUNTERS 8       // photon.glsl: the family's counters and per-frame scalars
+// photon.glsl: the family's counters and per-frame scalars, the scans' totals among them: the slot of the
+// frame's scan totals (glsl/frame/sort_bindings.glsl, whose slots 17 and 22-26 the family leaves to the
+// scan and the sort)
+#define SSBO_PHOTON_COUNTERS 8
 #define SSBO_PHOTON_STAGING 9        // photon_trace.comp: photons as traced (any order); the sort's spare
 #define SSBO_PHOTON_PATHS 11         // photon_trace.comp: photons stored per path, scanned into offsets
 #define SSBO_PHOTON_EMITTED 12       // photon_trace.comp: each path's emitted power
@@ -13,19 +16,10 @@
 #define SSBO_PHOTON_NODES 14         // photon_tree.glsl: the photon tree, one PhotonNode per node
 #define SSBO_PHOTON_CUT 15           // illumination_cut.glsl: per node: cut state, generation, E_p
 #define SSBO_PHOTON_CUT_LIST 16      // illumination_cut.glsl: lists of cut nodes (the coarse cut, those entering it)
-#define SSBO_PHOTON_SCAN 17          // scan_*.comp: the array a prefix sum runs over, in place
 // cut_grid.glsl: the cut grid, its cell starts scanned in place as a scan's data, read by the gather
 // after the cut's scans; its fill's cursors in the sort's slot, free while it is built.
-#define SSBO_CUT_GRID SSBO_PHOTON_SCAN
+#define SSBO_CUT_GRID SSBO_SCAN
 #define SSBO_CUT_GRID_CURSORS SSBO_SORT_KEYS
-#define SSBO_SORT_KEYS 22            // radix_*.comp: keys and values in, then out (ping-pong)
-#define SSBO_SORT_VALUES 23
-#define SSBO_SORT_KEYS_OUT 24
-#define SSBO_SORT_VALUES_OUT 25
-#define SSBO_SORT_COUNTS 26          // radix_*.comp: digit counts per run, scanned into offsets
-// scan_*.comp: the block sums of every level of a scan. Every slot is taken, so the scan borrows the
-// sort's counts slot: nothing reads that slot across a scan but the sort, which binds it again after.
-#define SSBO_PHOTON_SCAN_SUMS SSBO_SORT_COUNTS
 #define SSBO_CLUSTER_QUADTREE 27     // shading_clusters.glsl: the screen-space quadtree's nodes
 #define SSBO_CLUSTER_CENTRES 28      // shading_clusters.glsl: centres, members and samples of the clusters
 #define SSBO_CLUSTER_OF_PIXEL 29     // shading_clusters.glsl: each shading point's cluster

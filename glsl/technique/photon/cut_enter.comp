@@ -7,7 +7,7 @@
 
 layout(local_size_x = 64) in;
 
-layout(std430, binding = SSBO_PHOTON_SCAN) readonly buffer Positions { uint positions[]; };
+layout(std430, binding = SSBO_SCAN) readonly buffer Positions { uint positions[]; };
 layout(std430, binding = SSBO_PHOTON_CUT_LIST) buffer CutList { uint cutList[]; };
 
 uniform uint listOffset;    // the last iteration's entering nodes

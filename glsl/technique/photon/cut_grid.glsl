@@ -6,6 +6,7 @@
 #ifndef BOUNCE_CUT_GRID_GLSL
 #define BOUNCE_CUT_GRID_GLSL
 
+#include "frame/sort_bindings.glsl"
 #include "technique/photon/bindings.glsl"
 
 // One buffer (one storage block: the gather has no more to spare): the cells' starts (an exclusive scan

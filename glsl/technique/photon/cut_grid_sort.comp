@@ -3,6 +3,7 @@
 // (cutDepthFirstKey), the order of the tree walk's sum, by heapsort (2 n log2 n steps at most: a list of
 // up to kMaxSorted stays within llvmpipe's 65,535 loop iterations per invocation). A longer list, or lists
 // past the capacity, mark the grid unusable, and the lookups walk the tree.
+#include "frame/sort_bindings.glsl"
 #include "technique/photon/bindings.glsl"
 #include "technique/photon/cut_grid.glsl"
 #include "technique/photon/linear_dispatch.glsl"

@@ -14,7 +14,7 @@ layout(local_size_x = 64) in;
 
 layout(std430, binding = SSBO_PHOTON_CUT_LIST) readonly buffer CutList { uint cutList[]; };
 layout(std430, binding = SSBO_PHOTON_COUNTERS) buffer Counters { uint counters[]; };
-layout(std430, binding = SSBO_PHOTON_SCAN) writeonly buffer Entered { uint entered[]; };
+layout(std430, binding = SSBO_SCAN) writeonly buffer Entered { uint entered[]; };
 
 uniform uint listOffset;    // where the entering nodes' list starts in cutList
 uniform uint enteringCount; // its length

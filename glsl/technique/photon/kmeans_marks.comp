@@ -4,7 +4,7 @@
 
 layout(local_size_x = 64) in;
 
-layout(std430, binding = SSBO_PHOTON_SCAN) writeonly buffer Marks { uint marks[]; };
+layout(std430, binding = SSBO_SCAN) writeonly buffer Marks { uint marks[]; };
 
 uniform uint clusterCount;
 

@@ -7,7 +7,7 @@
 layout(local_size_x = 64) in;
 
 layout(std430, binding = SSBO_CLUSTER_OF_PIXEL) readonly buffer ClusterOfPixel { uint clusterOfPixel[]; };
-layout(std430, binding = SSBO_PHOTON_SCAN) readonly buffer Positions { uint positions[]; };
+layout(std430, binding = SSBO_SCAN) readonly buffer Positions { uint positions[]; };
 // Borrowed slot: the seeds are not bound while the iterations run.
 layout(std430, binding = SSBO_CLUSTER_SEEDS) writeonly buffer SurvivorOfPixel { uint survivorOfPixel[]; };
 

@@ -9,7 +9,7 @@ layout(local_size_x = 64) in;
 
 layout(std430, binding = SSBO_CLUSTER_SEEDS) readonly buffer Previous { Cluster previous[]; };
 layout(std430, binding = SSBO_CLUSTER_CENTRES) writeonly buffer Clusters { Cluster clusters[]; };
-layout(std430, binding = SSBO_PHOTON_SCAN) readonly buffer Positions { uint positions[]; };
+layout(std430, binding = SSBO_SCAN) readonly buffer Positions { uint positions[]; };
 
 uniform uint clusterCount;
 

@@ -3,6 +3,7 @@
 #ifndef BOUNCE_PHOTON_GLSL
 #define BOUNCE_PHOTON_GLSL
 
+#include "frame/sort_bindings.glsl"
 #include "technique/photon/bindings.glsl"
 
 // A stored photon (Jensen 2001): where it landed, the power it carries (W), the direction it came from

@@ -12,7 +12,7 @@
 
 layout(local_size_x = 64) in;
 
-layout(std430, binding = SSBO_PHOTON_SCAN) writeonly buffer Marks { uint cellMarks[]; };
+layout(std430, binding = SSBO_SCAN) writeonly buffer Marks { uint cellMarks[]; };
 
 uniform vec3 corner;     // the square's corner on the emission plane
 uniform vec3 axisU;      // unit axes of the square, across the light

@@ -1,5 +1,5 @@
 #version 450 core
-// GpuScan (gl/technique/photon/gpu_sort.h), the compaction step of the photon family (photon offsets per
+// GpuScan (gl/frame/gpu_sort.h), the compaction step of the photon family (photon offsets per
 // path, the cut list, digit offsets of the radix sort, cluster members), as a scan over all work groups
 // in the reduce-then-scan form (Harris, Sengupta and Owens, GPU Gems 3, ch. 39; Merrill and Grimshaw
 // 2009): scan_reduce.comp sums every block of 4096 words, the block sums are scanned (by this pass, as
@@ -12,13 +12,13 @@
 // prefix sums plus the block's offset, blockSums[sumsOffset + block]. At the top level there is one
 // block, no offset, and its total is the scan's, into counters[totalSlot]. Integer sums: the same
 // result in any order of execution.
-#include "technique/photon/bindings.glsl"
+#include "frame/sort_bindings.glsl"
 #include "common/dispatch_rows.glsl"
 layout(local_size_x = 256) in;
 
-layout(std430, binding = SSBO_PHOTON_SCAN) buffer ScanData { uint scanData[]; };
-layout(std430, binding = SSBO_PHOTON_SCAN_SUMS) readonly buffer BlockSums { uint blockSums[]; };
-layout(std430, binding = SSBO_PHOTON_COUNTERS) buffer Counters { uint counters[]; };
+layout(std430, binding = SSBO_SCAN) buffer ScanData { uint scanData[]; };
+layout(std430, binding = SSBO_SCAN_SUMS) readonly buffer BlockSums { uint blockSums[]; };
+layout(std430, binding = SSBO_SCAN_TOTALS) buffer Counters { uint counters[]; };
 
 uniform uint dataOffset; // the array is scanData[dataOffset .. dataOffset + count)
 uniform uint count;

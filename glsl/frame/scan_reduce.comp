@@ -1,14 +1,14 @@
 #version 450 core
-// The first pass of GpuScan (gl/technique/photon/gpu_sort.h) below its top level: each work group sums
+// The first pass of GpuScan (gl/frame/gpu_sort.h) below its top level: each work group sums
 // its block of 4096 words (16 consecutive words per invocation, then a tree in shared memory) into
 // blockSums[sumsOffset + block]. GpuScan scans these sums and hands them to scan_blocks.comp as the
 // blocks' offsets. Integer sums: the same result in any order of execution.
-#include "technique/photon/bindings.glsl"
+#include "frame/sort_bindings.glsl"
 #include "common/dispatch_rows.glsl"
 layout(local_size_x = 256) in;
 
-layout(std430, binding = SSBO_PHOTON_SCAN) readonly buffer ScanData { uint scanData[]; };
-layout(std430, binding = SSBO_PHOTON_SCAN_SUMS) writeonly buffer BlockSums { uint blockSums[]; };
+layout(std430, binding = SSBO_SCAN) readonly buffer ScanData { uint scanData[]; };
+layout(std430, binding = SSBO_SCAN_SUMS) writeonly buffer BlockSums { uint blockSums[]; };
 
 uniform uint dataOffset; // the array is scanData[dataOffset .. dataOffset + count)
 uniform uint count;

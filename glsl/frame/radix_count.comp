@@ -1,8 +1,8 @@
 #version 450 core
-// One pass of the stable LSD radix sort (gl/technique/photon/gpu_sort.h): invocation r counts the 4-bit
+// One pass of the stable LSD radix sort (gl/frame/gpu_sort.h): invocation r counts the 4-bit
 // digits (bits [shift, shift + 4)) of the keys of its run [r L, r L + L) into counts[digit * runs + r].
 // The digit-major exclusive scan of these counts gives each run the first output slot of each digit.
-#include "technique/photon/bindings.glsl"
+#include "frame/sort_bindings.glsl"
 layout(local_size_x = 64) in;
 
 layout(std430, binding = SSBO_SORT_KEYS) readonly buffer Keys { uint keys[]; };

@@ -1,4 +1,4 @@
-#include "gl/technique/photon/gpu_sort.h"
+#include "gl/frame/gpu_sort.h"
 
 #include <algorithm>
 #include <stdexcept>
@@ -7,7 +7,7 @@
 #include "gl/context/context.h"
 #include "gl/gl.h"
 #include "gl/resource/dispatch.h"
-#include "gl/technique/photon/bindings.h"
+#include "glsl/frame/sort_bindings.glsl"
 
 namespace bounce::gl {
 
@@ -54,8 +54,8 @@ std::vector<ScanLevel> scanLevels(std::uint32_t count)
 } // namespace
 
 GpuScan::GpuScan()
-    : reduce_(Program::compute("photon.scanReduce", "technique/photon/scan_reduce.comp")),
-      blocks_(Program::compute("photon.scanBlocks", "technique/photon/scan_blocks.comp"))
+    : reduce_(Program::compute("frame.scanReduce", "frame/scan_reduce.comp")),
+      blocks_(Program::compute("frame.scanBlocks", "frame/scan_blocks.comp"))
 {}
 
 void GpuScan::run(const Buffer& data, std::uint32_t count, const Buffer& counters, std::uint32_t totalSlot)
@@ -65,12 +65,12 @@ void GpuScan::run(const Buffer& data, std::uint32_t count, const Buffer& counter
     // At least one word, so that the block-sums slot is bound even when one block holds the data.
     const std::size_t scratchBytes =
         4u * std::max<std::size_t>(1, levels[top].offset + (top > 0 ? levels[top].count : 0));
-    if (!sums_ || sums_.bytes() < scratchBytes) sums_ = Buffer("photon.scanSums", scratchBytes);
-    counters.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_PHOTON_COUNTERS);
-    sums_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_PHOTON_SCAN_SUMS);
+    if (!sums_ || sums_.bytes() < scratchBytes) sums_ = Buffer("frame.scanSums", scratchBytes);
+    counters.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_SCAN_TOTALS);
+    sums_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_SCAN_SUMS);
     // One pass over level i's blocks; the level above (i + 1) holds their sums.
     auto pass = [&](Program& p, std::size_t i) {
-        (i == 0 ? data : sums_).bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_PHOTON_SCAN);
+        (i == 0 ? data : sums_).bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_SCAN);
         const std::uint32_t blocks = std::max(1u, blockCount(levels[i].count)); // no words: one block, total 0
         p.set("dataOffset", levels[i].offset);
         p.set("count", levels[i].count);
@@ -113,8 +113,8 @@ RadixSort::RadixSort(std::uint32_t maxRuns)
     : maxRuns_(maxRuns > 0            ? maxRuns
                : softwareRasterizer() ? kSoftwareRuns
                                       : kGpuRuns),
-      count_(Program::compute("photon.radixCount", "technique/photon/radix_count.comp")),
-      scatter_(Program::compute("photon.radixScatter", "technique/photon/radix_scatter.comp"))
+      count_(Program::compute("frame.radixCount", "frame/radix_count.comp")),
+      scatter_(Program::compute("frame.radixScatter", "frame/radix_scatter.comp"))
 {}
 
 void RadixSort::sort(const Buffer& keys, const Buffer& values, const Buffer& keysTmp, const Buffer& valuesTmp,
@@ -126,7 +126,7 @@ void RadixSort::sort(const Buffer& keys, const Buffer& values, const Buffer& key
         throw std::logic_error("RadixSort: buffers smaller than the count");
     const auto [runLength, runs, passes] = sortPasses(count, bits, maxRuns_);
     const std::size_t countBytes = std::size_t(runs) * 16u * 4u;
-    if (!counts_ || counts_.bytes() < countBytes) counts_ = Buffer("photon.sortCounts", countBytes);
+    if (!counts_ || counts_.bytes() < countBytes) counts_ = Buffer("frame.sortCounts", countBytes);
     for (int pass = 0; pass < passes; ++pass) {
         const bool even = pass % 2 == 0;
         const Buffer& kIn = even ? keys : keysTmp;

@@ -2,7 +2,7 @@
 // The scatter of one radix pass: invocation r walks its run in order and moves each (key, value) to the
 // next slot of its digit. Runs are contiguous and walked in order, so equal digits keep their order: the
 // sort is stable, and sorting by several keys is sorting by the least significant one first.
-#include "technique/photon/bindings.glsl"
+#include "frame/sort_bindings.glsl"
 layout(local_size_x = 64) in;
 
 layout(std430, binding = SSBO_SORT_KEYS) readonly buffer Keys { uint keys[]; };

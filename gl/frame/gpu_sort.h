@@ -1,5 +1,6 @@
-// The parallel primitives the photon family builds on (the paper's section 5: "scan, reduction, list
-// compaction, and segmented versions of them"), as GL 4.5 compute passes:
+// The frame's parallel primitives, which the photon family builds on (its paper's section 5: "scan,
+// reduction, list compaction, and segmented versions of them") and point projection re-clusters with
+// (gl/frame/points/median_split.h), as GL 4.5 compute passes:
 //   GpuScan    exclusive prefix sum of a uint array, in place, its total into a counter slot, over all
 //              work groups: blocks of 4096 words summed, their sums scanned, each block scanned from its
 //              offset;
@@ -23,7 +24,7 @@ public:
 
     GpuScan();
     // data[0..count) := exclusive prefix sums; counters (a uint array) [totalSlot] := the total. Leaves
-    // the SSBO_PHOTON_SCAN_SUMS slot (the sort's counts slot) bound to its own scratch.
+    // the SSBO_SCAN_SUMS slot (the sort's counts slot) bound to its own scratch.
     void run(const Buffer& data, std::uint32_t count, const Buffer& counters, std::uint32_t totalSlot);
     // What run() does for `count` words, as per-scope work.
     static PassCost work(std::uint32_t count);
