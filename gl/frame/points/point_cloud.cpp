@@ -1,13 +1,13 @@
 #include "gl/frame/points/point_cloud.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <map>
 #include <mutex>
 #include <tuple>
 
 #include "core/point_order.h"
+#include "gl/context/context.h"
 #include "gl/frame/bindings.h"
 #include "gl/frame/points/bindings.h"
 #include "gl/frame/shader_costs.h"
@@ -166,22 +166,32 @@ void PointCloud::update(Frame& frame, PassTimers& timers)
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }
 
-double PointCloud::reorder(Frame& frame, PassTimers& timers)
+void PointCloud::reorder(Frame& frame, PassTimers& timers, Recluster where)
 {
-    if (count_ == 0) return 0.0;
-    const auto start = std::chrono::steady_clock::now();
-    const std::vector<GpuSurfel> surfels = surfels_.download<GpuSurfel>();
-    std::vector<glm::vec3> positions(surfels.size());
-    for (std::size_t i = 0; i < surfels.size(); ++i) positions[i] = surfels[i].position;
-    // Every level, as at creation: micro-rendering's complete tree, point projection's clusters its first levels.
-    const std::vector<std::uint32_t> order = core::medianSplitOrder(positions, 64);
-    const std::vector<GpuPointSample> samples = samples_.download<GpuPointSample>();
-    std::vector<GpuPointSample> reordered(samples.size());
-    for (std::size_t i = 0; i < order.size(); ++i) reordered[i] = samples[order[i]];
-    samples_.update(0, reordered.size() * sizeof(GpuPointSample), reordered.data());
-    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    const auto n = std::uint32_t(count_);
+    const bool gpu = where == Recluster::Gpu || (where == Recluster::Auto && !softwareRasterizer());
+    if (gpu && !median_) median_ = std::make_unique<MedianSplit>();
+    {
+        // Every level, as at creation: micro-rendering's complete tree, point projection's clusters its
+        // first levels. The positions are the surfels' (8 floats each).
+        auto t = timers.scope("recluster", gpu ? median_->work(n) : PassCost{.bytesFixed = n * (32.0 + 2 * 16)});
+        if (n > 0 && gpu) {
+            if (!reordered_) reordered_ = Buffer("points.samplesReordered", samples_.bytes());
+            median_->order(surfels_, sizeof(GpuSurfel) / sizeof(float), n);
+            median_->permute(samples_, reordered_, n);
+            std::swap(samples_, reordered_);
+        } else if (n > 0) {
+            const std::vector<GpuSurfel> surfels = surfels_.download<GpuSurfel>();
+            std::vector<glm::vec3> positions(surfels.size());
+            for (std::size_t i = 0; i < surfels.size(); ++i) positions[i] = surfels[i].position;
+            const std::vector<std::uint32_t> order = core::medianSplitOrder(positions, 64);
+            const std::vector<GpuPointSample> samples = samples_.download<GpuPointSample>();
+            std::vector<GpuPointSample> reordered(samples.size());
+            for (std::size_t i = 0; i < order.size(); ++i) reordered[i] = samples[order[i]];
+            samples_.update(0, reordered.size() * sizeof(GpuPointSample), reordered.data());
+        }
+    }
     update(frame, timers);
-    return ms;
 }
 
 void PointCloud::light(Frame& frame, PassTimers& timers)

@@ -44,10 +44,10 @@ public:
         cloud_.update(frame, timers);
         if (!(frame.version() == version_)) {
             // "Upon manipulation ... we re-cluster the points" (§4 "Scene Manipulation"): where the geometry
-            // moved, the clusters are cut again where the points are now. The paper sorts on the GPU (under
-            // 12 ms with the points' direct light); here the CPU orders the points (reclusterMs).
+            // moved, the clusters are cut again where the points are now, on the GPU as the paper does it
+            // (pass "recluster").
             if (frame.version().scene != version_.scene && version_.scene != ~0ull) {
-                reclusterMs_ = cloud_.reorder(frame, timers);
+                cloud_.reorder(frame, timers);
                 ++reclusters_;
             }
             version_ = frame.version();
@@ -93,7 +93,6 @@ public:
             {"clampedSplats", double(stats_.clampedSplats)},
             {"accumulatedFrames", double(steps_)},
             {"reclusters", double(reclusters_)},
-            {"reclusterMs", reclusterMs_},
             {"postFilterWidth", pixels_.postFilterRadius() > 0 ? 2.0 * pixels_.postFilterRadius() + 1.0 : 0.0},
         };
     }
@@ -107,7 +106,6 @@ private:
     int stride_ = 1;
     int steps_ = 0;
     int reclusters_ = 0;
-    double reclusterMs_ = 0.0; // the last re-clustering's CPU time
     FrameVersion version_{~0ull, ~0ull, ~0ull};
     ProjectionStats stats_;
 };
@@ -126,6 +124,9 @@ TechniqueInfo pointprojTechniqueInfo()
     info.passes = {
         {"point-update", "surface points from (triangle, barycentrics) on the scene as it is", ""},
         {"point-light", "direct light at every point from the shadow maps, half floats", ""},
+        {"recluster",
+         "§4's re-clustering on the GPU: the points sorted along x, y and z, then a median partition per level",
+         "the scene's geometry moved"},
         {"bounce-gather", "point projection at every stride-th point", "bounces > 1"},
         {"relight", "the points' radiance: direct + the gathered bounce", "bounces > 1"},
         {"adaptive-select", "the pixels to gather at: the 4x4 grid, then where the coherence metric exceeds epsilon",

@@ -13,5 +13,13 @@
 #define SSBO_GATHER_TARGETS 13       // gather_target.glsl: the flattened-buffer texels to gather at
 #define SSBO_GATHER_COUNT 14         //   how many
 #define SSBO_POINT_GLOSSY 22         //   what each point's glossy lobe needs (GLOSSY_POINTS)
+// median_split.comp, for the length of a re-clustering (MedianSplit), beside the frame's scan and sort
+// (glsl/common/bindings.glsl): the positions, the three sorted lists in and out, each point's half, the
+// samples in the new order. A family's slots of these numbers are bound again by its next pass.
+#define SSBO_MEDIAN_POSITIONS 27
+#define SSBO_MEDIAN_LISTS 28
+#define SSBO_MEDIAN_LISTS_OUT 29
+#define SSBO_MEDIAN_SIDE 30
+#define SSBO_MEDIAN_SAMPLES_OUT 31
 
 #endif
