@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstring>
 #include <sstream>
+#include <stdexcept>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -142,6 +143,19 @@ std::uint64_t Scene::contentHash() const
         f.pod(l.outerConeRad);
     }
     return f.h;
+}
+
+Scene Scene::withVertices(const std::vector<glm::vec3>& positions, const std::vector<glm::vec3>& normals) const
+{
+    Scene moved = *this;
+    std::size_t v = 0;
+    for (Mesh& m : moved.meshes)
+        for (std::size_t i = 0; i < m.positions.size(); ++i, ++v) {
+            m.positions[i] = positions.at(v);
+            m.normals[i] = normals.at(v);
+        }
+    if (v != positions.size() || v != normals.size()) throw std::out_of_range("Scene::withVertices: vertex counts");
+    return moved;
 }
 
 std::string Scene::validate() const

@@ -150,8 +150,10 @@ bool Frame::moveVertices(const std::vector<glm::vec3>& positions, const std::vec
 {
     bool moved = false;
     changeLights([&] { moved = gpu_.moveVertices(positions, normals); });
-    if (moved) ++version_.scene;
-    return moved;
+    if (!moved) return false;
+    moved_ = std::make_unique<core::Scene>(scene_.withVertices(positions, normals));
+    ++version_.scene;
+    return true;
 }
 
 void Frame::changeLights(const std::function<void()>& change)

@@ -57,8 +57,8 @@ public:
     // position and normal (GpuScene::moveVertices), and version().scene changes. The rasterised passes
     // (G-buffer, shadow maps, RSMs), the area lights and emissive triangles, and the shared point clouds
     // follow: their points ride on their triangles' barycentrics and their areas scale with their triangles'
-    // (PointCloud). What was built on the CPU from scene() stays as it was: the ray casters' BVHs and the
-    // path tracer.
+    // (PointCloud). What is built on the CPU is built from movedScene(): a technique that casts rays builds its
+    // BVH again when version().scene changes. The path tracer is not the frame's and stays as it was.
     // False (nothing changed) for counts that differ from the scene's vertices or a value that is not finite.
     bool moveVertices(const std::vector<glm::vec3>& positions, const std::vector<glm::vec3>& normals);
     // Whether the direct pass adds the light that emitting triangles reflect (on by default). Off for a
@@ -111,7 +111,9 @@ public:
     void bindSceneData() const;
     void drawFullscreen() const;
 
-    const core::Scene& scene() const { return scene_; }
+    const core::Scene& scene() const { return scene_; } // as loaded
+    // The scene with the vertices as moveVertices() last left them (scene() until then).
+    const core::Scene& movedScene() const { return moved_ ? *moved_ : scene_; }
     const GpuScene& gpuScene() const { return gpu_; }
     const ShadowMaps& shadowMaps() const { return shadows_; }
     const FrameSettings& settings() const { return settings_; }
@@ -146,6 +148,7 @@ public:
 
 private:
     const core::Scene& scene_;
+    std::unique_ptr<core::Scene> moved_; // movedScene() once moveVertices() moved something
     FrameSettings settings_;
     core::Camera camera_;
     GpuScene gpu_;

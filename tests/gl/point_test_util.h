@@ -58,15 +58,9 @@ inline MovedVertices scaledVertices(const core::Scene& scene, glm::vec3 s)
 }
 
 // `scene` with its vertices replaced by `moved`'s (in the same order): the moved scene as a loader gives it.
-inline core::Scene withVertices(core::Scene scene, const MovedVertices& moved)
+inline core::Scene withVertices(const core::Scene& scene, const MovedVertices& moved)
 {
-    std::size_t v = 0;
-    for (core::Mesh& m : scene.meshes)
-        for (std::size_t i = 0; i < m.positions.size(); ++i, ++v) {
-            m.positions[i] = moved.positions.at(v);
-            m.normals[i] = moved.normals.at(v);
-        }
-    return scene;
+    return scene.withVertices(moved.positions, moved.normals);
 }
 
 inline double PointRender::counter(const std::string& name) const

@@ -30,7 +30,8 @@ public:
         : settings_(s),
           cloud_(frame, std::size_t(s.points), 1, s.bounces > 1),
           hierarchy_(cloud_),
-          caster_(frame.scene()),
+          caster_(frame.movedScene()),
+          casterScene_(frame.version().scene),
           gather_(frame, s.gather, hierarchy_, s.bounces > 1),
           targets_(frame, s.multires)
     {
@@ -43,6 +44,10 @@ public:
     void render(Frame& frame, PassTimers& timers) override
     {
         cloud_.update(frame, timers);
+        if (frame.version().scene != casterScene_) { // the geometry moved: the rays' BVH is built again
+            caster_ = RayCaster(frame.movedScene());
+            casterScene_ = frame.version().scene;
+        }
         cloud_.light(frame, timers);
         hierarchy_.build(cloud_, timers);
         for (int b = 1; b < settings_.bounces; ++b) {
@@ -85,6 +90,7 @@ private:
     PointCloud cloud_;
     PointHierarchy hierarchy_;
     RayCaster caster_;
+    std::uint64_t casterScene_ = 0; // the version().scene the BVH was built for
     MicroGather gather_;
     PixelGather targets_;
     Buffer gathered_;
