@@ -9,6 +9,18 @@
 
 namespace bounce::gl {
 
+PassCost closestHitWork(const RayCaster& caster, double rays)
+{
+    constexpr double kFlopsRaySetup = 200;                 // bvhRay: six corrected divisions
+    constexpr double kFlopsBox = 25, kFlopsTriangle = 100; // bvhHitBox, bvhHitTriangle
+    constexpr double kBoxBytes = 32, kTriangleBytes = 48;  // core::BvhNode, core::BvhTriangle
+    const double boxes = 2.0 * caster.bvh().depth(), triangles = 2.0 * core::Bvh::kMaxLeafSize;
+    PassCost w;
+    w.flopsFixed = rays * (kFlopsRaySetup + boxes * kFlopsBox + triangles * kFlopsTriangle);
+    w.bytesFixed = rays * (boxes * kBoxBytes + triangles * kTriangleBytes);
+    return w;
+}
+
 RayCaster::RayCaster(const core::Scene& scene) : bvh_(scene), hasAlphaMask_(scene.hasAlphaMask())
 {
     nodes_ = Buffer::fromVector("raycast.bvhNodes", bvh_.nodes());

@@ -23,6 +23,7 @@
 #include "gl/resource/framebuffer.h"
 #include "gl/resource/program.h"
 #include "gl/resource/texture.h"
+#include "gl/resource/timer.h"
 
 namespace bounce::gl {
 
@@ -42,6 +43,10 @@ private:
     Buffer nodes_, triangles_;
     bool hasAlphaMask_ = false;
 };
+
+// What `rays` walks of raycast.glsl's closestHit cost, as per-scope work: the ray's set-up, and a walk
+// estimated at twice the BVH's depth in boxes and two full leaves of triangles.
+PassCost closestHitWork(const RayCaster& caster, double rays);
 
 // std430 mirrors of glsl/frame/raycast_batch.glsl.
 struct BatchRay {

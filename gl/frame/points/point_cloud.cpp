@@ -88,11 +88,28 @@ std::vector<Define> lightKindDefines(const GpuScene& scene)
     return d;
 }
 
+int lightKinds(const GpuScene& scene)
+{
+    return (scene.punctualLightCount() > 0 ? 1 : 0) | (int(scene.lights().size()) > scene.punctualLightCount() ? 2 : 0);
+}
+
 void setPointLightUniforms(Program& program, const Frame& frame)
 {
     program.set("punctualLightCount", frame.gpuScene().punctualLightCount());
     program.set("lightCount", frame.shadowMaps().lightCount());
     frame.shadowMaps().setPcfUniforms(program, frame.settings().pcfRadius);
+}
+
+PassCost hitRadianceWork(const Frame& frame, double hits)
+{
+    constexpr double kHitBytes = 3 * 4 + 3 * 12 + 4 + 64; // indices, vertex normals, material index, Material
+    const double punctual = frame.gpuScene().punctualLightCount();
+    const PassCost lights = directLightsCost(frame.settings(), punctual, frame.shadowMaps().lightCount() - punctual);
+    PassCost w;
+    w.flopsFixed = hits * (40 + lights.flops);
+    w.fetchesFixed = hits * lights.fetches;
+    w.bytesFixed = hits * (kHitBytes + lights.bytesRead);
+    return w;
 }
 
 PointCloud::PointCloud(Frame& frame, std::size_t count, std::uint64_t seed, bool keepDirect)
@@ -130,8 +147,7 @@ void PointCloud::makeLightProgram(const GpuScene& scene)
 {
     std::vector<Define> d = lightKindDefines(scene);
     for (const Define& k : defines()) d.push_back(k);
-    punctual_ = scene.punctualLightCount() > 0;
-    area_ = int(scene.lights().size()) > scene.punctualLightCount();
+    lightKinds_ = lightKinds(scene);
     if (keepDirect_) d.push_back({"KEEP_DIRECT", "1"});
     light_ = Program::compute("points.light", "frame/points/point_light.comp", d);
 }
@@ -200,9 +216,7 @@ void PointCloud::light(Frame& frame, PassTimers& timers)
     if (count_ == 0) return;
     const GpuScene& scene = frame.gpuScene();
     // The demo may add or remove a kind of light (setLights): the program follows, as the direct pass's.
-    if (punctual_ != (scene.punctualLightCount() > 0) ||
-        area_ != (int(scene.lights().size()) > scene.punctualLightCount()))
-        makeLightProgram(scene);
+    if (lightKinds(scene) != lightKinds_) makeLightProgram(scene);
     frame.bindSceneData();
     bind();
     light_.set("pointCount", unsigned(count_));

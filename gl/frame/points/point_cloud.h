@@ -82,7 +82,7 @@ private:
     float discRadius_ = 0.0f;
     bool keepDirect_ = false;
     bool glossy_ = false;
-    bool punctual_ = false, area_ = false;
+    int lightKinds_ = 0; // of the light program
     Buffer samples_, surfels_, radiance_, direct_, glossyLobes_;
     Buffer reordered_;                    // reorder()'s spare samples
     std::unique_ptr<MedianSplit> median_; // made by the first reorder()
@@ -92,7 +92,13 @@ private:
 
 // The #defines of the kinds of light a scene has (PUNCTUAL_LIGHTS, AREA_LIGHTS), as the direct pass has them.
 std::vector<Define> lightKindDefines(const GpuScene& scene);
+// The same as bits (1: punctual, 2: area): a program built with lightKindDefines is built again where they
+// change (Frame::setLights, an area light flattened by Frame::moveVertices).
+int lightKinds(const GpuScene& scene);
 // Sets the uniforms of glsl/frame/points/point_light.glsl and common/shadow.glsl.
 void setPointLightUniforms(Program& program, const Frame& frame);
+// What hit_radiance.glsl's hitDirectRadiance costs for `hits` hits, as per-scope work: the hit's normal and
+// material, and the lights at it as the direct pass counts them.
+PassCost hitRadianceWork(const Frame& frame, double hits);
 
 } // namespace bounce::gl

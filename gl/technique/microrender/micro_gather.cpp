@@ -19,10 +19,6 @@ constexpr int kWarpBins = 32;
 constexpr double kFlopsWarpBin = 30;                    // warpBin: atan, sqrt, a division, bin and fraction
 constexpr double kFlopsToDirection = 60;                // warpToDirection: two 5-step searches, sin, cos, sqrt
 constexpr double kFlopsSolidAngle = kFlopsWarpBin + 10; // warpCosineSolidAngle
-constexpr double kFlopsRaySetup = 200;                  // bvhRay: six corrected divisions
-constexpr double kFlopsBox = 25, kFlopsTriangle = 100;  // bvhHitBox, bvhHitTriangle
-constexpr double kBoxBytes = 32, kTriangleBytes = 48;   // core::BvhNode, core::BvhTriangle
-constexpr double kHitBytes = 3 * 4 + 3 * 12 + 4 + 64;   // indices, vertex normals, material index, Material
 
 // gather.comp per gather sample (one work group), beyond what each of its invocations does alike: the
 // micro-buffer cleared, the cut's nodes (read, culled or judged; the rasterised ones warped and keyed),
@@ -48,16 +44,10 @@ PassCost sampleWork(Frame& frame, const MicroGatherSettings& s, const MicroStats
         w.flopsFixed += rays * (kFlopsToDirection + 20);
         w.bytesFixed += rays * 4 + taken * (12 + 4); // the pixel's key read; its radiance and key written
         if (!s.rayDiscs) {
-            const double boxes = 2.0 * caster.bvh().depth(), triangles = 2.0 * core::Bvh::kMaxLeafSize;
-            w.flopsFixed += rays * (kFlopsRaySetup + boxes * kFlopsBox + triangles * kFlopsTriangle);
-            w.bytesFixed += rays * (boxes * kBoxBytes + triangles * kTriangleBytes);
-            // The hit's normal and material, and the lights at it as the direct pass counts them.
-            const double punctual = frame.gpuScene().punctualLightCount();
-            const PassCost lights =
-                directLightsCost(frame.settings(), punctual, frame.shadowMaps().lightCount() - punctual);
-            w.flopsFixed += taken * (40 + lights.flops);
-            w.fetchesFixed += taken * lights.fetches;
-            w.bytesFixed += taken * (kHitBytes + lights.bytesRead);
+            const PassCost walk = closestHitWork(caster, rays), shading = hitRadianceWork(frame, taken);
+            w.flopsFixed += walk.flopsFixed + shading.flopsFixed;
+            w.fetchesFixed += shading.fetchesFixed;
+            w.bytesFixed += walk.bytesFixed + shading.bytesFixed;
         }
     }
     if (s.stages >= 4) { // the convolution, every micro-pixel
@@ -108,8 +98,15 @@ MicroGather::MicroGather(Frame& frame, const MicroGatherSettings& settings, cons
     if (32 - (hierarchy.levels() + 1) < 8)
         throw std::invalid_argument("micro-rendering's 32-bit micro-pixel key holds at most 2^23 points");
     tables_ = Buffer::fromVector("microrender.warpTables", cpuTables_.mass);
+    atPoints_ = atPoints;
+    makePrograms(frame, hierarchy);
+}
+
+void MicroGather::makePrograms(Frame& frame, const PointHierarchy& hierarchy)
+{
+    lightKinds_ = lightKinds(frame.gpuScene());
     pixels_ = makeProgram(frame, hierarchy, false);
-    if (atPoints) points_ = makeProgram(frame, hierarchy, true);
+    if (atPoints_) points_ = makeProgram(frame, hierarchy, true);
 }
 
 Program MicroGather::makeProgram(Frame& frame, const PointHierarchy& hierarchy, bool atPoints) const
@@ -175,6 +172,8 @@ void MicroGather::gatherPixels(Frame& frame, PixelGather& targets, const PointCl
                                const PointHierarchy& hierarchy, const RayCaster& caster, PassTimers& timers)
 {
     statsBuffer_.clearToZero();
+    // The ray-cast micro-pixels light their hits with the kinds of light the scene has now.
+    if (lightKinds(frame.gpuScene()) != lightKinds_) makePrograms(frame, hierarchy);
     {
         // gather.comp per invocation (the target, its frame, a 64th of the warp) and per sample (sampleWork).
         auto t = timers.scope("gather", gatherCost(invocationCost(false, cpuTables_.alphas.size()),
@@ -194,6 +193,7 @@ void MicroGather::gatherPoints(Frame& frame, const PointCloud& cloud, const Poin
                                const RayCaster& caster, int stride, Buffer& gathered, PassTimers& timers)
 {
     const int count = cloud.count() / stride;
+    if (lightKinds(frame.gpuScene()) != lightKinds_) makePrograms(frame, hierarchy);
     // gather.comp per invocation (the point, its frame, a 64th of the warp) and per sample (sampleWork).
     auto t =
         timers.scope("bounce-gather", gatherCost(invocationCost(true, 0),

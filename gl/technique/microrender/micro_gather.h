@@ -81,6 +81,9 @@ private:
     MicroStats stats_;
     void setUniforms(Program& program, Frame& frame, const PointCloud& cloud, const PointHierarchy& hierarchy);
     void bindCommon(Frame& frame, const PointCloud& cloud, const PointHierarchy& hierarchy, const RayCaster& caster);
+    bool atPoints_ = false;
+    int lightKinds_ = 0; // of the programs (lightKinds), which the ray-cast micro-pixels' shading is built for
+    void makePrograms(Frame& frame, const PointHierarchy& hierarchy);
     Program makeProgram(Frame& frame, const PointHierarchy& hierarchy, bool atPoints) const;
 };
 

@@ -55,7 +55,7 @@
 #ifdef RAY_CAST
 #include "common/raycast.glsl"
 #include "frame/points/point_light.glsl"
-#include "common/base_color.glsl" // after common/scene.glsl (point_light.glsl)
+#include "frame/points/hit_radiance.glsl" // after common/scene.glsl (point_light.glsl)
 #endif
 
 layout(local_size_x = MICRO_GROUP) in;
@@ -388,18 +388,7 @@ void main()
             if (best != 0u) {
                 radiance = nodeRadiance(microNodes[best], -dir);
             } else {
-                Material m = materials[sceneTriangleMaterial(hit.triangle)];
-                // The base colour with its texture, as the points take it (point_update.comp): Sponza's
-                // factors are white, and without the texel the hits were 2-3x too bright.
-                vec2 uv = sceneTriangleUv(hit.triangle, hit.b);
-                vec3 baseColor = m.baseColorMetallic.rgb * baseColorTexel(m, uv).rgb;
-#ifdef GLOSSY_POINTS
-                BrdfParams b = brdfParams(baseColor, m.baseColorMetallic.a, m.emissionRoughness.a,
-                                          m.specularColorSpecular.a, m.specularColorSpecular.rgb);
-                radiance = surfaceDirectRadiance(hp, hn, -dir, b);
-#else
-                radiance = pointDirectRadiance(hp, hn, baseColor * (1.0 - m.baseColorMetallic.a));
-#endif
+                radiance = hitDirectRadiance(hit.triangle, hit.b, hp, hn, -dir);
             }
         }
         scratch[3 * p] = floatBitsToUint(radiance.r);
