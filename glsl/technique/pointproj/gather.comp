@@ -24,14 +24,22 @@
 #define POINT_SURFELS
 #define POINT_RADIANCE
 #define POINT_GLOSSY
+#ifdef HOLE_RAYS
+#define SCENE_GEOMETRY
+#endif
 #include "frame/points/gather_target.glsl"
 #include "technique/pointproj/bindings.glsl"
 #include "technique/pointproj/projection.glsl"
+#ifdef HOLE_RAYS
+#include "common/raycast.glsl"
+#include "frame/points/point_light.glsl"
+#include "frame/points/hit_radiance.glsl" // after common/scene.glsl (point_light.glsl)
+#endif
 
 layout(local_size_x = PROJ_GROUP) in;
 layout(std430, binding = SSBO_PROJ_TEXEL_SOLID_ANGLES) readonly buffer TexelSolidAngles { float texelSolidAngles[]; };
 // 0 targets, 1 points projected, 2 texels left empty, 3 targets whose p_k were all zero, 4 splats clamped,
-// 5 texels the hole fill covered
+// 5 texels the hole fill covered, 6 rays cast through holes (HOLE_RAYS), 7 of them that hit a surface
 layout(std430, binding = SSBO_PROJ_STATS) buffer ProjStats { uint projStats[8]; };
 
 uniform uint pointCount;
@@ -53,6 +61,10 @@ shared float importanceTotal;
 shared vec3 partDiffuse[PROJ_GROUP];
 shared vec3 partGlossy[PROJ_GROUP];
 shared uint groupStats[8];
+#ifdef HOLE_RAYS
+shared uint holes[kTexels]; // 4b: the texels the splats and the fill left empty
+shared uint holeCount;
+#endif
 
 uint hashU(uint x)
 {
@@ -139,6 +151,9 @@ void main()
     float cosO = dot(gn, g.wo);
     for (int p = int(lid); p < kTexels; p += PROJ_GROUP) projKeys[p] = kEmptyKey;
     if (lid < 8u) groupStats[lid] = 0u;
+#ifdef HOLE_RAYS
+    if (lid == 0u) holeCount = 0u;
+#endif
     barrier();
     uint seed = hashU(uint(g.texel.x) * 73856093u ^ uint(g.texel.y) * 19349663u ^ frameSeed * 2654435761u);
 
@@ -288,7 +303,11 @@ void main()
         vec3 wl = hemiOctDecode((vec2(p % PROJ_RES, p / PROJ_RES) + 0.5) / float(PROJ_RES));
         uint key = projKeys[p];
         if (key == kEmptyKey) {
+#ifdef HOLE_RAYS
+            holes[atomicAdd(holeCount, 1u)] = uint(p);
+#else
             ++empty;
+#endif
             continue;
         }
         uint j = key & kIndexMask;
@@ -305,6 +324,37 @@ void main()
         sumDiffuse += radiance * fd * w;
         sumGlossy += radiance * fg * w;
     }
+#ifdef HOLE_RAYS
+    // 4b. Holes (not in the paper; gl/technique/pointproj/README.md): a texel no splat covered casts a ray
+    // through its centre, listed first so that every invocation casts. Where the ray meets the scene the
+    // texel sees a surface that the drawn points missed: the hit's direct light, as a point there would send
+    // it (hit_radiance.glsl); where it meets nothing the direction is open and stays empty, so that a hole
+    // is never filled into open space.
+    barrier();
+    uint rays = 0u, hits = 0u;
+    for (uint i = lid; i < holeCount; i += uint(PROJ_GROUP)) {
+        int p = int(holes[i]);
+        vec3 wl = hemiOctDecode((vec2(p % PROJ_RES, p / PROJ_RES) + 0.5) / float(PROJ_RES));
+        vec3 wi = gt * wl.x + gb * wl.y + gn * wl.z;
+        ++rays;
+        Hit hit;
+        if (!closestHit(gx, wi, 0.0, 1e30, hit)) {
+            ++empty;
+            continue;
+        }
+        ++hits;
+        vec3 hn = sceneTriangleNormal(hit.triangle, hit.b);
+        if (dot(hn, wi) >= 0.0) continue; // its back: black
+        vec3 radiance = hitDirectRadiance(hit.triangle, hit.b, gx + wi * hit.t, hn, -wi);
+        vec3 fd, fg;
+        brdfEvalLobes(g.brdf, gn, g.wo, wi, fd, fg);
+        float w = wl.z * texelSolidAngles[p];
+        sumDiffuse += radiance * fd * w;
+        sumGlossy += radiance * fg * w;
+    }
+    atomicAdd(groupStats[6], rays);
+    atomicAdd(groupStats[7], hits);
+#endif
     partDiffuse[lid] = sumDiffuse;
     partGlossy[lid] = sumGlossy;
     atomicAdd(groupStats[2], empty);
