@@ -62,8 +62,11 @@ shared vec3 partDiffuse[PROJ_GROUP];
 shared vec3 partGlossy[PROJ_GROUP];
 shared uint groupStats[8];
 #ifdef HOLE_RAYS
-shared uint holes[kTexels]; // 4b: the texels the splats and the fill left empty
-shared uint holeCount;
+#if PROJ_RES * PROJ_RES > 32 * PROJ_GROUP
+#error "an invocation's empty texels are bits of one uint"
+#endif
+shared uint holes[kTexels]; // 4b: the texels the splats and the fill left empty, by invocation, then texel
+shared uint holeStart[PROJ_GROUP + 1];
 #endif
 
 uint hashU(uint x)
@@ -151,9 +154,6 @@ void main()
     float cosO = dot(gn, g.wo);
     for (int p = int(lid); p < kTexels; p += PROJ_GROUP) projKeys[p] = kEmptyKey;
     if (lid < 8u) groupStats[lid] = 0u;
-#ifdef HOLE_RAYS
-    if (lid == 0u) holeCount = 0u;
-#endif
     barrier();
     uint seed = hashU(uint(g.texel.x) * 73856093u ^ uint(g.texel.y) * 19349663u ^ frameSeed * 2654435761u);
 
@@ -298,13 +298,13 @@ void main()
 
     // 4. Resolve: each texel's nearest point, its radiance times f_r cos Omega_texel.
     vec3 sumDiffuse = vec3(0.0), sumGlossy = vec3(0.0);
-    uint empty = 0u;
+    uint empty = 0u, holeMask = 0u; // holeMask bit n: this invocation's n-th texel is empty
     for (int p = int(lid); p < kTexels && cosO > 0.0; p += PROJ_GROUP) {
         vec3 wl = hemiOctDecode((vec2(p % PROJ_RES, p / PROJ_RES) + 0.5) / float(PROJ_RES));
         uint key = projKeys[p];
         if (key == kEmptyKey) {
 #ifdef HOLE_RAYS
-            holes[atomicAdd(holeCount, 1u)] = uint(p);
+            holeMask |= 1u << uint((p - int(lid)) / PROJ_GROUP);
 #else
             ++empty;
 #endif
@@ -329,9 +329,19 @@ void main()
     // through its centre, listed first so that every invocation casts. Where the ray meets the scene the
     // texel sees a surface that the drawn points missed: the hit's direct light, as a point there would send
     // it (hit_radiance.glsl); where it meets nothing the direction is open and stays empty, so that a hole
-    // is never filled into open space.
+    // is never filled into open space. The list is in a fixed order (each invocation's holes from its place
+    // in a scan of their counts), so that every run sums the same rays in the same invocations.
+    holeStart[lid + 1u] = uint(bitCount(holeMask));
     barrier();
-    uint rays = 0u, hits = 0u;
+    if (lid == 0u) {
+        holeStart[0] = 0u;
+        for (int i = 1; i <= PROJ_GROUP; ++i) holeStart[i] += holeStart[i - 1];
+    }
+    barrier();
+    for (uint n = 0u, at = holeStart[lid]; n < uint((kTexels + PROJ_GROUP - 1) / PROJ_GROUP); ++n)
+        if ((holeMask & (1u << n)) != 0u) holes[at++] = lid + n * uint(PROJ_GROUP);
+    barrier();
+    uint rays = 0u, hits = 0u, holeCount = holeStart[PROJ_GROUP];
     for (uint i = lid; i < holeCount; i += uint(PROJ_GROUP)) {
         int p = int(holes[i]);
         vec3 wl = hemiOctDecode((vec2(p % PROJ_RES, p / PROJ_RES) + 0.5) / float(PROJ_RES));
