@@ -145,17 +145,18 @@ std::uint64_t Scene::contentHash() const
     return f.h;
 }
 
-Scene Scene::withVertices(const std::vector<glm::vec3>& positions, const std::vector<glm::vec3>& normals) const
+void Scene::setVertices(const std::vector<glm::vec3>& positions, const std::vector<glm::vec3>& normals)
 {
-    Scene moved = *this;
+    std::size_t count = 0;
+    for (const Mesh& m : meshes) count += m.positions.size();
+    if (count != positions.size() || count != normals.size())
+        throw std::out_of_range("Scene::setVertices: vertex counts");
     std::size_t v = 0;
-    for (Mesh& m : moved.meshes)
+    for (Mesh& m : meshes)
         for (std::size_t i = 0; i < m.positions.size(); ++i, ++v) {
-            m.positions[i] = positions.at(v);
-            m.normals[i] = normals.at(v);
+            m.positions[i] = positions[v];
+            m.normals[i] = normals[v];
         }
-    if (v != positions.size() || v != normals.size()) throw std::out_of_range("Scene::withVertices: vertex counts");
-    return moved;
 }
 
 std::string Scene::validate() const

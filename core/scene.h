@@ -127,10 +127,10 @@ struct Scene {
     std::uint64_t contentHash() const;
     // Empty when valid, else what is wrong (indices out of range, NaN/Inf, unit vectors...).
     std::string validate() const;
-    // This scene with every vertex moved: positions[v] and normals[v] for the meshes' vertices in order (mesh
-    // by mesh, as the GPU scene lays them out); the moved scene as a loader would give it. Throws
-    // std::out_of_range where the counts differ.
-    Scene withVertices(const std::vector<glm::vec3>& positions, const std::vector<glm::vec3>& normals) const;
+    // Moves every vertex, in place: positions[v] and normals[v] for the meshes' vertices in order (mesh by
+    // mesh, as the GPU scene lays them out); the moved scene as a loader would give it. Throws
+    // std::out_of_range, changing nothing, where the counts differ.
+    void setVertices(const std::vector<glm::vec3>& positions, const std::vector<glm::vec3>& normals);
 };
 
 } // namespace bounce::core

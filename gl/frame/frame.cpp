@@ -151,7 +151,9 @@ bool Frame::moveVertices(const std::vector<glm::vec3>& positions, const std::vec
     bool moved = false;
     changeLights([&] { moved = gpu_.moveVertices(positions, normals); });
     if (!moved) return false;
-    moved_ = std::make_unique<core::Scene>(scene_.withVertices(positions, normals));
+    // Copied once (textures and all); later moves only write the vertices.
+    if (!moved_) moved_ = std::make_unique<core::Scene>(scene_);
+    moved_->setVertices(positions, normals);
     ++version_.scene;
     return true;
 }

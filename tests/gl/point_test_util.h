@@ -58,9 +58,10 @@ inline MovedVertices scaledVertices(const core::Scene& scene, glm::vec3 s)
 }
 
 // `scene` with its vertices replaced by `moved`'s (in the same order): the moved scene as a loader gives it.
-inline core::Scene withVertices(const core::Scene& scene, const MovedVertices& moved)
+inline core::Scene withVertices(core::Scene scene, const MovedVertices& moved)
 {
-    return scene.withVertices(moved.positions, moved.normals);
+    scene.setVertices(moved.positions, moved.normals);
+    return scene;
 }
 
 inline double PointRender::counter(const std::string& name) const

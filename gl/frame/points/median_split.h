@@ -5,7 +5,7 @@
 // (gl/frame/gpu_sort.h); each level then partitions every segment of the three sorted lists around the
 // median of its longest axis, keeping their order (a flag, the frame's scan, a scatter): the order the
 // paper's per-level segmented sort leaves, for the work of a scan per level. The result is core's order
-// to the point (PointCloudTest), the CPU's one-thread median splits its independent twin.
+// to the point (MedianSplitTest), the CPU's one-thread median splits its independent twin.
 #pragma once
 
 #include <cstdint>

@@ -83,8 +83,8 @@ GpuPointSample toGpuPointSample(const core::SurfacePoint& p, double triangleArea
 std::vector<Define> lightKindDefines(const GpuScene& scene)
 {
     std::vector<Define> d;
-    if (scene.punctualLightCount() > 0) d.push_back({"PUNCTUAL_LIGHTS", "1"});
-    if (int(scene.lights().size()) > scene.punctualLightCount()) d.push_back({"AREA_LIGHTS", "1"});
+    if (lightKinds(scene) & 1) d.push_back({"PUNCTUAL_LIGHTS", "1"});
+    if (lightKinds(scene) & 2) d.push_back({"AREA_LIGHTS", "1"});
     return d;
 }
 
