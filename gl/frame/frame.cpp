@@ -158,6 +158,16 @@ bool Frame::moveVertices(const std::vector<glm::vec3>& positions, const std::vec
     return true;
 }
 
+const RayCaster& Frame::rayCaster() const
+{
+    if (!rayCaster_)
+        rayCaster_ = std::make_unique<RayCaster>(movedScene());
+    else if (rayCasterScene_ != version_.scene)
+        *rayCaster_ = RayCaster(movedScene());
+    rayCasterScene_ = version_.scene;
+    return *rayCaster_;
+}
+
 void Frame::changeLights(const std::function<void()>& change)
 {
     const auto kinds = [&] {

@@ -12,6 +12,7 @@
 #include "core/image.h"
 #include "core/scene.h"
 #include "gl/frame/gpu_scene.h"
+#include "gl/frame/ray_caster.h"
 #include "gl/frame/scene_program.h"
 #include "gl/frame/shadow_maps.h"
 #include "gl/resource/buffer.h"
@@ -57,8 +58,8 @@ public:
     // position and normal (GpuScene::moveVertices), and version().scene changes. The rasterised passes
     // (G-buffer, shadow maps, RSMs), the area lights and emissive triangles, and the shared point clouds
     // follow: their points ride on their triangles' barycentrics and their areas scale with their triangles'
-    // (PointCloud). What is built on the CPU is built from movedScene(): a technique that casts rays builds its
-    // BVH again when version().scene changes. The path tracer is not the frame's and stays as it was.
+    // (PointCloud), and so does rayCaster(). What a technique builds on the CPU it builds from movedScene(), again
+    // when version().scene changes. The path tracer is not the frame's and stays as it was.
     // False (nothing changed) for counts that differ from the scene's vertices or a value that is not finite.
     bool moveVertices(const std::vector<glm::vec3>& positions, const std::vector<glm::vec3>& normals);
     // Whether the direct pass adds the light that emitting triangles reflect (on by default). Off for a
@@ -115,6 +116,11 @@ public:
     // The scene with the vertices as moveVertices() last left them (scene() until then).
     const core::Scene& movedScene() const { return moved_ ? *moved_ : scene_; }
     const GpuScene& gpuScene() const { return gpu_; }
+    // Ray casting for every family (glsl/common/raycast.glsl): the BVH of movedScene(), built at the first call
+    // and again at the first call after moveVertices() changed version().scene, so that rays meet the geometry
+    // the rasterised passes draw. No family builds a BVH of its own: each asks for it in every frame it casts
+    // rays in (the call rebuilds what moved). Rebuilt in place, the object lives as long as the frame.
+    const RayCaster& rayCaster() const;
     const ShadowMaps& shadowMaps() const { return shadows_; }
     const FrameSettings& settings() const { return settings_; }
     const core::Camera& camera() const { return camera_; }
@@ -153,6 +159,8 @@ private:
     core::Camera camera_;
     GpuScene gpu_;
     ShadowMaps shadows_;
+    mutable std::unique_ptr<RayCaster> rayCaster_; // rayCaster(), built on first use
+    mutable std::uint64_t rayCasterScene_ = 0;     // the version().scene it was built for
     Texture geometry_, diffuse_, specular_, emission_, depth_, direct_, indirect_, composite_;
     Texture black_;               // 1x1, bound for the targets the scene does not need
     Texture accumulated_;         // still frames' mean (accumulate()), allocated at the first still frame

@@ -23,6 +23,7 @@
 #include "gl/technique/photon/shading_clusters.h"
 #include "ref/reference.h"
 #include "tests/gl/gl_test_fixture.h"
+#include "tests/gl/moved_scene.h"
 #include "tests/gl/photon_test_scenes.h"
 #include "tests/image_expect.h"
 
@@ -343,12 +344,11 @@ TEST_F(PhotonTechniqueTest, CausticOfAPlaneMirrorIsTheMirroredSpot)
     frame.renderGBuffer(timers);
     const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
     frame.indirect().clear(0, zero);
-    gl::RayCaster caster(scene);
     gl::Buffer counters("photon.counters", gl::kCounterSlots * 4);
     gl::PhotonTracerSettings ts;
     ts.photons = 262144;
     gl::PhotonTracer tracer(ts);
-    tracer.trace(frame, caster, counters, timers);
+    tracer.trace(frame, frame.rayCaster(), counters, timers);
     gl::PhotonTree tree;
     tree.build(tracer.photons(), tracer.storedCount(), tracer.sceneSize() / 4096.0f, timers);
     gl::CausticMap caustic(frame, ts.causticRoughness, 0.01f);
@@ -484,6 +484,33 @@ TEST_F(PhotonTechniqueTest, SceneScaledByAThousandGivesTheSameImage)
                                    "clusters moved by rounding gather their own noise");
     std::printf("[ measured ] scaled by 1000: indirect relative RMSE %.3g; clusters %g and %g, cut %g and %g\n", error,
                 counter(a, "clusters"), counter(b, "clusters"), counter(a, "cut.size"), counter(b, "cut.size"));
+}
+
+// Deforming geometry (Frame::moveVertices): photons are traced, and the final gather's rays cast, through the
+// frame's BVH (Frame::rayCaster), which follows the moved scene. cornell-spot stretched by 1.3 along x after a
+// first frame against the stretched box loaded as it is: the same light, up to the shading clusters, which
+// start from the first frame's seeds on one side and from none on the other. Measured (indirect light, one
+// against the other): relative RMSE 0.116, means 0.5% apart; with the BVH of the box as loaded (photons hit
+// the old walls and are shaded at the moved ones), 0.609 and 40%.
+TEST_F(PhotonTechniqueTest, DeformedSceneIsLitAsTheDeformedSceneLoaded)
+{
+    constexpr int size = 32;
+    const core::Scene scene = core::makeCornell("cornell-spot");
+    const testing::MovedVertices moved = testing::scaledVertices(scene, {1.3f, 1.0f, 1.0f});
+    core::Scene stretched = testing::withVertices(scene, moved);
+    stretched.name = "cornell-spot-stretched";
+    gl::Renderer r(scene, "photon", frameValues(), testValues(), size, size);
+    r.renderFrame(false);
+    ASSERT_TRUE(r.moveVertices(moved.positions, moved.normals));
+    r.renderFrame(false);
+    const core::Image deformed = r.frame().read(r.frame().indirect());
+    const Rendered fresh = render(stretched, size, size, testValues());
+    ASSERT_TRUE(allFiniteNonNegative(deformed));
+    const double rmse = testing::measureImages(deformed, fresh.indirect, testing::ImageMetric::relativeRmse());
+    const double mean = testing::measureImages(deformed, fresh.indirect, testing::ImageMetric::meanRelative());
+    std::printf("[ deformed ] against the stretched box loaded: relative RMSE %.4f, means off by %.4f\n", rmse, mean);
+    EXPECT_LT(rmse, 0.25);
+    EXPECT_LT(std::abs(mean), 0.03);
 }
 
 // Few photons: a sparse cut leaves gather hits that no kernel reaches (the fallback's wider kernels

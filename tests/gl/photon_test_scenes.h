@@ -54,15 +54,11 @@ inline gl::FrameSettings smallFrame(int w, int h)
 // them next (a tree, a cut).
 struct TracedPhotons {
     TracedPhotons(const core::Scene& scene, const gl::PhotonTracerSettings& settings)
-        : frame(scene, smallFrame(8, 8)),
-          caster(scene),
-          counters("photon.counters", gl::kCounterSlots * 4),
-          tracer(settings)
+        : frame(scene, smallFrame(8, 8)), counters("photon.counters", gl::kCounterSlots * 4), tracer(settings)
     {
-        tracer.trace(frame, caster, counters, timers);
+        tracer.trace(frame, frame.rayCaster(), counters, timers);
     }
     gl::Frame frame;
-    gl::RayCaster caster;
     gl::Buffer counters;
     gl::PhotonTracer tracer;
     gl::PassTimers timers;

@@ -30,8 +30,6 @@ public:
         : settings_(s),
           cloud_(frame, std::size_t(s.points), 1, s.bounces > 1),
           hierarchy_(cloud_),
-          caster_(frame.movedScene()),
-          casterScene_(frame.version().scene),
           gather_(frame, s.gather, hierarchy_, s.bounces > 1),
           targets_(frame, s.multires)
     {
@@ -44,19 +42,16 @@ public:
     void render(Frame& frame, PassTimers& timers) override
     {
         cloud_.update(frame, timers);
-        if (frame.version().scene != casterScene_) { // the geometry moved: the rays' BVH is built again
-            caster_ = RayCaster(frame.movedScene());
-            casterScene_ = frame.version().scene;
-        }
+        const RayCaster& caster = frame.rayCaster(); // the BVH of the geometry as it is now
         cloud_.light(frame, timers);
         hierarchy_.build(cloud_, timers);
         for (int b = 1; b < settings_.bounces; ++b) {
-            gather_.gatherPoints(frame, cloud_, hierarchy_, caster_, stride_, gathered_, timers);
+            gather_.gatherPoints(frame, cloud_, hierarchy_, caster, stride_, gathered_, timers);
             cloud_.relight(gathered_, stride_, timers);
             hierarchy_.build(cloud_, timers);
         }
         targets_.select(frame, timers);
-        gather_.gatherPixels(frame, targets_, cloud_, hierarchy_, caster_, timers);
+        gather_.gatherPixels(frame, targets_, cloud_, hierarchy_, caster, timers);
         targets_.upsample(frame, timers);
     }
 
@@ -89,8 +84,6 @@ private:
     MicrorenderSettings settings_;
     PointCloud cloud_;
     PointHierarchy hierarchy_;
-    RayCaster caster_;
-    std::uint64_t casterScene_ = 0; // the version().scene the BVH was built for
     MicroGather gather_;
     PixelGather targets_;
     Buffer gathered_;

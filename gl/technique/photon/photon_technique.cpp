@@ -41,7 +41,6 @@ class Photon final : public Technique {
 public:
     Photon(Frame& frame, const PhotonSettings& s)
         : settings_(s),
-          caster_(frame.scene()),
           counters_("photon.counters", kCounterSlots * 4),
           tracer_(s.tracer),
           tree_(s.leafPhotons),
@@ -58,11 +57,12 @@ public:
 
     void render(Frame& frame, PassTimers& timers) override
     {
-        tracer_.trace(frame, caster_, counters_, timers);
+        const RayCaster& caster = frame.rayCaster(); // the BVH of the geometry as it is now
+        tracer_.trace(frame, caster, counters_, timers);
         tree_.build(tracer_.photons(), tracer_.storedCount(), sceneSize_ / 4096.0f, timers);
         cut_.build(tree_, tracer_.photons(), settings_.cut, counters_, timers);
         clusters_.cluster(frame, sceneSize_, counters_, timers);
-        gather_.gather(frame, caster_, tree_, tracer_.photons(), cut_, clusters_, sceneSize_, counters_, timers);
+        gather_.gather(frame, caster, tree_, tracer_.photons(), cut_, clusters_, sceneSize_, counters_, timers);
         const bool everyPixel = settings_.clusters.everyPixel;
         if (!everyPixel && clusters_.count() > 0) {
             // The tree of samples: its kernels' work from the cluster count (ShadingClusters::addPointTreeWork).
@@ -71,7 +71,7 @@ public:
             clusters_.addPointTreeWork(t);
         }
         interpolation_.run(frame, clusters_, settings_.interpolationError, everyPixel, timers);
-        glossy_.run(frame, caster_, tree_, tracer_.photons(), cut_, sceneSize_, timers);
+        glossy_.run(frame, caster, tree_, tracer_.photons(), cut_, sceneSize_, timers);
         caustic_.run(frame, tree_, tracer_.photons(), sceneSize_, timers);
     }
 
@@ -134,7 +134,6 @@ private:
     }
 
     PhotonSettings settings_;
-    RayCaster caster_;
     Buffer counters_;
     PhotonTracer tracer_;
     PhotonTree tree_;

@@ -229,7 +229,9 @@ void PhotonTracer::buildEmitters(const Frame& frame, const RayCaster& caster)
     const float radius = 0.5f * size_ * 1.01f;
 
     const std::vector<LightSource>& lights = frame.gpuScene().lights();
-    // Projection maps of the directional lights, kept while the light and the scene's bounds hold.
+    // Projection maps of the directional lights, kept while the light, the scene's bounds and its geometry hold.
+    if (frame.version().scene != projectionsScene_) projections_.clear();
+    projectionsScene_ = frame.version().scene;
     std::vector<ProjectionMap> maps;
     for (const LightSource& l : lights) {
         if (l.type != kLightDirectional) continue;

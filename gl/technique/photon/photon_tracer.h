@@ -166,6 +166,7 @@ private:
     std::vector<PhotonEmitter> emitters_;
     std::vector<int> emitterMaps_; // per emitter: its index in projections_, -1 for a light without a map
     std::vector<ProjectionMap> projections_;
+    std::uint64_t projectionsScene_ = 0; // the Frame::version().scene the projection maps were made for
     Buffer cells_;
     Texture cellTexels_; // cells_ as R32UI texels at UNIT_PHOTON_CELLS
     std::uint32_t stored_ = 0;

@@ -32,8 +32,7 @@ public:
     Pointproj(Frame& frame, const PointprojSettings& s)
         : settings_(s),
           cloud_(frame, std::size_t(s.points), 1, s.bounces > 1),
-          caster_(s.projection.holeRays ? std::make_unique<RayCaster>(frame.movedScene()) : nullptr),
-          gather_(frame, cloud_, s.projection, s.bounces > 1, caster_.get()),
+          gather_(frame, cloud_, s.projection, s.bounces > 1),
           pixels_(frame, inScene(s.adaptive, cloud_.glossy()))
     {
         stride_ = std::max(1, cloud_.count() / std::clamp(s.bounceNodes, 1, cloud_.count()));
@@ -46,10 +45,9 @@ public:
         if (frame.version().scene != orderedScene_) {
             // "Upon manipulation ... we re-cluster the points" (§4 "Scene Manipulation"): where the geometry
             // moved, the clusters are cut again where the points are now, on the GPU as the paper does it
-            // (pass "recluster"). The hole rays' BVH is built again on the CPU from the moved scene.
+            // (pass "recluster"). The hole rays' BVH is the frame's, which follows the moved scene.
             cloud_.reorder(frame, timers);
             ++reclusters_;
-            if (caster_) *caster_ = RayCaster(frame.movedScene());
             orderedScene_ = frame.version().scene;
         }
         if (!(frame.version() == version_)) {
@@ -105,7 +103,6 @@ public:
 private:
     PointprojSettings settings_;
     PointCloud cloud_;
-    std::unique_ptr<RayCaster> caster_; // the hole rays' BVH (holeRays)
     ProjectionGather gather_;
     AdaptivePixels pixels_;
     Buffer gathered_;

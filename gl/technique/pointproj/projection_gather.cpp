@@ -66,10 +66,9 @@ PassCost gatherCost(const ProjectionSettings& s, const PointCloud& cloud, bool a
 } // namespace
 
 ProjectionGather::ProjectionGather(Frame& frame, const PointCloud& cloud, const ProjectionSettings& settings,
-                                   bool atPoints, const RayCaster* caster)
-    : settings_(settings), caster_(caster), stats_("pointproj.stats", sizeof(ProjectionStats))
+                                   bool atPoints)
+    : settings_(settings), stats_("pointproj.stats", sizeof(ProjectionStats))
 {
-    if (settings_.holeRays && !caster_) throw std::logic_error("point projection's hole rays need the scene's BVH");
     const int n = cloud.count();
     keyIndexBits_ = core::exactLog2(std::uint64_t(n));
     if (keyIndexBits_ < 0 || n < settings_.clusters)
@@ -115,7 +114,7 @@ Program ProjectionGather::makeProgram(Frame& frame, bool atPoints) const
     if (settings_.holeRays) {
         d.push_back({"HOLE_RAYS", "1"});
         for (const Define& k : lightKindDefines(frame.gpuScene())) d.push_back(k);
-        for (const Define& k : caster_->defines()) d.push_back(k);
+        for (const Define& k : frame.rayCaster().defines()) d.push_back(k);
     }
     return Program::compute(atPoints ? "pointproj.bounceGather" : "pointproj.gather", "technique/pointproj/gather.comp",
                             d);
@@ -133,7 +132,7 @@ void ProjectionGather::setUniforms(Program& program, Frame& frame, const PointCl
     program.set("frameSeed", unsigned(seed));
     if (settings_.holeRays) {
         frame.bindSceneData();
-        caster_->bind();
+        frame.rayCaster().bind();
         setPointLightUniforms(program, frame);
     }
     cloud.bind();
@@ -174,7 +173,8 @@ PassCost ProjectionGather::withHoleRays(PassCost c, const Frame& frame, int targ
     // Per target as many rays and hits as in the last gather's counters (none before the first): the walks,
     // the hits' light, and per ray the texel's direction, the BRDF and the sums.
     const double rays = raysPerTarget_ * targets;
-    const PassCost walk = closestHitWork(*caster_, rays), shading = hitRadianceWork(frame, hitsPerTarget_ * targets);
+    const PassCost walk = closestHitWork(frame.rayCaster(), rays),
+                   shading = hitRadianceWork(frame, hitsPerTarget_ * targets);
     c.flopsFixed += walk.flopsFixed + shading.flopsFixed + rays * (40 + kFlopsBrdfLobes);
     c.fetchesFixed += shading.fetchesFixed;
     c.bytesFixed += walk.bytesFixed + shading.bytesFixed + rays * 8;

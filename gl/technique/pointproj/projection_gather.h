@@ -49,9 +49,8 @@ public:
     static constexpr int kGroup = 128;
     static constexpr int kResolution = 32; // §3.1: "a 32 x 32 texture"
 
-    // `caster`: the scene's BVH where settings.holeRays (it must outlive the gather), else null.
-    ProjectionGather(Frame& frame, const PointCloud& cloud, const ProjectionSettings& settings, bool atPoints,
-                     const RayCaster* caster);
+    // With settings.holeRays, the hole rays are cast through the frame's BVH (Frame::rayCaster).
+    ProjectionGather(Frame& frame, const PointCloud& cloud, const ProjectionSettings& settings, bool atPoints);
 
     void gatherPixels(Frame& frame, AdaptivePixels& pixels, int count, const PointCloud& cloud, std::uint32_t seed,
                       PassTimers& timers);
@@ -62,7 +61,6 @@ public:
 
 private:
     ProjectionSettings settings_;
-    const RayCaster* caster_ = nullptr;
     mutable double raysPerTarget_ = 0.0, hitsPerTarget_ = 0.0; // of the last stats(), for the cost estimate
     int keyIndexBits_ = 0;
     std::vector<Define> defines_; // the cloud's (GLOSSY_POINTS)
