@@ -19,11 +19,11 @@
 #include <glm/glm.hpp>
 
 #include "gl/frame/frame.h"
+#include "gl/frame/params.h"
 #include "gl/resource/framebuffer.h"
 #include "gl/resource/program.h"
 #include "gl/resource/texture.h"
 #include "gl/resource/timer.h"
-#include "gl/technique/technique.h"
 
 namespace bounce::gl {
 

@@ -18,13 +18,13 @@
 
 #include "gl/frame/frame.h"
 #include "gl/frame/light_views.h"
+#include "gl/frame/params.h"
 #include "gl/frame/scene_program.h"
 #include "gl/resource/buffer.h"
 #include "gl/resource/framebuffer.h"
 #include "gl/resource/program.h"
 #include "gl/resource/texture.h"
 #include "gl/resource/timer.h"
-#include "gl/technique/technique.h"
 
 namespace bounce::gl {
 
