@@ -22,7 +22,8 @@
 #             and only the context, frame and conformance tests (llvmpipe: a few minutes)
 #   --budget  seconds the whole script may take; each step gets its share and is cut off (the report
 #             says so) rather than overrunning a lease                [450]
-# Exit status: 0 when every step ran and every test passed, 1 otherwise, 2 for bad arguments.
+# Exit status: 0 when every step ran, every test passed and every figure asked for is in the report (a bench
+# cut off by the budget fails the check), 1 otherwise, 2 for bad arguments.
 set -uo pipefail
 cd "$(dirname "$0")/.."
 root=$(pwd)
@@ -81,10 +82,15 @@ if [ -f .device/bin.tar.xz ] && { [ ! -x build/app/bounce ] || [ "$(cat .device/
     cp .device/unpacked/build/tests/*_tests build/tests/
 fi
 [ -d .device/unpacked/lib ] && export LD_LIBRARY_PATH="$root/.device/unpacked/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
+# Debian's libglvnd goes into .device/glvnd, never into the system's root: the loader finds it through
+# LD_LIBRARY_PATH, and the machine is left as it was lent.
 if ! ldconfig -p 2>/dev/null | grep -q 'libEGL\.so\.1 ' && [ -d .device/gl ]; then
-    log "no libEGL.so.1: unpacking Debian's libglvnd from .device/gl"
-    for f in .device/gl/*.deb; do dpkg -x "$f" / || log "could not unpack $f"; done
-    ldconfig
+    log "no libEGL.so.1: unpacking Debian's libglvnd from .device/gl into .device/glvnd"
+    mkdir -p .device/glvnd
+    for f in .device/gl/*.deb; do dpkg -x "$f" .device/glvnd || log "could not unpack $f"; done
+    for d in .device/glvnd/usr/lib/*-linux-gnu .device/glvnd/usr/lib; do
+        [ -d "$d" ] && export LD_LIBRARY_PATH="$root/$d${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
+    done
 fi
 nvidia_vendor=/usr/local/nvidia/share/glvnd/egl_vendor.d/10_nvidia.json
 if [ -f "$nvidia_vendor" ] && ! ls /usr/share/glvnd/egl_vendor.d/*nvidia* >/dev/null 2>&1; then
@@ -200,8 +206,11 @@ EOF
         timeout -k 5 "$share" "$bounce" bench --config "$c" --out "$out/$name" "${cache[@]}" --roofline \
             >"$out/logs/$name.log" 2>&1
         status=$?
-        if [ "$status" = 124 ]; then
-            log "bench $name was cut off at its share; the renders it finished are kept"
+        echo "$name	$c" >>"$out/logs/benches-asked.txt"
+        if [ "$status" = 124 ] || [ "$status" = 137 ]; then
+            # The figures it did not reach are missing: the check fails, and the report names them.
+            echo "$name: cut off at its share of the budget (${share}s)" >>"$out/logs/bench-failed.txt"
+            log "bench $name was cut off at its share; the renders it finished are kept, the rest are missing"
         elif [ "$status" != 0 ]; then
             # A bench that stops on its own (a refused config, a crash) fails the check.
             echo "$name (status $status): $(tail -1 "$out/logs/$name.log")" >>"$out/logs/bench-failed.txt"

@@ -10,6 +10,7 @@ any python3, the GPU image's included.
 
 Usage: device_report.py DIR
 """
+import collections
 import glob
 import json
 import os
@@ -92,6 +93,36 @@ def runs(folder):
     return rows
 
 
+def missing_figures(folder, rows):
+    """The figures the check asked for that no results.json holds: for every bench config it ran
+    (logs/benches-asked.txt: name, config), each run (times its sweep's combinations) on each scene it
+    names, and the path tracer's rows, counted per scene and technique."""
+    asked = os.path.join(folder, "logs", "benches-asked.txt")
+    if not os.path.exists(asked):
+        return []
+    out = []
+    for line in open(asked):
+        name, _, path = line.rstrip("\n").partition("\t")
+        config = load(path)
+        if not isinstance(config, dict):
+            out.append("%s: its config %s could not be read" % (name, path))
+            continue
+        want = collections.Counter()
+        for run in config.get("runs", []):
+            combinations = 1
+            for values in (run.get("sweep") or {}).values():
+                combinations *= len(values)
+            for scene in run.get("scenes", config.get("scenes", [])):
+                want[(scene, run.get("technique"))] += combinations
+        for scene in config.get("scenes", []):
+            want[(scene, "path-tracer")] += len(config.get("pathTracerSpp", []))
+        have = collections.Counter((r["scene"], r["technique"]) for r in rows if r["bench"] == name)
+        for (scene, technique), n in sorted(want.items()):
+            if have[(scene, technique)] < n:
+                out.append("%s: %s on %s: %d of %d runs" % (name, technique, scene, have[(scene, technique)], n))
+    return out
+
+
 def verdicts(rows):
     out = []
     for r in rows:
@@ -136,9 +167,10 @@ def main():
     failed_benches = []
     if os.path.exists(os.path.join(folder, "logs", "bench-failed.txt")):
         failed_benches = [l.strip() for l in open(os.path.join(folder, "logs", "bench-failed.txt")) if l.strip()]
+    missing = missing_figures(folder, rows)
     ok = (bool(hello) and all(not s["failed"] and not s["missingShards"] for s in t.values()) and not bad_images
-          and not failed_benches)
-    report = {"ok": ok, "failedBenches": failed_benches, "machine": machine, "renderer": hello.get("renderer"), "platform": hello.get("platform"),
+          and not failed_benches and not missing)
+    report = {"ok": ok, "failedBenches": failed_benches, "missingFigures": missing, "machine": machine, "renderer": hello.get("renderer"), "platform": hello.get("platform"),
               "glVersion": hello.get("glVersion"), "tests": t, "probe": probe, "runs": rows, "targets": v}
     with open(os.path.join(folder, "report.json"), "w") as f:
         json.dump(report, f, indent=1)
@@ -188,6 +220,8 @@ def main():
             r["technique"], r["settings"], r["scene"], r["size"], r["nonFiniteValues"]))
     for b in failed_benches:
         md.append("- bench failed: %s" % b)
+    for m in missing:
+        md.append("- figure missing: %s" % m)
     md.append("Verdict: %s%s" % ("ok" if ok else "NOT ok", "" if ran_tests else " (tests not run)"))
     with open(os.path.join(folder, "report.md"), "w") as f:
         f.write("\n".join(md) + "\n")
