@@ -26,20 +26,51 @@ std::string csvField(const std::string& s)
     return q + "\"";
 }
 
+// The time of a row's image: its still frames times the median frame (the path tracer: its CPU time).
+double imageMs(const nlohmann::json& record)
+{
+    return record.value("imageMs", record["totalMs"].get<double>());
+}
+
+// The Pareto fronts, computed here once for every reader (report.md's table, results.json's "pareto",
+// results.csv's pareto_own and pareto_full, plot_speed_error.py, report.html): per scene and image size,
+// the rows that no other row beats in both the time of the image and the relative RMSE, against the row's
+// own light paths ("own") and against `full` ("full"). A row without a finite error is on no front.
+void markParetoFronts(std::vector<BenchRow>& rows)
+{
+    const auto mark = [&](const char* key, double BenchRow::*error) {
+        const auto on = [&](const BenchRow& r) { return std::isfinite(r.*error) && std::isfinite(imageMs(r.record)); };
+        for (BenchRow& a : rows) {
+            bool front = on(a);
+            for (const BenchRow& b : rows) {
+                if (!front) break;
+                if (&a == &b || !on(b) || b.scene != a.scene || b.size != a.size) continue;
+                const double ta = imageMs(a.record), tb = imageMs(b.record);
+                front = !(tb <= ta && b.*error <= a.*error && (tb < ta || b.*error < a.*error));
+            }
+            a.record["pareto"][key] = front;
+        }
+    };
+    mark("own", &BenchRow::relRmseOwn);
+    mark("full", &BenchRow::relRmseFull);
+}
+
 std::string csvText(const BenchConfig& config, const std::vector<BenchRow>& rows)
 {
     std::ostringstream csv;
     csv << "scene,technique,params,size,light_paths,total_ms,rel_rmse_own,rel_rmse_full,rmse_own,ssim_own,baseline,"
            "rel_rmse_baseline,flicker,nonfinite_values,passes";
     for (const std::string& p : config.compareTo) csv << ",rel_rmse_" << p;
-    csv << ",rel_rmse_direct_light\n";
+    csv << ",rel_rmse_direct_light,image_ms,pareto_own,pareto_full\n";
     for (const BenchRow& r : rows) {
         csv << csvField(r.scene) << "," << r.technique << "," << csvField(r.settings) << "," << r.size << ","
             << r.lightPaths << "," << r.totalMs << "," << r.relRmseOwn << "," << r.relRmseFull << "," << r.rmseOwn
             << "," << r.ssimOwn << "," << csvField(r.baseline) << "," << r.relRmseBaseline << "," << r.flicker << ","
             << r.nonFiniteValues << "," << csvField(r.passes);
         for (double v : r.relRmseCompareTo) csv << "," << v;
-        csv << "," << r.relRmseDirectLight << "\n";
+        const nlohmann::json& front = r.record.value("pareto", nlohmann::json::object());
+        csv << "," << r.relRmseDirectLight << "," << imageMs(r.record) << "," << int(front.value("own", false)) << ","
+            << int(front.value("full", false)) << "\n";
     }
     return csv.str();
 }
@@ -140,30 +171,25 @@ void counterTable(std::ostringstream& md, const std::vector<const nlohmann::json
     }
 }
 
-// The rows no other row of the scene beats in both the time of its image (its still frames times the
-// median frame) and the relative RMSE against `full`, fastest first: what report.html's plot dashes.
+// The scene's Pareto front against `full` (markParetoFronts), per image size, fastest first: what
+// report.html's plot and speed_error.png mark.
 void paretoTable(std::ostringstream& md, const std::vector<const nlohmann::json*>& recs)
 {
-    const auto ms = [](const nlohmann::json& r) { return r.value("imageMs", r["totalMs"].get<double>()); };
-    const auto err = [](const nlohmann::json& r) {
-        const nlohmann::json& e = r["error"]["full"]["relativeRmse"];
-        return e.is_number() ? e.get<double>() : std::numeric_limits<double>::infinity();
-    };
-    std::vector<const nlohmann::json*> sorted;
+    std::vector<const nlohmann::json*> front;
     for (const nlohmann::json* r : recs)
-        if (std::isfinite(err(*r))) sorted.push_back(r);
-    std::sort(sorted.begin(), sorted.end(), [&](const nlohmann::json* a, const nlohmann::json* b) {
-        return ms(*a) < ms(*b) || (ms(*a) == ms(*b) && err(*a) < err(*b));
+        if (r->value("pareto", nlohmann::json::object()).value("full", false)) front.push_back(r);
+    std::stable_sort(front.begin(), front.end(), [](const nlohmann::json* a, const nlohmann::json* b) {
+        const std::string sa = (*a)["size"].get<std::string>(), sb = (*b)["size"].get<std::string>();
+        return sa != sb ? sa < sb : imageMs(*a) < imageMs(*b);
     });
-    md << "\n### Pareto front\n\n| technique | parameters | ms to the image | frames | rel. RMSE (full) |\n"
-          "|---|---|---:|---:|---:|\n";
-    double best = std::numeric_limits<double>::infinity();
-    for (const nlohmann::json* r : sorted) {
-        if (err(*r) >= best) continue;
-        best = err(*r);
+    md << "\n### Pareto front\n\n| technique | parameters | size | ms to the image | frames | rel. RMSE (full) |\n"
+          "|---|---|---|---:|---:|---:|\n";
+    for (const nlohmann::json* r : front) {
         char buf[512];
-        std::snprintf(buf, sizeof buf, "| %s | %s | %.1f | %d | %.4f |\n", (*r)["technique"].get<std::string>().c_str(),
-                      (*r)["settings"].get<std::string>().c_str(), ms(*r), r->value("imageFrames", 1), err(*r));
+        std::snprintf(buf, sizeof buf, "| %s | %s | %s | %.1f | %d | %.4f |\n",
+                      (*r)["technique"].get<std::string>().c_str(), (*r)["settings"].get<std::string>().c_str(),
+                      (*r)["size"].get<std::string>().c_str(), imageMs(*r), r->value("imageFrames", 1),
+                      (*r)["error"]["full"]["relativeRmse"].get<double>());
         md << buf;
     }
 }
@@ -224,9 +250,12 @@ std::string markdownText(const BenchConfig& config, const std::vector<BenchRow>&
 
 } // namespace
 
-void writeBenchReport(const std::filesystem::path& out, const BenchConfig& config, const std::vector<BenchRow>& rows,
-                      const std::vector<SceneRays>& rays, const gl::ContextInfo& context)
+void writeBenchReport(const std::filesystem::path& out, const BenchConfig& config,
+                      const std::vector<BenchRow>& measured, const std::vector<SceneRays>& rays,
+                      const gl::ContextInfo& context)
 {
+    std::vector<BenchRow> rows = measured;
+    markParetoFronts(rows);
     nlohmann::json results = nlohmann::json::array();
     for (const BenchRow& r : rows) results.push_back(r.record);
     core::writeFileAtomic((out / "results.csv").string(), csvText(config, rows));

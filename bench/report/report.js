@@ -94,13 +94,15 @@
     return { svg, x, y };
   }
 
-  // The runs no other run beats in both time and error, fastest first.
-  function paretoFront(runs) {
-    const pts = runs.filter((r) => Number.isFinite(fullError(r)) && imageMs(r) > 0)
-      .sort((a, b) => imageMs(a) - imageMs(b) || fullError(a) - fullError(b));
-    const front = [];
-    for (const r of pts) if (!front.length || fullError(r) < fullError(front[front.length - 1])) front.push(r);
-    return front;
+  // The runs no other run of their size beats in both time and error, as the bench marked them
+  // (results.json's "pareto", app/bench_report.cpp), one front per image size, fastest first.
+  function paretoFronts(runs) {
+    const fronts = new Map();
+    for (const r of runs.filter((x) => x.pareto && x.pareto.full)) {
+      if (!fronts.has(r.size)) fronts.set(r.size, []);
+      fronts.get(r.size).push(r);
+    }
+    return [...fronts.values()].map((f) => f.sort((a, b) => imageMs(a) - imageMs(b)));
   }
 
   // Speed against error: one circle per run of the scene (path-tracer rows included), the path
@@ -116,10 +118,12 @@
     if (tracer.length > 1)
       plot.svg.append(el('svg:polyline', { class: 'tracer',
         points: tracer.map((r) => `${plot.x(imageMs(r))},${plot.y(fullError(r))}`).join(' ') }));
-    const front = paretoFront(runs);
-    if (front.length > 1)
-      plot.svg.append(el('svg:polyline', { class: 'pareto',
-        points: front.map((r) => `${plot.x(imageMs(r))},${plot.y(fullError(r))}`).join(' ') }));
+    const fronts = paretoFronts(runs);
+    const front = fronts.flat();
+    for (const f of fronts)
+      if (f.length > 1)
+        plot.svg.append(el('svg:polyline', { class: 'pareto',
+          points: f.map((r) => `${plot.x(imageMs(r))},${plot.y(fullError(r))}`).join(' ') }));
     for (const r of runs) {
       const e = clampY(fullError(r));
       // A failed render (infinite error) sits on the top edge, hollow, so that it is still one point per run.
