@@ -4,7 +4,6 @@
 
 #include <stdexcept>
 
-#include "core/sampling.h"
 
 namespace bounce::gl {
 
@@ -68,18 +67,12 @@ void Renderer::setIndirectScale(int scale)
     stillReady_ = false;
 }
 
-glm::vec2 Renderer::stillJitter(int index)
-{
-    return glm::vec2(float(core::halton(0, std::uint64_t(index))), float(core::halton(1, std::uint64_t(index)))) - 0.5f;
-}
-
 void Renderer::advanceStill()
 {
     const bool still = frame_->settings().accumulate && stillReady_ && frame_->version() == stillVersion_;
-    stillIndex_ = still ? stillIndex_ + 1 : 0;
     stillVersion_ = frame_->version();
     stillReady_ = true;
-    frame_->setStill(stillIndex_, stillIndex_ > 0 ? stillJitter(stillIndex_) : glm::vec2(0.0f));
+    frame_->beginFrame(still);
 }
 
 bool Renderer::moveVertices(const std::vector<glm::vec3>& positions, const std::vector<glm::vec3>& normals)
@@ -129,8 +122,7 @@ void Renderer::renderFrame(bool keepTimings)
 {
     // Techniques size their buffers from the frame: a resized frame gets a technique made anew.
     if (frame_->width() != techniqueWidth_ || frame_->height() != techniqueHeight_) make(*info_, techniqueValues_);
-    advanceStill();
-    frame_->beginFrame();
+    advanceStill(); // beginFrame, still or moving
     frame_->setAreaLightsInDirect(!technique_->carriesEmittersLight(), technique_->readsAreaShadowMaps());
     frame_->renderShadowMaps(timers_);
     frame_->renderGBuffer(timers_);

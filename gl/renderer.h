@@ -42,10 +42,9 @@ public:
     // result() is the mean of the frames since the view was last changed (Frame::accumulate), which
     // converges to the box-filtered pixels the path tracer computes. The count of those frames (0 while
     // the view moves: nothing is averaged, nothing is jittered).
-    int stillFrames() const { return stillIndex_; }
-    // Still frame i's sub-pixel offset (pixels, each component in [-0.5, 0.5)): Halton (2, 3) point i
-    // less the centre, so that the offsets are stratified over the pixel for any count of frames.
-    static glm::vec2 stillJitter(int index);
+    // The frame's sampler holds it (FrameSampler::stillIndex); its jitter is Halton (2, 3) point i less the
+    // centre, so that the offsets are stratified over the pixel for any count of frames.
+    int stillFrames() const { return frame_->sampler().stillIndex(); }
 
     // Indirect light at 1/scale of the frame's resolution (the demo's frame budget while the camera or a
     // light moves): the technique runs on a coarse frame of ceil(w/scale) x ceil(h/scale) with the same
@@ -90,7 +89,6 @@ private:
     std::uint64_t coarseLights_ = 0;                       // the full frame's lights version the coarse frame has
     std::vector<glm::vec3> movedPositions_, movedNormals_; // the last moveVertices, for a coarse frame made later
     void renderCoarseIndirect();
-    int stillIndex_ = 0;
     bool stillReady_ = false; // the last frame's version below is comparable (no technique change since)
     FrameVersion stillVersion_;
     void advanceStill();

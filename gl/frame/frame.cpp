@@ -204,31 +204,25 @@ void Frame::resize(int width, int height)
     ++version_.camera;
 }
 
-void Frame::beginFrame()
+void Frame::beginFrame(bool still)
 {
-    ++frameIndex_;
+    sampler_.advance(still);
     accumulatedResult_ = false;
 }
 
 glm::mat4 Frame::projection() const
 {
     const glm::mat4 p = camera_.projection(float(settings_.width) / float(settings_.height));
-    if (jitter_ == glm::vec2(0.0f)) return p;
+    const glm::vec2 jitter = sampler_.jitter();
+    if (jitter == glm::vec2(0.0f)) return p;
     // Shifting NDC by -2 j / size puts the point that was at pixel centre + j onto the pixel centre.
-    const glm::vec3 shift(-2.0f * jitter_.x / float(settings_.width), -2.0f * jitter_.y / float(settings_.height),
-                          0.0f);
+    const glm::vec3 shift(-2.0f * jitter.x / float(settings_.width), -2.0f * jitter.y / float(settings_.height), 0.0f);
     return glm::translate(glm::mat4(1.0f), shift) * p;
-}
-
-void Frame::setStill(int index, glm::vec2 jitterPixels)
-{
-    stillFrame_ = index;
-    jitter_ = jitterPixels;
 }
 
 void Frame::accumulate(PassTimers& timers, bool progressive)
 {
-    if (stillFrame_ < 1) return;
+    if (sampler_.stillIndex() < 1) return;
     if (!accumulated_) accumulated_ = Texture::create2D("accumulated", GL_RGBA32F, settings_.width, settings_.height);
     PassCost cost;
     cost.flops = 8;
@@ -248,7 +242,7 @@ void Frame::accumulate(PassTimers& timers, bool progressive)
         accumulatedIndirect_.bindImage(2, GL_READ_WRITE);
         compositeUsed_ = true;
     }
-    program.set("stillFrame", stillFrame_);
+    program.set("stillFrame", sampler_.stillIndex());
     dispatchCompute(program, glm::ivec3(settings_.width, settings_.height, 1), glm::ivec3(8, 8, 1));
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
     accumulatedResult_ = !progressive;
@@ -276,7 +270,7 @@ PassCost shadowCost(const GpuScene& scene, const ShadowMaps& shadows)
 void Frame::renderShadowMaps(PassTimers& timers)
 {
     shadows_.fitTo(camera_, settings_.width, settings_.height);
-    shadows_.setStill(stillFrame_);
+    shadows_.setStill(sampler_.stillIndex());
     auto t = timers.scope("shadow", shadowCost(gpu_, shadows_));
     shadows_.render(gpu_);
 }
@@ -381,12 +375,12 @@ void Frame::renderDirect(PassTimers& timers)
     PassState::fullscreen(directFbo_, settings_.width, settings_.height).apply();
     bindGBuffer();
     bindSceneData();
-    const bool still = shadows_.stillFrame() > 0 && directStillProgram_;
+    const bool still = sampler_.stillIndex() > 0 && directStillProgram_;
     Program& program = still ? directStillProgram_ : directProgram_;
     if (still) {
-        // Halton dimensions 6 and 7: the glossy lobe's points, independent of the jitter and the sample point.
-        const auto s = std::uint64_t(shadows_.stillFrame());
-        program.set("areaRotation", glm::vec2(float(core::halton(6, s)), float(core::halton(7, s))));
+        // The glossy lobe's points, independent of the jitter and the sample point.
+        program.set("areaRotation",
+                    FrameSampler::sample2(SampleStream::AreaGlossyRotation, std::uint64_t(sampler_.stillIndex())));
     }
     program.set("cameraPosition", camera_.position);
     program.set("punctualLightCount", gpu_.punctualLightCount());

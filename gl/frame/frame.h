@@ -11,6 +11,7 @@
 
 #include "core/image.h"
 #include "core/scene.h"
+#include "gl/frame/frame_sampler.h"
 #include "gl/frame/gpu_scene.h"
 #include "gl/frame/ray_caster.h"
 #include "gl/frame/scene_program.h"
@@ -72,22 +73,21 @@ public:
     void resize(int width, int height);
 
     // The frame's own passes, in order: shadow maps, G-buffer, direct light. Then the technique runs,
-    // then composite(). frameIndex counts calls to beginFrame().
-    void beginFrame();
+    // then composite(). beginFrame advances the sampler (sampler()): `still` (gl/renderer.h decides when
+    // the view is still) makes this frame the next still frame, which samples each pixel at its centre plus
+    // the sampler's jitter (the G-buffer, so everything that reads it, and projection()) and moves the
+    // frame's other stochastic parts (shadow-map shifts, area-light points) to their next sample; a moving
+    // frame (still false) is still frame 0: pixel centres, the plain shadow maps.
+    void beginFrame(bool still = false);
     void renderShadowMaps(PassTimers& timers);
     void renderGBuffer(PassTimers& timers);
     void renderDirect(PassTimers& timers);
     // direct + indirect into result(). withIndirect false (a technique that claims only direct light): no
     // pass at all, result() is the direct texture itself.
     void composite(PassTimers& timers, bool withIndirect = true);
-    // Still frames (gl/renderer.h decides when the view is still): frame `index` among the frames since
-    // the view last changed (0: the first, or the view moves) samples each pixel at its centre plus
-    // `jitterPixels` (each component in [-0.5, 0.5)): the G-buffer, so everything that reads it, and
-    // projection(). The frame's own stochastic parts (area-light sample points) take the index as their
-    // sample number.
-    void setStill(int index, glm::vec2 jitterPixels);
-    int stillFrame() const { return stillFrame_; }
-    glm::vec2 jitter() const { return jitter_; }
+    // The frame index, the still index and the pixel jitter, and every sample stream the frame and the
+    // techniques draw from (gl/frame/frame_sampler.h).
+    const FrameSampler& sampler() const { return sampler_; }
     // After composite(), for still frame 1 and later: result() becomes the mean of the still frames'
     // results ("accumulate" pass), so that a still view converges to box-filtered pixels. A progressive
     // technique (its indirect light is already its own running mean, but taken at each frame's sample
@@ -125,11 +125,10 @@ public:
     const FrameSettings& settings() const { return settings_; }
     const core::Camera& camera() const { return camera_; }
     glm::mat4 view() const { return camera_.view(); }
-    // The camera's projection, offset by the still frame's sub-pixel jitter (setStill).
+    // The camera's projection, offset by the still frame's sub-pixel jitter (sampler().jitter()).
     glm::mat4 projection() const;
     int width() const { return settings_.width; }
     int height() const { return settings_.height; }
-    int frameIndex() const { return frameIndex_; }
     const FrameVersion& version() const { return version_; }
 
     // RG32UI: eye depth bits (0: background) and the octahedral normal (glsl/common/gbuffer.glsl).
@@ -170,12 +169,10 @@ private:
     VertexArray emptyVao_;
     SceneProgram gbufferProgram_;
     Program directProgram_, directStillProgram_, compositeProgram_, accumulateProgram_, accumulateDirectProgram_;
-    int frameIndex_ = -1;
     bool compositeUsed_ = true;
     bool areaLightsInDirect_ = true;
     bool accumulatedResult_ = false; // result() is accumulated_
-    int stillFrame_ = 0;
-    glm::vec2 jitter_{0.0f};
+    FrameSampler sampler_;
     FrameVersion version_;
     void allocateTargets();
     void rebuildDirectPrograms();

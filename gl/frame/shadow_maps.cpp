@@ -8,6 +8,7 @@
 
 #include "core/sampling.h"
 #include "gl/frame/bindings.h"
+#include "gl/frame/frame_sampler.h"
 #include "gl/gl.h"
 #include "gl/resource/pass_state.h"
 
@@ -103,10 +104,8 @@ float triangleArea(const glm::vec3* t)
     return 0.5f * glm::length(glm::cross(t[1] - t[0], t[2] - t[0]));
 }
 
-constexpr std::uint32_t kAreaSampleSeed = 1u; // the scramble; any seed keeps the stratification
-
-// Still frame i's point on an emitting mesh: uniform by area, point i of the scrambled Sobol sequence
-// (core::sobol2; Halton's dimensions 0 and 1 jitter the pixel), the first coordinate choosing the triangle
+// Still frame i's point on an emitting mesh: uniform by area, point i of the stream AreaLightPoint, a
+// scrambled Sobol sequence (FrameSampler), the first coordinate choosing the triangle
 // by its share of the area and then, rescaled, with the second the point inside it. Returns the triangle's
 // light index. Halton's dimensions 2 and 3 were used before: bases 5 and 7, whose first points lie on lines
 // (1/5, 1/7), (2/5, 2/7), ...; cornell-area's direct light at 256x256 after 16 frames was 9.4% from the
@@ -115,7 +114,7 @@ int areaSample(const std::vector<LightSource>& lights, glm::ivec2 group, int ind
 {
     area = 0.0f;
     for (int k = 0; k < group.y; ++k) area += triangleArea(lights[group.x + k].triangle);
-    const glm::vec2 r = core::sobol2(std::uint32_t(index), kAreaSampleSeed);
+    const glm::vec2 r = FrameSampler::sample2(SampleStream::AreaLightPoint, std::uint64_t(index));
     float u = r.x * area;
     const float v = r.y;
     int t = group.x + group.y - 1;
@@ -173,9 +172,8 @@ void ShadowMaps::upload()
                 v.far = far;
             }
         }
-        // A sub-texel shift of every view (of its own side): Halton dimensions 4 and 5, less the texel's centre.
-        const glm::vec2 shift(float(core::halton(4, std::uint64_t(still_))) - 0.5f,
-                              float(core::halton(5, std::uint64_t(still_))) - 0.5f);
+        // A sub-texel shift of every view (of its own side): the stream ShadowShift, less the texel's centre.
+        const glm::vec2 shift = FrameSampler::sample2(SampleStream::ShadowShift, std::uint64_t(still_)) - 0.5f;
         for (std::size_t i = 0; i < lv.size(); ++i)
             lv[i].proj = glm::translate(glm::mat4(1.0f), glm::vec3(2.0f * shift / float(sides_[i]), 0.0f)) * lv[i].proj;
     }

@@ -67,7 +67,6 @@ public:
     int renderedViewCount() const;
     // The views and lights of still frame `index` (see above); 0 restores the plain ones.
     void setStill(int index);
-    int stillFrame() const { return still_; }
     bool hasAreaLights() const { return !areaGroups_.empty(); }
     // SSBO bindings 1 (lights), 2 (shadow views), 3 (area polygons) and the depth array at unit 5 (and at
     // UNIT_SHADOW_DEPTHS without comparison, for glsl/common/shadow.glsl's SHADOW_PCSS).

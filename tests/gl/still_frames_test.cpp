@@ -237,7 +237,7 @@ TEST_F(StillFramesTest, JitteredFramesRebuildPositionsOnTheSurface)
     gl::Renderer r(scene, "direct", gl::ParamValues(gl::frameParams()), gl::ParamValues(), 45, 31);
     for (int i = 0; i < 4; ++i) r.renderFrame(false);
     ASSERT_EQ(r.stillFrames(), 3);
-    ASSERT_NE(r.frame().jitter(), glm::vec2(0.0f));
+    ASSERT_NE(r.frame().sampler().jitter(), glm::vec2(0.0f));
     const std::vector<float> pos = r.frame().readPositions();
     int floorPixels = 0;
     float worst = 0.0f;

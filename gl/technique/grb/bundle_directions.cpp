@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "core/sampling.h"
+#include "gl/frame/frame_sampler.h"
 
 namespace bounce::gl {
 
@@ -25,15 +26,13 @@ std::uint64_t bundleSequenceIndex(std::uint64_t index)
 
 glm::vec3 bundleDirection(std::uint64_t index)
 {
-    const std::uint64_t h = bundleSequenceIndex(index) + 1;
-    const glm::vec2 u(float(core::halton(0, h)), float(core::halton(1, h)));
-    return core::sampleUniformSphere(u);
+    return core::sampleUniformSphere(
+        FrameSampler::sample2(SampleStream::BundleDirection, bundleSequenceIndex(index) + 1));
 }
 
 glm::vec2 bundleJitter(std::uint64_t index)
 {
-    const std::uint64_t h = bundleSequenceIndex(index) + 1;
-    return {float(core::halton(2, h)), float(core::halton(3, h))};
+    return FrameSampler::sample2(SampleStream::BundleJitter, bundleSequenceIndex(index) + 1);
 }
 
 BundleView bundleView(const core::Bounds& bounds, glm::vec3 dir, glm::vec2 jitter, int size)

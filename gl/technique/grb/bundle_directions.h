@@ -13,7 +13,7 @@ namespace bounce::gl {
 // Sec. 4.3: the Halton sequence (bases 2 and 3) on the unit sphere, uniform in area; both orientations
 // of a direction are used, so each receiver gets one sample of its hemisphere per direction (density
 // 1 / (2 pi) there, Eq. 2). Direction `index` is the sequence's point bundleSequenceIndex(index) + 1
-// (point 0 is the pole).
+// (point 0 is the pole), drawn from the frame sampler's stream BundleDirection (gl/frame/frame_sampler.h).
 glm::vec3 bundleDirection(std::uint64_t index);
 
 // The order in which the bundles take the Halton points: shuffled within blocks of kBundleShuffleBlock.

@@ -1,7 +1,7 @@
 #include "gl/technique/grb/radiance_atlases.h"
 
-#include "core/sampling.h"
 #include "gl/frame/bindings.h"
+#include "gl/frame/frame_sampler.h"
 #include "gl/frame/shader_costs.h"
 #include "gl/gl.h"
 #include "gl/resource/pass_state.h"
@@ -177,10 +177,10 @@ void RadianceAtlases::transfer(const Frame& frame, const GrbAtlas& atlas, const 
     transfer_.set("punctualLightCount", frame.gpuScene().punctualLightCount());
     if (settings_.areaGlossy) {
         transfer_.set("lightCount", frame.shadowMaps().lightCount());
-        // The emitters' points rotate from direction to direction (Halton dimensions 6 and 7 of the count
+        // The emitters' points rotate from direction to direction (the stream AtlasAreaRotation at the count
         // of transfers so far), so that their sum over directions covers each emitter evenly.
         const auto n = std::uint64_t(++transfers_);
-        transfer_.set("areaRotation", glm::vec2(float(core::halton(6, n)), float(core::halton(7, n))));
+        transfer_.set("areaRotation", FrameSampler::sample2(SampleStream::AtlasAreaRotation, n));
     }
     frame.shadowMaps().setPcfUniforms(transfer_, frame.settings().pcfRadius);
     transfer_.use();

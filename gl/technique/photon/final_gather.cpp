@@ -55,7 +55,7 @@ PassCost gatherRayWork(const Frame& frame, const RayCaster& caster, const Photon
     // material (152 bytes; a bilinear base-colour sample where the scene has textures), its direct light from
     // every light (a record of shared words, one shadow tap: 2x2 texels when filtered), the irradiance there,
     // the BRDF.
-    const double taps = frame.settings().pcfLinear && frame.shadowMaps().stillFrame() == 0 ? 4 : 1;
+    const double taps = frame.settings().pcfLinear && frame.sampler().stillIndex() == 0 ? 4 : 1;
     const double punctual = frame.gpuScene().punctualLightCount(), area = frame.shadowMaps().lightCount() - punctual;
     PassCost w = bvhWalkWork(caster.bvh(), rays);
     w.flopsFixed += rays * (215 + punctual * (60 + 10 * taps) + area * (250 + 10 * taps));
@@ -188,7 +188,7 @@ void GlossyGather::run(Frame& frame, const RayCaster& caster, const PhotonTree& 
     program_.set("viewport", glm::ivec2(frame.width(), frame.height()));
     program_.set("cameraPosition", frame.camera().position);
     program_.set("rayCount", unsigned(rays_));
-    program_.set("seed", std::uint32_t(frame.stillFrame()));
+    program_.set("seed", std::uint32_t(frame.sampler().stillIndex()));
     program_.set("rayEpsilon", 1e-5f * sceneSize);
     frame.indirect().bindImage(0, GL_READ_WRITE);
     for (int j = 0; j < rays_; ++j) {

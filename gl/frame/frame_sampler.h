@@ -1,0 +1,67 @@
+// The frame's sampler: one owner for what the frame and the techniques draw from low-discrepancy
+// sequences (pbrt's Sampler is the model). It counts frames (frameIndex: every frame, still or moving)
+// and still frames (stillIndex: the frames since the view last changed, 0 while it moves), gives each
+// still frame's point in the pixel, and hands out the sample streams by name: each stream is its own
+// dimensions of Halton's sequence, or its own scrambling of Sobol's, so that no two consumers draw the
+// same numbers and correlate (two of grb's streams share the frame's dimensions, declared in the table
+// with the reason). A new consumer adds a row to the table (frame_sampler.cpp); the test
+// FrameSampler.NoTwoStreamsShareADimension checks the rows, and Layout.SequencesOnlyThroughTheSampler
+// that nothing in gl/ draws from core's sequences past it.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace bounce::gl {
+
+enum class SampleStream {
+    PixelJitter,        // the still frame's point in the pixel (the G-buffer's jitter)
+    ShadowShift,        // the shadow maps' sub-texel shift in still frames (ShadowMaps)
+    AreaLightPoint,     // the still frame's point on each emitting mesh (ShadowMaps::areaSample)
+    AreaGlossyRotation, // the rotation of the emitters' points the direct pass's glossy lobes take (Frame)
+    BundleDirection,    // a global ray-bundle's direction (grb: bundleDirection)
+    BundleJitter,       // a bundle's sub-texel offset (grb: bundleJitter)
+    AtlasAreaRotation,  // the emitters' points of an atlas transfer (grb: RadianceAtlases)
+};
+
+enum class SampleSequence { Halton, Sobol };
+
+struct SampleStreamInfo {
+    SampleStream stream;
+    const char* name;
+    SampleSequence sequence;
+    int firstDimension;  // Halton: the stream's first dimension (it takes two)
+    std::uint32_t seed;  // Sobol: the stream's Owen scrambling (core::sobol2)
+    const char* drawnBy; // the consumer, for the table and its test
+    // A stream whose numbers this one knowingly shares (the same dimensions of Halton's sequence, drawn at
+    // other indices), with the reason in the table; nullptr for none. The test accepts only declared pairs.
+    const char* shares = nullptr;
+};
+
+class FrameSampler {
+public:
+    // Every stream, in SampleStream's order.
+    static const std::vector<SampleStreamInfo>& streams();
+    static const SampleStreamInfo& info(SampleStream stream);
+    // Point `index` of the stream: two numbers in [0, 1).
+    static glm::vec2 sample2(SampleStream stream, std::uint64_t index);
+
+    // A new frame: frameIndex advances; still frames advance stillIndex, a moving one (still false) sets it
+    // to 0 and samples the pixel at its centre.
+    void advance(bool still);
+    std::uint64_t frameIndex() const { return frameIndex_; }
+    int stillIndex() const { return stillIndex_; }
+    // The still frame's offset from the pixel's centre, each component in [-0.5, 0.5) (0 in frame 0).
+    glm::vec2 jitter() const { return jitter_; }
+
+private:
+    std::uint64_t frameIndex_ = 0;
+    int stillIndex_ = 0;
+    bool started_ = false;
+    glm::vec2 jitter_{0.0f};
+};
+
+} // namespace bounce::gl
