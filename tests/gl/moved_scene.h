@@ -37,4 +37,19 @@ inline core::Scene withVertices(core::Scene scene, const MovedVertices& moved)
     return scene;
 }
 
+// A scene and the same scene scaled by `s`: the vertices that deform the first into the second, and the
+// second as a loader gives it (named NAME-stretched, so that its cached references are its own).
+struct StretchedScene {
+    core::Scene scene;
+    MovedVertices moved;
+    core::Scene stretched;
+};
+inline StretchedScene stretchedScene(const core::Scene& scene, glm::vec3 s)
+{
+    StretchedScene out{scene, scaledVertices(scene, s), {}};
+    out.stretched = withVertices(scene, out.moved);
+    out.stretched.name = scene.name + "-stretched";
+    return out;
+}
+
 } // namespace bounce::testing

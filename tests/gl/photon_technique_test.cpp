@@ -495,10 +495,9 @@ TEST_F(PhotonTechniqueTest, SceneScaledByAThousandGivesTheSameImage)
 TEST_F(PhotonTechniqueTest, DeformedSceneIsLitAsTheDeformedSceneLoaded)
 {
     constexpr int size = 32;
-    const core::Scene scene = core::makeCornell("cornell-spot");
-    const testing::MovedVertices moved = testing::scaledVertices(scene, {1.3f, 1.0f, 1.0f});
-    core::Scene stretched = testing::withVertices(scene, moved);
-    stretched.name = "cornell-spot-stretched";
+    const testing::StretchedScene st = testing::stretchedScene(core::makeCornell("cornell-spot"), {1.3f, 1.0f, 1.0f});
+    const core::Scene &scene = st.scene, &stretched = st.stretched;
+    const testing::MovedVertices& moved = st.moved;
     gl::Renderer r(scene, "photon", frameValues(), testValues(), size, size);
     r.renderFrame(false);
     ASSERT_TRUE(r.moveVertices(moved.positions, moved.normals));

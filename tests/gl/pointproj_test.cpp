@@ -293,10 +293,9 @@ TEST_F(PointprojTest, MatchesThePathTracersOneBounce)
 TEST_F(PointprojTest, DeformedCloudGathersAsACloudOfTheDeformedScene)
 {
     constexpr int size = 24;
-    const core::Scene scene = core::makeCornell("cornell-spot");
-    const testing::MovedVertices moved = testing::scaledVertices(scene, {1.3f, 1.0f, 1.0f});
-    core::Scene stretched = testing::withVertices(scene, moved);
-    stretched.name = "cornell-spot-stretched";
+    const testing::StretchedScene st = testing::stretchedScene(core::makeCornell("cornell-spot"), {1.3f, 1.0f, 1.0f});
+    const core::Scene &scene = st.scene, &stretched = st.stretched;
+    const testing::MovedVertices& moved = st.moved;
     const core::Image want = testing::pathTracedOneBounce(stretched, size, size, 8192);
     const testing::Sets sets = {{"adaptive", "0"}, {"progressive", "0"}};
     const PointRender deformed = renderPoints(scene, "pointproj", sets, size, size, 1, &moved);
