@@ -21,6 +21,10 @@ vec4 baseColorTexel(Material m, vec2 uv)
 #endif
 }
 
+// The base colour of material m at uv: its factor times its texture's texel (ray hits on the scene:
+// frame/points/hit_radiance.glsl, common/scene_hit.glsl).
+vec3 materialBaseColor(Material m, vec2 uv) { return m.baseColorMetallic.rgb * baseColorTexel(m, uv).rgb; }
+
 // glTF MASK: a hole where baseColorFactor.a x texture alpha < alphaCutoff. Opaque materials carry a
 // cutoff of 0 (gpu_scene.cpp), so they never cut out. Shaders use it under ALPHA_MASK only, which the
 // passes define for scenes that have masked materials.

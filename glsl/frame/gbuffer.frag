@@ -6,6 +6,7 @@
 #include "common/packing.glsl"
 #include "common/scene.glsl"
 #include "common/base_color.glsl"
+#include "common/material.glsl"
 
 in vec3 vNormal;
 in vec2 vUv;
@@ -73,8 +74,7 @@ void main()
     if (alphaCutOut(m, texel.a)) discard;
 #endif
     vec3 baseColor = m.baseColorMetallic.rgb * texel.rgb;
-    BrdfParams b = brdfParams(baseColor, m.baseColorMetallic.a, m.emissionRoughness.a, m.specularColorSpecular.a,
-                              m.specularColorSpecular.rgb);
+    BrdfParams b = materialBrdf(m, baseColor);
     vec3 emission = m.emissionRoughness.rgb;
     if (!gl_FrontFacing) {
         if (doubleSided) {

@@ -12,29 +12,20 @@
 // prefix sums plus the block's offset, blockSums[sumsOffset + block]. At the top level there is one
 // block, no offset, and its total is the scan's, into counters[totalSlot]. Integer sums: the same
 // result in any order of execution.
-#include "frame/sort_bindings.glsl"
-#include "common/dispatch_rows.glsl"
-layout(local_size_x = 256) in;
+#include "frame/scan_block.glsl"
 
 layout(std430, binding = SSBO_SCAN) buffer ScanData { uint scanData[]; };
 layout(std430, binding = SSBO_SCAN_SUMS) readonly buffer BlockSums { uint blockSums[]; };
 layout(std430, binding = SSBO_SCAN_TOTALS) buffer Counters { uint counters[]; };
 
-uniform uint dataOffset; // the array is scanData[dataOffset .. dataOffset + count)
-uniform uint count;
-uniform uint blocks;     // ceil(count / 4096), at least 1; a dispatch in rows runs groups past it
-uniform uint sumsOffset;
 uniform bool topLevel;   // one block, no offset: its total is the scan's, into counters[totalSlot]
 uniform uint totalSlot;
-
-shared uint partial[256];
 
 void main()
 {
     uint t = gl_LocalInvocationIndex;
-    uint block = rowGroup();
-    if (block >= blocks) return;
-    uint first = block * 4096u + t * 16u;
+    uint block, first;
+    if (!scanBlock(block, first)) return;
     uint v[16];
     uint sum = 0u;
     for (uint j = 0u; j < 16u; ++j) {

@@ -3,26 +3,16 @@
 // its block of 4096 words (16 consecutive words per invocation, then a tree in shared memory) into
 // blockSums[sumsOffset + block]. GpuScan scans these sums and hands them to scan_blocks.comp as the
 // blocks' offsets. Integer sums: the same result in any order of execution.
-#include "frame/sort_bindings.glsl"
-#include "common/dispatch_rows.glsl"
-layout(local_size_x = 256) in;
+#include "frame/scan_block.glsl"
 
 layout(std430, binding = SSBO_SCAN) readonly buffer ScanData { uint scanData[]; };
 layout(std430, binding = SSBO_SCAN_SUMS) writeonly buffer BlockSums { uint blockSums[]; };
 
-uniform uint dataOffset; // the array is scanData[dataOffset .. dataOffset + count)
-uniform uint count;
-uniform uint blocks;     // ceil(count / 4096); a dispatch in rows runs groups past it
-uniform uint sumsOffset;
-
-shared uint partial[256];
-
 void main()
 {
     uint t = gl_LocalInvocationIndex;
-    uint block = rowGroup();
-    if (block >= blocks) return;
-    uint first = block * 4096u + t * 16u;
+    uint block, first;
+    if (!scanBlock(block, first)) return;
     uint sum = 0u;
     for (uint j = 0u; j < 16u; ++j)
         if (first + j < count) sum += scanData[dataOffset + first + j];

@@ -109,4 +109,20 @@ void storeGather(GatherSample g, uint k, vec3 diffuse, vec3 glossy)
 // The gather's target of this work group (one group per target, in rows: dispatchPerTarget).
 uint gatherTargetIndex() { return rowGroup(); }
 
+// The word a target's random numbers start from (common/random.glsl's hashU): its texel, or (k, 0) at
+// points, through the primes of a spatial hash (Teschner et al. 2003), so that a target draws the same
+// numbers in every run. Both gathers.
+uint gatherTargetKey(GatherSample g) { return uint(g.texel.x) * 73856093u ^ uint(g.texel.y) * 19349663u; }
+
+// The convolution step of both gathers: radiance arriving at the sample along wi (unit, world) through one
+// micro-pixel or texel of the gather's buffer, weighted by its cosine times solid angle, through the
+// sample's BRDF, added to the diffuse and glossy sums.
+void gatherAdd(GatherSample g, vec3 wi, vec3 radiance, float weight, inout vec3 sumDiffuse, inout vec3 sumGlossy)
+{
+    vec3 fd, fg;
+    brdfEvalLobes(g.brdf, g.normal, g.wo, wi, fd, fg);
+    sumDiffuse += radiance * fd * weight;
+    sumGlossy += radiance * fg * weight;
+}
+
 #endif

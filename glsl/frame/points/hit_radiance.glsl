@@ -7,6 +7,7 @@
 #define BOUNCE_HIT_RADIANCE_GLSL
 
 #include "common/base_color.glsl"
+#include "common/material.glsl"
 
 // Outgoing radiance towards wo of the surface point hp (normal hn) on triangle `triangle` at barycentrics b:
 // every lobe where the scene has a glossy material (GLOSSY_POINTS), else the diffuse one.
@@ -14,11 +15,9 @@ vec3 hitDirectRadiance(uint triangle, vec2 b, vec3 hp, vec3 hn, vec3 wo)
 {
     Material m = materials[sceneTriangleMaterial(triangle)];
     // Sponza's factors are white: without the texel the hits were 2-3x too bright.
-    vec3 baseColor = m.baseColorMetallic.rgb * baseColorTexel(m, sceneTriangleUv(triangle, b)).rgb;
+    vec3 baseColor = materialBaseColor(m, sceneTriangleUv(triangle, b));
 #ifdef GLOSSY_POINTS
-    BrdfParams p = brdfParams(baseColor, m.baseColorMetallic.a, m.emissionRoughness.a, m.specularColorSpecular.a,
-                              m.specularColorSpecular.rgb);
-    return surfaceDirectRadiance(hp, hn, wo, p);
+    return surfaceDirectRadiance(hp, hn, wo, materialBrdf(m, baseColor));
 #else
     return pointDirectRadiance(hp, hn, baseColor * (1.0 - m.baseColorMetallic.a));
 #endif

@@ -7,6 +7,7 @@
 #define SCENE_GEOMETRY
 #include "common/brdf.glsl"
 #include "common/scene.glsl"
+#include "common/material.glsl"
 #define POINT_SAMPLES
 #define POINT_SURFELS
 #define POINT_GLOSSY
@@ -31,8 +32,7 @@ void main()
         baseColor *= textureLod(baseColorTextures, vec3(uv, float(m.flags.x)), 0.0).rgb;
     }
 #endif
-    BrdfParams p = brdfParams(baseColor, m.baseColorMetallic.a, m.emissionRoughness.a, m.specularColorSpecular.a,
-                              m.specularColorSpecular.rgb);
+    BrdfParams p = materialBrdf(m, baseColor);
     PointSurfel o;
     o.position = sceneTrianglePoint(tri, b);
     // "Under deformations we scale the points' radii to compensate for the varying point densities"

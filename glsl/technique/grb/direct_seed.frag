@@ -4,6 +4,7 @@
 // as radiance.glsl says: sum over lights of t(cos) E / pi. Emitting surfaces need no seed: the bundles
 // carry their light (Sec. 5.1).
 #include "common/lighting.glsl"
+#include "common/material.glsl"
 #include "technique/grb/atlas.glsl"
 
 uniform int punctualLightCount;
@@ -17,8 +18,7 @@ void main()
     if (pos.w == 0.0) discard;
     vec3 n = texelFetch(atlasNormal, t, 0).xyz;
     Material m = materials[uint(pos.w) - 1u];
-    BrdfParams b = brdfParams(texelFetch(atlasBaseColor, t, 0).rgb, m.baseColorMetallic.a, m.emissionRoughness.a,
-                              m.specularColorSpecular.a, m.specularColorSpecular.rgb);
+    BrdfParams b = materialBrdf(m, texelFetch(atlasBaseColor, t, 0).rgb);
     vec3 seed = vec3(0.0);
     for (int i = 0; i < punctualLightCount; ++i) {
         vec3 wi;

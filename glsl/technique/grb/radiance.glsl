@@ -19,6 +19,7 @@
 
 #include "common/brdf.glsl"
 #include "common/scene.glsl"
+#include "common/material.glsl"
 #include "technique/grb/atlas.glsl"
 
 layout(binding = UNIT_GRB_SEED) uniform sampler2D seedAtlas;
@@ -31,9 +32,7 @@ layout(binding = UNIT_GRB_SENDER_GLOSSY) uniform sampler2D senderGlossy;
 // The BRDF of atlas texel t (material from the position atlas's w, base colour from its atlas).
 BrdfParams atlasBrdf(ivec2 t, uint material)
 {
-    Material m = materials[material];
-    return brdfParams(texelFetch(atlasBaseColor, t, 0).rgb, m.baseColorMetallic.a, m.emissionRoughness.a,
-                      m.specularColorSpecular.a, m.specularColorSpecular.rgb);
+    return materialBrdf(materials[material], texelFetch(atlasBaseColor, t, 0).rgb);
 }
 
 // The per-albedo diffuse radiance stored at t: seed + accumulated, each sum over its own count.

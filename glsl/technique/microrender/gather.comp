@@ -49,6 +49,7 @@
 // as a subtree. One round and two barriers per level of the hierarchy: for a GPU, where the warps of a
 // group run in lockstep; the subtrees suit a CPU rasteriser, whose barriers are costly.
 #define SCENE_GEOMETRY
+#include "common/random.glsl"
 #include "frame/points/gather_target.glsl"
 #include "technique/microrender/hierarchy.glsl"
 #include "technique/microrender/warp.glsl"
@@ -107,15 +108,18 @@ shared uint microFar[kPixels];
 const uint kCoverFull = 1024u;
 #endif
 
-uint hashU(uint x)
+#ifdef RAY_CAST
+// Micro-pixel p taken by a ray (either kind of ray below), with the radiance the ray brings back: three
+// words of the scratch array, which the convolution reads (rayRadiance).
+void takeByRay(int p, vec3 radiance)
 {
-    x ^= x >> 16;
-    x *= 0x7feb352du;
-    x ^= x >> 15;
-    x *= 0x846ca68bu;
-    x ^= x >> 16;
-    return x;
+    scratch[3 * p] = floatBitsToUint(radiance.r);
+    scratch[3 * p + 1] = floatBitsToUint(radiance.g);
+    scratch[3 * p + 2] = floatBitsToUint(radiance.b);
+    microKeys[p] = kRayKey;
 }
+vec3 rayRadiance(int p) { return uintBitsToFloat(uvec3(scratch[3 * p], scratch[3 * p + 1], scratch[3 * p + 2])); }
+#endif
 
 // A node faces away from x when no normal of its cone can see x from any point of its sphere: the angle
 // between the cone axis and the direction to x exceeds 90 degrees + the cone's half angle + the sphere's
@@ -264,7 +268,7 @@ void main()
     // micro-pixel's direction is taken at a point of it jittered per target, and a frame without a glossy
     // lobe to align with is turned about the normal by a random angle. Seeded by the target's texel (or
     // point), so that the image is the same in every run.
-    uint seed = hashU(uint(g.texel.x) * 73856093u ^ uint(g.texel.y) * 19349663u);
+    uint seed = hashU(gatherTargetKey(g));
     vec2 jitter = (vec2(float(seed & 0xFFFFu), float(seed >> 16)) + 0.5) / 65536.0 - 0.5;
     if (share == 0.0) {
         float turn = 2.0 * kPi * float(hashU(seed) & 0xFFFFu) / 65536.0;
@@ -333,11 +337,7 @@ void main()
             }
         }
         if (best == 0u) continue;
-        vec3 radiance = nodeRadiance(microNodes[best], -dir);
-        scratch[3 * p] = floatBitsToUint(radiance.r);
-        scratch[3 * p + 1] = floatBitsToUint(radiance.g);
-        scratch[3 * p + 2] = floatBitsToUint(radiance.b);
-        microKeys[p] = kRayKey;
+        takeByRay(p, nodeRadiance(microNodes[best], -dir));
         ++taken;
     }
     bool triangles = listCount > uint(LIST_CAP);
@@ -391,10 +391,7 @@ void main()
                 radiance = hitDirectRadiance(hit.triangle, hit.b, hp, hn, -dir);
             }
         }
-        scratch[3 * p] = floatBitsToUint(radiance.r);
-        scratch[3 * p + 1] = floatBitsToUint(radiance.g);
-        scratch[3 * p + 2] = floatBitsToUint(radiance.b);
-        microKeys[p] = kRayKey;
+        takeByRay(p, radiance);
         ++taken;
     }
     atomicAdd(groupStats[6], rays);
@@ -414,17 +411,12 @@ void main()
         }
 #ifdef RAY_CAST
         vec3 wi = tangent * wl.x + bitangent * wl.y + n * wl.z;
-        vec3 radiance = key == kRayKey ? uintBitsToFloat(uvec3(scratch[3 * p], scratch[3 * p + 1], scratch[3 * p + 2]))
-                                       : nodeRadiance(microNodes[key & kIndexMask], -wi);
+        vec3 radiance = key == kRayKey ? rayRadiance(p) : nodeRadiance(microNodes[key & kIndexMask], -wi);
 #else
         vec3 wi = tangent * wl.x + bitangent * wl.y + n * wl.z;
         vec3 radiance = nodeRadiance(microNodes[key & kIndexMask], -wi);
 #endif
-        float cs = warpCosineSolidAngle(wl);
-        vec3 fd, fg;
-        brdfEvalLobes(g.brdf, n, g.wo, wi, fd, fg);
-        sumDiffuse += radiance * fd * cs;
-        sumGlossy += radiance * fg * cs;
+        gatherAdd(g, wi, radiance, warpCosineSolidAngle(wl), sumDiffuse, sumGlossy);
     }
     partDiffuse[lid] = sumDiffuse;
     partGlossy[lid] = sumGlossy;

@@ -5,17 +5,12 @@
 // every subtree whose box does not hold the point: the subtree above the cut is the kd-tree of the cut's
 // nodes (section 3.3).
 #include "technique/photon/illumination_cut.glsl"
-#include "technique/photon/linear_dispatch.glsl"
-
-layout(local_size_x = 64) in;
-
-uniform int level;
+#include "technique/photon/tree_level.glsl"
 
 void main()
 {
-    uint k = linearInvocation();
-    if (k >= (1u << uint(level))) return;
-    uint i = (1u << uint(level)) + k;
+    uint i = levelNode();
+    if (i == 0u) return;
     vec3 lo = vec3(3.0e38), hi = vec3(-3.0e38), fallbackLo = lo, fallbackHi = hi;
     if ((cutFlags(i) & kCutIn) != 0u) {
         vec4 cr = cutNodes[i].centreRadius;

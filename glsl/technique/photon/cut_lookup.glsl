@@ -6,6 +6,7 @@
 #define BOUNCE_CUT_LOOKUP_GLSL
 
 #include "technique/photon/illumination_cut.glsl"
+#include "technique/photon/tree_walk.glsl"
 #ifdef CUT_GRID
 #include "technique/photon/cut_grid.glsl"
 #endif

@@ -12,20 +12,16 @@
 // 4K-8K": the coarse cut lies at and above those levels, brighter regions reaching them and dimmer ones
 // staying above, and only the refinement goes deeper.
 #include "technique/photon/illumination_cut.glsl"
-#include "technique/photon/linear_dispatch.glsl"
-
-layout(local_size_x = 64) in;
+#include "technique/photon/tree_level.glsl"
 
 layout(std430, binding = SSBO_PHOTON_COUNTERS) readonly buffer Counters { uint counters[]; };
 
-uniform int level;
 uniform int lastLevel; // the deeper of E_min's two levels
 
 void main()
 {
-    uint k = linearInvocation();
-    if (k >= (1u << uint(level))) return;
-    uint i = (1u << uint(level)) + k;
+    uint i = levelNode();
+    if (i == 0u) return;
     PhotonNode n = photonNodes[i];
     float eMin = uintBitsToFloat(counters[kCounterEmin]);
     uint f = (level <= lastLevel && n.lo.w > 0.0 && n.power.w > eMin) ? kCutSelected : 0u;

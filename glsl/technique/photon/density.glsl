@@ -1,5 +1,5 @@
 // Nearest-photon density estimation (Jensen 2001) in the photon tree: the k photons nearest to x whose
-// normals face n, found by walking the heap without a stack (skipSubtree) and skipping every subtree
+// normals face n, found by walking the heap without a stack (tree_walk.glsl) and skipping every subtree
 // farther than the k-th nearest photon found so far (a max-heap of k squared distances). The estimate
 // divides their power by the disc pi R^2, R the distance of the k-th. The refinement's "accurate
 // irradiance E_p" (section 3.3) and the full photon map's estimate at gather hits (`density=photons`).
@@ -9,6 +9,7 @@
 
 #include "common/brdf.glsl"
 #include "technique/photon/illumination_cut.glsl"
+#include "technique/photon/tree_walk.glsl"
 
 #ifndef NEAREST_K
 #define NEAREST_K 32
@@ -48,53 +49,45 @@ DensitySums nearestPhotons(vec3 x, vec3 n, float start, out float radius)
         size = 0;
         uint i = 1u;
         while (i != 0u) {
-            PhotonNode node = photonNodes[i];
-            float limit = size == NEAREST_K ? nearestD2[0] : bound;
-            if (node.lo.w <= 0.0 || boxDistance2(x, node.lo.xyz, node.hi.xyz) > limit) {
-                i = skipSubtree(i);
-            } else if (!nodeIsLeaf(i)) {
-                i = 2u * i;
-            } else {
-                uvec2 range = nodeRange(i);
-                for (uint p = range.x; p < range.y; ++p) {
-                    Photon ph = photons[p];
-                    vec3 d = ph.positionPath.xyz - x;
-                    float dd = dot(d, d);
-                    if (dd <= (size == NEAREST_K ? nearestD2[0] : bound) && dot(ph.normal.xyz, n) > 0.1) {
-                        // Into the max-heap: it grows while it has room, else its largest entry goes.
-                        int at = 0;
-                        if (size < NEAREST_K) {
-                            at = size++;
-                            bool up = at > 0;
-                            while (up) {
-                                int parent = (at - 1) / 2;
-                                up = nearestD2[parent] < dd;
-                                if (up) {
-                                    nearestD2[at] = nearestD2[parent];
-                                    nearestIndex[at] = nearestIndex[parent];
-                                    at = parent;
-                                    up = at > 0;
-                                }
-                            }
-                        } else {
-                            bool down = true;
-                            while (down) {
-                                int c = 2 * at + 1;
-                                if (c + 1 < NEAREST_K && nearestD2[c + 1] > nearestD2[c]) ++c;
-                                down = c < NEAREST_K && nearestD2[min(c, NEAREST_K - 1)] > dd;
-                                if (down) {
-                                    nearestD2[at] = nearestD2[c];
-                                    nearestIndex[at] = nearestIndex[c];
-                                    at = c;
-                                }
+            if (!walkToLeafNear(i, x, size == NEAREST_K ? nearestD2[0] : bound)) continue;
+            uvec2 range = nodeRange(i);
+            for (uint p = range.x; p < range.y; ++p) {
+                Photon ph = photons[p];
+                float dd = photonDistance2(ph, x);
+                if (dd <= (size == NEAREST_K ? nearestD2[0] : bound) && dot(ph.normal.xyz, n) > 0.1) {
+                    // Into the max-heap: it grows while it has room, else its largest entry goes.
+                    int at = 0;
+                    if (size < NEAREST_K) {
+                        at = size++;
+                        bool up = at > 0;
+                        while (up) {
+                            int parent = (at - 1) / 2;
+                            up = nearestD2[parent] < dd;
+                            if (up) {
+                                nearestD2[at] = nearestD2[parent];
+                                nearestIndex[at] = nearestIndex[parent];
+                                at = parent;
+                                up = at > 0;
                             }
                         }
-                        nearestD2[at] = dd;
-                        nearestIndex[at] = p;
+                    } else {
+                        bool down = true;
+                        while (down) {
+                            int c = 2 * at + 1;
+                            if (c + 1 < NEAREST_K && nearestD2[c + 1] > nearestD2[c]) ++c;
+                            down = c < NEAREST_K && nearestD2[min(c, NEAREST_K - 1)] > dd;
+                            if (down) {
+                                nearestD2[at] = nearestD2[c];
+                                nearestIndex[at] = nearestIndex[c];
+                                at = c;
+                            }
+                        }
                     }
+                    nearestD2[at] = dd;
+                    nearestIndex[at] = p;
                 }
-                i = skipSubtree(i);
             }
+            i = skipSubtree(i);
         }
     }
     DensitySums s = DensitySums(float(size), vec3(0.0), 0.0);

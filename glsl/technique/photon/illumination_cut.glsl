@@ -32,17 +32,4 @@ uint cutFlags(uint i) { return uint(cutNodes[i].influenceLo.w); }
 void setCutFlags(uint i, uint f) { cutNodes[i].influenceLo.w = float(f); }
 bool cutSubtreeSelected(uint f) { return (f & (kCutSelected | kCutAnyBelow)) != 0u; }
 
-// The next node after i's subtree in depth-first order over the heap (0: the walk is over).
-uint skipSubtree(uint i)
-{
-    while ((i & 1u) == 1u) i >>= 1;
-    return i == 0u ? 0u : i + 1u;
-}
-
-float boxDistance2(vec3 p, vec3 lo, vec3 hi)
-{
-    vec3 d = max(max(lo - p, p - hi), vec3(0.0));
-    return dot(d, d);
-}
-
 #endif

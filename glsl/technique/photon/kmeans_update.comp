@@ -4,37 +4,24 @@
 // cluster keeps its centre and drops out (no members: no tree leaf, no sample). A mean normal that
 // cancels (members facing opposite ways) keeps the previous one. Clusters kept from the previous frame
 // (k < fixedClusters) keep their centres: temporal reuse fixes them (section 3.2).
-#include "common/gbuffer.glsl"
-#include "technique/photon/shading_clusters.glsl"
+#include "technique/photon/kmeans_members.glsl"
 
-layout(local_size_x = 64) in;
-
-layout(std430, binding = SSBO_SORT_VALUES) readonly buffer Values { uint sortedPixels[]; };
-
-uniform uint clusterCount;
 uniform uint fixedClusters;
-uniform ivec2 viewport;
 
 void main()
 {
     uint k = gl_GlobalInvocationID.x;
     if (k >= clusterCount) return;
     Cluster c = clusters[k];
-    uvec2 range = c.members.xy;
-    clusters[k].members = uvec4(0u);
-    if (range.y <= range.x) {
-        clusters[k].centre.w = 0.0;
-        return;
-    }
+    uvec2 range = takeMembers(k);
+    if (range.y <= range.x) return;
     if (k < fixedClusters) {
         clusters[k].centre.w = float(range.y - range.x);
         return;
     }
     vec3 position = vec3(0.0), normal = vec3(0.0);
     for (uint j = range.x; j < range.y; ++j) {
-        uint p = sortedPixels[j];
-        ivec2 q = ivec2(int(p % uint(viewport.x)), int(p / uint(viewport.x)));
-        GSurface s = gbufferSurface(q);
+        GSurface s = gbufferSurface(memberPixel(sortedPixels[j]));
         position += s.position;
         normal += s.normal;
     }

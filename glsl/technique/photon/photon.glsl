@@ -1,8 +1,10 @@
 // The photon map's layouts (gl/technique/photon/photon_tracer.h writes them): photons, the family's
-// counters, and the random numbers and Morton codes the passes share.
+// counters, and the Morton and Hilbert codes the passes share; their random numbers (PCG, radical
+// inverses) are common/random.glsl's.
 #ifndef BOUNCE_PHOTON_GLSL
 #define BOUNCE_PHOTON_GLSL
 
+#include "common/random.glsl"
 #include "frame/sort_bindings.glsl"
 #include "technique/photon/bindings.glsl"
 
@@ -25,37 +27,6 @@ const uint kCounterCutSplits = 5u;  // nodes split by the last refinement iterat
 const uint kCounterClusters = 6u;   // shading clusters with members
 const uint kCounterSeeds = 7u;      // seeds placed
 const uint kCounterFirst = 8u;      // free for passes that need one more
-
-// PCG (O'Neill 2014) as a hash and a stream: one stream per photon path, seeded by its index.
-uint pcgHash(uint v)
-{
-    uint state = v * 747796405u + 2891336453u;
-    uint word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
-    return (word >> 22u) ^ word;
-}
-float nextRandom(inout uint state)
-{
-    state = state * 747796405u + 2891336453u;
-    uint word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
-    word = (word >> 22u) ^ word;
-    return float(word >> 8) * (1.0 / 16777216.0);
-}
-
-// Radical inverse in base 2 (van der Corput), for low-discrepancy emission.
-float radicalInverse2(uint i)
-{
-    return float(bitfieldReverse(i) >> 8) * (1.0 / 16777216.0);
-}
-float radicalInverse(uint i, uint base)
-{
-    float inv = 1.0 / float(base), f = inv, r = 0.0;
-    while (i > 0u) {
-        r += f * float(i % base);
-        i /= base;
-        f *= inv;
-    }
-    return min(r, 0.99999994);
-}
 
 // 30-bit Morton code of a point in the box [lo, lo + extent) (10 bits per axis).
 uint expandBits10(uint v)

@@ -41,7 +41,7 @@ void main()
     if (c.samplePoint.w >= 0.0) {
         vec3 x = c.samplePoint.xyz, n = c.sampleNormal.xyz;
         uint h = pcgHash(k ^ pcgHash(seed));
-        vec2 shift = vec2(float(h >> 8), float(pcgHash(h) >> 8)) * (1.0 / 16777216.0);
+        vec2 shift = unitPair(h);
         for (uint j = t; j < gatherRays; j += uint(GATHER_GROUP)) {
             vec2 u = fract(vec2((float(j) + 0.5) / float(gatherRays), radicalInverse2(j)) + shift);
             vec3 dir = cosineDirection(n, u);
@@ -49,7 +49,7 @@ void main()
             if (!closestHit(x + n * rayEpsilon, dir, 0.0, 3.0e38, hit)) continue;
             int coverage;
             uint r = pcgHash(h ^ (j + 1u));
-            vec2 rotation = vec2(float(r >> 8), float(pcgHash(r) >> 8)) * (1.0 / 16777216.0);
+            vec2 rotation = unitPair(r);
             sum += gatherRadiance(dir, hit, rotation, coverage);
             inverseSum += 1.0 / max(hit.t, 1e-30);
             fallback += coverage == 1 ? 1u : 0u;

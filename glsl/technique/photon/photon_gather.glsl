@@ -9,13 +9,12 @@
 #define SCENE_GEOMETRY
 #include "common/lighting.glsl"
 #include "common/raycast.glsl"
+#include "common/scene_hit.glsl"
 #include "technique/photon/cut_lookup.glsl"
 #ifdef DENSITY_PHOTONS
 #include "technique/photon/density.glsl"
 #endif
 #include "technique/photon/scatter.glsl"
-
-#include "common/base_color.glsl"
 
 uniform int punctualLightCount; // lights [0, punctualLightCount): point, spot, directional
 uniform int lightCount;         // lights [punctualLightCount, lightCount): emitting triangles
@@ -32,29 +31,19 @@ struct GatherHit {
 
 GatherHit gatherHit(vec3 dir, Hit hit)
 {
+    SceneHit s = sceneHit(hit);
     GatherHit h;
-    uint tri = hit.triangle;
-    vec3 p0 = sceneVertexPosition(sceneVertexIndex(tri, 0));
-    vec3 p1 = sceneVertexPosition(sceneVertexIndex(tri, 1));
-    vec3 p2 = sceneVertexPosition(sceneVertexIndex(tri, 2));
-    h.y = (1.0 - hit.b.x - hit.b.y) * p0 + hit.b.x * p1 + hit.b.y * p2;
-    h.ng = normalize(cross(p1 - p0, p2 - p0));
-    h.n = sceneTriangleNormal(tri, hit.b);
-    Material m = materials[sceneTriangleMaterial(tri)];
+    h.y = s.p;
+    h.ng = s.ng;
+    h.n = s.n;
+    h.b = s.b;
     h.visible = true;
     if (dot(h.ng, dir) >= 0.0) {
-        h.visible = m.flags.y != 0;
+        h.visible = s.m.flags.y != 0;
         h.ng = -h.ng;
         h.n = -h.n;
     }
     if (dot(h.n, dir) >= 0.0) h.n = h.ng;
-    vec3 baseColor = m.baseColorMetallic.rgb;
-    if (m.flags.x >= 0) {
-        vec2 uv = sceneTriangleUv(tri, hit.b);
-        baseColor *= textureLod(baseColorTextures, vec3(uv, float(m.flags.x)), 0.0).rgb;
-    }
-    h.b = brdfParams(baseColor, m.baseColorMetallic.a, m.emissionRoughness.a, m.specularColorSpecular.a,
-                     m.specularColorSpecular.rgb);
     return h;
 }
 
@@ -112,7 +101,7 @@ vec3 gatherRadiance(vec3 dir, Hit hit, vec2 rotation, out int coverage)
 #ifdef CAUSTIC_MAP
     // The lobe's sample from the ray's own random pair, hashed apart from the light points it rotates.
     uint r = pcgHash(floatBitsToUint(rotation.x) ^ pcgHash(floatBitsToUint(rotation.y)));
-    vec2 u = vec2(float(r >> 8), float(pcgHash(r) >> 8)) * (1.0 / 16777216.0);
+    vec2 u = unitPair(r);
     vec3 wi;
     vec3 f = passOn ? sampleGlossyLobe(h.b, h.n, -dir, u, wi) : vec3(0.0);
     Hit next;

@@ -20,6 +20,7 @@
 #define SCENE_GEOMETRY
 #include "common/scene.glsl"
 #include "common/raycast.glsl"
+#include "common/scene_hit.glsl"
 #include "technique/photon/photon.glsl"
 #include "technique/photon/scatter.glsl"
 
@@ -44,7 +45,6 @@ layout(std430, binding = SSBO_PHOTON_COUNTERS) buffer Counters { uint counters[]
 layout(std430, binding = SSBO_PHOTON_STAGING) writeonly buffer Staging { Photon staging[]; };
 layout(std430, binding = SSBO_PHOTON_PATHS) writeonly buffer PathCounts { uint pathCounts[]; };
 layout(std430, binding = SSBO_PHOTON_EMITTED) writeonly buffer Emitted { vec4 emitted[]; };
-#include "common/base_color.glsl"
 
 uniform uint pathCount;
 uniform int emitterCount;
@@ -135,14 +135,10 @@ void main()
         if (max(power.r, max(power.g, power.b)) <= 0.0) break;
         Hit hit;
         if (!closestHit(origin, dir, 0.0, 3.0e38, hit)) break;
-        uint tri = hit.triangle;
-        vec3 p0 = sceneVertexPosition(sceneVertexIndex(tri, 0));
-        vec3 p1 = sceneVertexPosition(sceneVertexIndex(tri, 1));
-        vec3 p2 = sceneVertexPosition(sceneVertexIndex(tri, 2));
-        vec3 p = (1.0 - hit.b.x - hit.b.y) * p0 + hit.b.x * p1 + hit.b.y * p2;
-        vec3 ng = normalize(cross(p1 - p0, p2 - p0));
-        vec3 n = sceneTriangleNormal(tri, hit.b);
-        Material m = materials[sceneTriangleMaterial(tri)];
+        SceneHit h = sceneHit(hit);
+        vec3 p = h.p, ng = h.ng, n = h.n;
+        Material m = h.m;
+        BrdfParams b = h.b;
         vec3 wo = -dir;
         if (dot(ng, wo) <= 0.0) {
             if (m.flags.y == 0) break; // the back of a one-sided surface is black
@@ -150,13 +146,6 @@ void main()
             n = -n;
         }
         if (max(m.emissionRoughness.r, max(m.emissionRoughness.g, m.emissionRoughness.b)) > 0.0) break;
-        vec3 baseColor = m.baseColorMetallic.rgb;
-        if (m.flags.x >= 0) {
-            vec2 uv = sceneTriangleUv(tri, hit.b);
-            baseColor *= textureLod(baseColorTextures, vec3(uv, float(m.flags.x)), 0.0).rgb;
-        }
-        BrdfParams b = brdfParams(baseColor, m.baseColorMetallic.a, m.emissionRoughness.a, m.specularColorSpecular.a,
-                                  m.specularColorSpecular.rgb);
         if (bounce > 0) {
             uint slot = atomicAdd(counters[kCounterStaged], 1u);
             if (slot < capacity) {

@@ -51,7 +51,7 @@ void main()
     uint n = own.y;
     if (n == 1u) {
         // Jittered: one member of the quad at random.
-        float r = float(pcgHash(index ^ pcgHash(seed + uint(level))) >> 8) * (1.0 / 16777216.0) * totalMembers;
+        float r = unitFloat(pcgHash(index ^ pcgHash(seed + uint(level)))) * totalMembers;
         int pick = 3;
         for (int c = 0; c < 4; ++c) {
             if (members[c] > 0.0 && r < members[c]) { pick = c; break; }

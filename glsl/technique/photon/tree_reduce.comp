@@ -1,17 +1,12 @@
 #version 450 core
 // One level of the photon tree from the level below: every sum is its children's (photon_tree.glsl).
 #include "technique/photon/photon_tree.glsl"
-#include "technique/photon/linear_dispatch.glsl"
-
-layout(local_size_x = 64) in;
-
-uniform int level;
+#include "technique/photon/tree_level.glsl"
 
 void main()
 {
-    uint k = linearInvocation();
-    if (k >= (1u << uint(level))) return;
-    uint i = (1u << uint(level)) + k;
+    uint i = levelNode();
+    if (i == 0u) return;
     PhotonNode a = photonNodes[2u * i], b = photonNodes[2u * i + 1u];
     PhotonNode n;
     n.lo = vec4(min(a.lo.xyz, b.lo.xyz), a.lo.w + b.lo.w);

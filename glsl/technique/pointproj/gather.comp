@@ -27,6 +27,7 @@
 #ifdef HOLE_RAYS
 #define SCENE_GEOMETRY
 #endif
+#include "common/random.glsl"
 #include "frame/points/gather_target.glsl"
 #include "technique/pointproj/bindings.glsl"
 #include "technique/pointproj/projection.glsl"
@@ -68,22 +69,6 @@ shared uint groupStats[8];
 shared uint holes[kTexels]; // 4b: the texels the splats and the fill left empty, by invocation, then texel
 shared uint holeStart[PROJ_GROUP + 1];
 #endif
-
-uint hashU(uint x)
-{
-    x ^= x >> 16;
-    x *= 0x7feb352du;
-    x ^= x >> 15;
-    x *= 0x846ca68bu;
-    x ^= x >> 16;
-    return x;
-}
-
-float random01(inout uint state)
-{
-    state = hashU(state + 0x9e3779b9u);
-    return float(state >> 8) * (1.0 / 16777216.0);
-}
 
 // The r-th of n draws from a cluster: uniform in the r-th of n equal runs of its points. A cluster is a run
 // of the median-split order, so its sub-runs are compact patches: n draws spread over the cluster's surface
@@ -145,17 +130,17 @@ void main()
 {
     uint k = gatherTargetIndex();
     if (k >= gatherTargetCount()) return; // the whole group
-    uint lid = gl_LocalInvocationIndex;
     GatherSample g = loadGatherSample(k);
     gn = g.normal;
     gt = abs(gn.x) < 0.9 ? normalize(cross(gn, vec3(1, 0, 0))) : normalize(cross(gn, vec3(0, 1, 0)));
     gb = cross(gn, gt);
     gx = g.position + gn * gatherOffset;
     float cosO = dot(gn, g.wo);
+    uint lid = gl_LocalInvocationIndex;
     for (int p = int(lid); p < kTexels; p += PROJ_GROUP) projKeys[p] = kEmptyKey;
     if (lid < 8u) groupStats[lid] = 0u;
     barrier();
-    uint seed = hashU(uint(g.texel.x) * 73856093u ^ uint(g.texel.y) * 19349663u ^ frameSeed * 2654435761u);
+    uint seed = hashU(gatherTargetKey(g) ^ frameSeed * 2654435761u);
 
     if (cosO > 0.0) {
 #if PROJ_MODE == 2
@@ -318,11 +303,7 @@ void main()
         radiance += pointGlossyRadiance(pointGlossy[j], s.normal, normalize(gx - s.position));
 #endif
         vec3 wi = gt * wl.x + gb * wl.y + gn * wl.z;
-        vec3 fd, fg;
-        brdfEvalLobes(g.brdf, gn, g.wo, wi, fd, fg);
-        float w = wl.z * texelSolidAngles[p];
-        sumDiffuse += radiance * fd * w;
-        sumGlossy += radiance * fg * w;
+        gatherAdd(g, wi, radiance, wl.z * texelSolidAngles[p], sumDiffuse, sumGlossy);
     }
 #ifdef HOLE_RAYS
     // 4b. Holes (not in the paper; gl/technique/pointproj/README.md): a texel no splat covered casts a ray
@@ -356,11 +337,7 @@ void main()
         vec3 hn = sceneTriangleNormal(hit.triangle, hit.b);
         if (dot(hn, wi) >= 0.0) continue; // its back: black
         vec3 radiance = hitDirectRadiance(hit.triangle, hit.b, gx + wi * hit.t, hn, -wi);
-        vec3 fd, fg;
-        brdfEvalLobes(g.brdf, gn, g.wo, wi, fd, fg);
-        float w = wl.z * texelSolidAngles[p];
-        sumDiffuse += radiance * fd * w;
-        sumGlossy += radiance * fg * w;
+        gatherAdd(g, wi, radiance, wl.z * texelSolidAngles[p], sumDiffuse, sumGlossy);
     }
     atomicAdd(groupStats[6], rays);
     atomicAdd(groupStats[7], hits);
