@@ -4,7 +4,6 @@
 
 #include <stdexcept>
 
-
 namespace bounce::gl {
 
 Renderer::Renderer(const core::Scene& scene, const std::string& technique, const ParamValues& frameValues,

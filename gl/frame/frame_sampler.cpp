@@ -21,8 +21,7 @@ const std::vector<SampleStreamInfo>& FrameSampler::streams()
         {SampleStream::PixelJitter, "pixel jitter", SampleSequence::Halton, 0, 0, "Renderer (the G-buffer)"},
         {SampleStream::ShadowShift, "shadow-map shift", SampleSequence::Halton, 4, 0, "ShadowMaps"},
         {SampleStream::AreaLightPoint, "area-light point", SampleSequence::Sobol, 0, 1u, "ShadowMaps::areaSample"},
-        {SampleStream::AreaGlossyRotation, "area glossy rotation", SampleSequence::Halton, 6, 0,
-         "Frame::renderDirect"},
+        {SampleStream::AreaGlossyRotation, "area glossy rotation", SampleSequence::Halton, 6, 0, "Frame::renderDirect"},
         {SampleStream::BundleDirection, "bundle direction", SampleSequence::Halton, 0, 0, "grb bundleDirection",
          "pixel jitter"},
         {SampleStream::BundleJitter, "bundle jitter", SampleSequence::Halton, 2, 0, "grb bundleJitter"},
@@ -36,7 +35,8 @@ const SampleStreamInfo& FrameSampler::info(SampleStream stream)
 {
     const std::vector<SampleStreamInfo>& t = streams();
     const auto i = std::size_t(stream);
-    if (i >= t.size() || t[i].stream != stream) throw std::logic_error("FrameSampler: the stream table is out of order");
+    if (i >= t.size() || t[i].stream != stream)
+        throw std::logic_error("FrameSampler: the stream table is out of order");
     return t[i];
 }
 

@@ -40,9 +40,8 @@ TEST(FrameSampler, NoTwoStreamsShareADimension)
         for (std::size_t j = i + 1; j < all.size(); ++j) {
             const gl::SampleStreamInfo &a = all[i], &b = all[j];
             if (a.sequence != b.sequence) continue;
-            const bool shared = a.sequence == SampleSequence::Halton
-                                    ? std::abs(a.firstDimension - b.firstDimension) < 2
-                                    : a.seed == b.seed;
+            const bool shared = a.sequence == SampleSequence::Halton ? std::abs(a.firstDimension - b.firstDimension) < 2
+                                                                     : a.seed == b.seed;
             EXPECT_EQ(shared, declared(a, b)) << a.name << " and " << b.name
                                               << (shared ? " share their numbers without saying so"
                                                          : " are declared to share numbers they do not share");
