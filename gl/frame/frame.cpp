@@ -73,7 +73,7 @@ Frame::Frame(const core::Scene& scene, const FrameSettings& settings)
       settings_(settings),
       camera_(scene.camera),
       gpu_(scene, settings.textureSize),
-      shadows_(gpu_, settings.shadowMapSize, settings.shadowCascades, settings.shadowFootprint),
+      shadows_(gpu_, lights_, settings.shadowMapSize, settings.shadowCascades, settings.shadowFootprint),
       gbufferFbo_("gbuffer.fbo"),
       directFbo_("direct.fbo"),
       compositeFbo_("composite.fbo"),
@@ -350,6 +350,7 @@ void Frame::bindSceneData() const
 {
     gpu_.materials().bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_MATERIALS);
     gpu_.bindGeometry();
+    lights_.bind();
     shadows_.bind();
 }
 
@@ -363,8 +364,7 @@ void Frame::renderDirect(PassTimers& timers)
 {
     // direct.frag per pixel: two to four G-buffer texels (the targets the scene has), one target, and the
     // loop over the lights.
-    const double punctual = gpu_.punctualLightCount(),
-                 area = areaLightsInDirect_ ? shadows_.lightCount() - punctual : 0.0;
+    const double punctual = gpu_.punctualLightCount(), area = areaLightsInDirect_ ? lights_.count() - punctual : 0.0;
     const PassCost lights = directLightsCost(settings_, punctual, area);
     PassCost cost;
     cost.flops = 30 + lights.flops;
@@ -384,7 +384,7 @@ void Frame::renderDirect(PassTimers& timers)
     }
     program.set("cameraPosition", camera_.position);
     program.set("punctualLightCount", gpu_.punctualLightCount());
-    program.set("lightCount", shadows_.lightCount());
+    program.set("lightCount", lights_.count());
     shadows_.setPcfUniforms(program, settings_.pcfRadius);
     program.use();
     drawFullscreen();

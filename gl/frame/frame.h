@@ -122,6 +122,8 @@ public:
     // rays in (the call rebuilds what moved). Rebuilt in place, the object lives as long as the frame.
     const RayCaster& rayCaster() const;
     const ShadowMaps& shadowMaps() const { return shadows_; }
+    // The lights as the shaders read them (gl/frame/frame_lights.h), bound by bindSceneData().
+    const FrameLights& lights() const { return lights_; }
     const FrameSettings& settings() const { return settings_; }
     const core::Camera& camera() const { return camera_; }
     glm::mat4 view() const { return camera_.view(); }
@@ -157,6 +159,7 @@ private:
     FrameSettings settings_;
     core::Camera camera_;
     GpuScene gpu_;
+    FrameLights lights_; // written by shadows_
     ShadowMaps shadows_;
     mutable std::unique_ptr<RayCaster> rayCaster_; // rayCaster(), built on first use
     mutable std::uint64_t rayCasterScene_ = 0;     // the version().scene it was built for

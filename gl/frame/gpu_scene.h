@@ -23,12 +23,7 @@ struct GpuMaterial {
     glm::vec4 specularColorSpecular;
     glm::ivec4 flags;
 };
-struct GpuLight {
-    glm::vec4 positionType;
-    glm::vec4 directionCosOuter;
-    glm::vec4 intensityCosInner;
-    glm::ivec4 shadow; // first shadow layer, layer count, first polygon vertex, source light index
-};
+// The lights' records on the GPU are the frame's: gl/frame/frame_lights.h.
 inline constexpr int kLightPoint = 0, kLightSpot = 1, kLightDirectional = 2, kLightArea = 3;
 
 // The scene's geometry as any shader reads it (glsl/common/scene.glsl, SCENE_GEOMETRY): the vertex buffer

@@ -24,9 +24,10 @@ struct GpuShadowView {
 
 } // namespace
 
-ShadowMaps::ShadowMaps(const GpuScene& scene, int size, int cascades, float footprint)
+ShadowMaps::ShadowMaps(const GpuScene& scene, FrameLights& lights, int size, int cascades, float footprint)
     : size_(size),
       footprint_(footprint),
+      lights_(&lights),
       fbo_("shadow.fbo"),
       program_("shadow", "frame/shadow.vert", "frame/shadow.frag")
 {
@@ -148,9 +149,12 @@ void ShadowMaps::upload()
     std::vector<GpuLight> lights;
     for (const LightSource& s : sources_) {
         GpuLight g;
-        g.positionType = glm::vec4(s.position, float(s.type));
-        g.directionCosOuter = glm::vec4(s.direction, s.cosOuter);
-        g.intensityCosInner = glm::vec4(s.intensity, s.type == kLightArea ? 0.0f : s.cosInner);
+        g.position = s.position;
+        g.type = s.type;
+        g.direction = s.direction;
+        g.cosOuter = s.cosOuter;
+        g.intensity = s.intensity;
+        g.cosInner = s.type == kLightArea ? 0.0f : s.cosInner;
         lights.push_back(g);
     }
     if (still_ > 0) {
@@ -158,8 +162,8 @@ void ShadowMaps::upload()
             glm::vec3 x;
             float area = 0.0f;
             const int t = areaSample(sources_, group, still_, x, area);
-            for (int k = group.x; k < group.x + group.y; ++k) lights[k].positionType = glm::vec4(x, float(kLightArea));
-            lights[t].intensityCosInner.w = area;
+            for (int k = group.x; k < group.x + group.y; ++k) lights[k].position = x;
+            lights[t].sampleArea = area;
             float near = 0.0f, far = 0.0f;
             lightNearFar(bounds_, x, near, far);
             const std::vector<LightView> cube = cubeViews(x, near, far);
@@ -188,7 +192,6 @@ void ShadowMaps::upload()
             polygon += 3;
         }
     }
-    gpuLights_ = lights;
     std::vector<GpuShadowView> gv;
     for (std::size_t i = 0; i < views_.size(); ++i) {
         // A view of side s < size is rendered into the corner [0, s)^2 of its layer: its lookups map
@@ -201,9 +204,8 @@ void ShadowMaps::upload()
             {corner * v.proj * v.view, glm::vec4(v.origin, v.far), glm::vec4(v.texelSide(sides_[i]), scale, 0, 0)});
     }
     if (gv.empty()) gv.push_back({});
-    if (lights.empty()) lights.push_back({});
     // Still frames rewrite the same sizes in place.
-    Buffer::assign(lightsBuffer_, "lights", lights);
+    lights_->set(lights);
     Buffer::assign(viewsBuffer_, "shadow.views", gv);
 }
 
@@ -298,7 +300,6 @@ void ShadowMaps::bind() const
     }
     depth_.bind(UNIT_SHADOW_DEPTHS);
     glBindSampler(UNIT_SHADOW_DEPTHS, rawSampler_.id());
-    lightsBuffer_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_LIGHTS);
     viewsBuffer_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_SHADOW_VIEWS);
     polygonsBuffer_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_LIGHT_POLYGONS);
     depth_.bind(UNIT_SHADOW_MAPS);

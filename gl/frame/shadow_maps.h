@@ -1,7 +1,8 @@
 // Shadow maps of every light in one depth array texture, one layer per view of gl/frame/light_views.h:
 // a spot gets one perspective layer (a cube when its cone is wider than 120 degrees), a point light six cube-face layers, the area lights of one
 // emitting mesh one shared cube at its centroid, a directional light one orthographic layer fitted to
-// the scene. Also owns the light SSBOs of glsl/common/scene.glsl. Only what the lights need is allocated.
+// the scene. Writes the frame's light records (FrameLights: each light's shadow layers, an emitter's point in
+// still frames) and owns the shadow views' and area polygons' SSBOs. Only what the lights need is allocated.
 //
 // A spot's or point light's view is rendered at a side chosen from its footprint on screen (footprint > 0,
 // fitTo): `footprint` texels per pixel of what the camera sees of it (footprintSide), rounded up to a power
@@ -10,12 +11,13 @@
 // away or off screen then costs a small map, one the camera sees close up the full size; the area lights'
 // cubes (moved in still frames) and the sun's views (cascades fit the camera already) stay whole.
 //
-// Still frames (Frame::setStill, index >= 1) sample what one map cannot hold, so that their mean converges:
+// Still frames (the frame sampler's still index >= 1) sample what one map cannot hold, so that their mean converges:
 //   - every view is shifted by a sub-texel Halton offset (the taps' positions on the surfaces change), so
 //     that one nearest tap per frame averages to the exact hard shadow of a point light, spot or the sun;
 //   - an area emitter's cube moves to a point sampled uniformly over the emitting mesh's area (scrambled
-//     Sobol points, core::sobol2, stratified over the frames) and the triangle that holds it carries the
-//     mesh's area (Light's intensityCosInner.w, 0 on the others): glsl/frame/direct.frag's sum of areaSampleUnshadowed is then the
+//     Sobol points, FrameSampler's AreaLightPoint, stratified over the frames) and the triangle that holds it
+//     carries the mesh's area (GpuLight::sampleArea, 0 on the others): glsl/frame/direct.frag's sum of
+//     areaSampleUnshadowed is then the
 //     one-sample estimate L A cos cos / r^2 V of the emitter's direct light, whose mean over the frames is
 //     the path tracer's soft shadow. Frame 0 (and a moving view): the cube at the centroid, unshifted.
 #pragma once
@@ -24,6 +26,7 @@
 
 #include <glm/glm.hpp>
 
+#include "gl/frame/frame_lights.h"
 #include "gl/frame/gpu_scene.h"
 #include "gl/frame/light_views.h"
 #include "gl/frame/scene_program.h"
@@ -47,7 +50,8 @@ public:
     // size: the layers' side, the largest a view gets; cascades: a directional light's views fitted to the
     // camera (fitTo), beside its whole-scene view; footprint: texels per screen pixel of a spot's or point
     // light's views (0: every view at `size`).
-    ShadowMaps(const GpuScene& scene, int size, int cascades = 0, float footprint = 0.0f);
+    // lights: the frame's records, which the shadow maps write (it must outlive them).
+    ShadowMaps(const GpuScene& scene, FrameLights& lights, int size, int cascades = 0, float footprint = 0.0f);
     // Fits a directional light's cascades and the spots' and point lights' sides to the camera, a width x
     // height image (nothing to do without such lights, or when it has not moved).
     void fitTo(const core::Camera& camera, int width, int height);
@@ -68,7 +72,7 @@ public:
     // The views and lights of still frame `index` (see above); 0 restores the plain ones.
     void setStill(int index);
     bool hasAreaLights() const { return !areaGroups_.empty(); }
-    // SSBO bindings 1 (lights), 2 (shadow views), 3 (area polygons) and the depth array at unit 5 (and at
+    // SSBO bindings 2 (shadow views), 3 (area polygons) and the depth array at unit 5 (and at
     // UNIT_SHADOW_DEPTHS without comparison, for glsl/common/shadow.glsl's SHADOW_PCSS).
     void bind() const;
     void setPcf(bool hardwareFilter);
@@ -77,8 +81,6 @@ public:
     // Still frames: one nearest tap, whatever the radius (see above).
     void setPcfUniforms(Program& program, int radius) const;
 
-    int lightCount() const { return int(gpuLights_.size()); }
-    const std::vector<GpuLight>& gpuLights() const { return gpuLights_; }
     // This frame's views (still frames: shifted, the area lights' cubes moved; a cascade is rendered in
     // still frames only).
     const std::vector<LightView>& views() const { return views_; }
@@ -92,6 +94,7 @@ public:
 private:
     int size_;
     float footprint_;
+    FrameLights* lights_; // the frame's records, which upload() writes
     std::vector<LightView> views_;
     std::vector<int> sides_;
     LightViews lightViews_;              // the plain views (setStill shifts and moves copies of them)
@@ -103,15 +106,14 @@ private:
     ViewFit fit_;
     bool fitted_ = false; // fit_.camera has been set
     int height_ = 0;      // the image fit_ is for, in pixels
-    std::vector<GpuLight> gpuLights_;
     Texture depth_;
     mutable Handle<SamplerDeleter> rawSampler_; // nearest, no comparison: the depths PCSS averages
     Framebuffer fbo_;
     SceneProgram program_;
-    Buffer lightsBuffer_, viewsBuffer_, polygonsBuffer_;
+    Buffer viewsBuffer_, polygonsBuffer_;
     bool linear_ = true;
     void buildViews(const GpuScene& scene);
-    void upload(); // views_ and gpuLights_ for still_, into the SSBOs
+    void upload(); // views_ and the light records for still_, into the SSBOs and FrameLights
     std::vector<int> footprintSides() const;
 };
 

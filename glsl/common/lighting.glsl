@@ -42,15 +42,15 @@ vec3 shadedIrradiance(Light l, vec3 p, vec3 n, vec3 wo, BrdfParams b, vec3 wi, v
 // wi towards the light. Shared by the direct pass and by techniques that light other points (atlases).
 vec3 punctualIrradiance(Light l, vec3 p, vec3 n, out vec3 wi)
 {
-    if (int(l.positionType.w) == kLightDirectional) {
-        wi = -l.directionCosOuter.xyz;
-        return l.intensityCosInner.rgb * max(dot(n, wi), 0.0);
+    if (l.type == kLightDirectional) {
+        wi = -l.direction;
+        return l.intensity * max(dot(n, wi), 0.0);
     }
-    vec3 d = l.positionType.xyz - p;
+    vec3 d = l.position - p;
     float d2 = max(dot(d, d), 1e-12);
     wi = d * inversesqrt(d2);
-    float w = int(l.positionType.w) == kLightSpot ? spotWeight(l, dot(-wi, l.directionCosOuter.xyz)) : 1.0;
-    return l.intensityCosInner.rgb * (w * max(dot(n, wi), 0.0) / d2);
+    float w = l.type == kLightSpot ? spotWeight(l, dot(-wi, l.direction)) : 1.0;
+    return l.intensity * (w * max(dot(n, wi), 0.0) / d2);
 }
 
 // Outgoing radiance towards wo from a point, spot or directional light l at p.
@@ -73,8 +73,8 @@ vec3 areaTriangleIrradiance(Light l, vec3 p, vec3 n, out vec3 wi)
     int first = l.shadow.z;
     vec3 a = lightPolygons[first].xyz, bb = lightPolygons[first + 1].xyz, c = lightPolygons[first + 2].xyz;
     wi = normalize((a + bb + c) / 3.0 - p);
-    if (dot(p - a, l.directionCosOuter.xyz) <= 0.0) return vec3(0.0); // behind the one-sided emitter
-    return l.intensityCosInner.rgb * kPi * polygonFormFactor(p, n, a, bb, c);
+    if (dot(p - a, l.direction) <= 0.0) return vec3(0.0); // behind the one-sided emitter
+    return l.intensity * kPi * polygonFormFactor(p, n, a, bb, c);
 }
 
 // Outgoing radiance towards wo from one emitting triangle l at p. The diffuse part is exact (polygon
@@ -96,7 +96,7 @@ vec3 directFromAreaTriangle(Light l, vec3 p, vec3 n, vec3 wo, BrdfParams b)
 }
 
 // Still frames (gl/frame/shadow_maps.h): one emitting triangle's outgoing radiance towards wo from this
-// frame's point x on its mesh (the light's position; the mesh's area A in intensityCosInner.w on the
+// frame's point x on its mesh (the light's position; the mesh's area A in its sampleArea on the
 // triangle that holds x, 0 on the others), before the visibility V of the mesh's shadow cube at x, which
 // the caller applies once per mesh (glsl/frame/direct.frag).
 //   diffuse  the one-sample estimate L A cos_p cos_x / r^2 V f_diffuse: unbiased, and never negative, so
@@ -120,7 +120,7 @@ vec3 areaGlossyUnshadowed(Light l, vec3 p, vec3 n, vec3 wo, BrdfParams b, vec2 r
 #ifndef SCENE_DIFFUSE_ONLY
     int first = l.shadow.z;
     vec3 a = lightPolygons[first].xyz, bb = lightPolygons[first + 1].xyz, c = lightPolygons[first + 2].xyz;
-    vec3 emitterNormal = l.directionCosOuter.xyz;
+    vec3 emitterNormal = l.direction;
     float area = 0.5 * length(cross(bb - a, c - a));
     const float m = float(kAreaGlossyPoints);
     for (int j = 0; j < kAreaGlossyPoints; ++j)
@@ -134,7 +134,7 @@ vec3 areaGlossyUnshadowed(Light l, vec3 p, vec3 n, vec3 wo, BrdfParams b, vec2 r
             float g = max(-dot(wi, emitterNormal), 0.0) * max(dot(n, wi), 0.0) / d2;
             glossy += brdfGlossy(b, n, wo, wi) * (g * area / (m * m));
         }
-    glossy *= l.intensityCosInner.rgb;
+    glossy *= l.intensity;
 #endif
     return glossy;
 }
@@ -156,19 +156,19 @@ vec3 directFromAreaTriangleSampled(Light l, vec3 p, vec3 n, vec3 wo, BrdfParams 
 
 vec3 areaSampleUnshadowed(Light l, vec3 p, vec3 n, vec3 wo, BrdfParams b, vec2 rotation)
 {
-    float sampleArea = l.intensityCosInner.w;
+    float sampleArea = l.sampleArea;
 #ifdef SCENE_DIFFUSE_ONLY
     if (sampleArea <= 0.0) return vec3(0.0);
 #endif
     int first = l.shadow.z;
     vec3 a = lightPolygons[first].xyz;
-    vec3 emitterNormal = l.directionCosOuter.xyz;
+    vec3 emitterNormal = l.direction;
     if (dot(p - a, emitterNormal) <= 0.0) return vec3(0.0); // behind the one-sided emitter
-    vec3 L = l.intensityCosInner.rgb;
+    vec3 L = l.intensity;
     vec3 glossy = areaGlossyUnshadowed(l, p, n, wo, b, rotation);
     vec3 diffuse = vec3(0.0);
     if (sampleArea > 0.0) {
-        vec3 d = l.positionType.xyz - p;
+        vec3 d = l.position - p;
         float d2 = max(dot(d, d), 1e-12);
         vec3 wi = d * inversesqrt(d2);
         float g = max(-dot(wi, emitterNormal), 0.0) * max(dot(n, wi), 0.0) / d2;

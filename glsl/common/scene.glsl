@@ -15,11 +15,17 @@ const int kLightSpot = 1;
 const int kLightDirectional = 2;
 const int kLightArea = 3;         // one emissive triangle: vertices in lightPolygons
 
+// One light (gl/frame/frame_lights.h's GpuLight, the frame's records).
 struct Light {
-    vec4 positionType;            // xyz position (area: centroid of its mesh), w: type
-    vec4 directionCosOuter;       // xyz direction light travels (area: emitter normal), w: cos outer cone
-    vec4 intensityCosInner;       // rgb W/sr (directional W/m^2, area radiance W/(m^2 sr)), w: cos inner cone
+    vec3 position;                // point, spot; area: the emitting mesh's point this frame (frame 0: its centroid)
+    int type;                     // kLight*
+    vec3 direction;               // the direction light travels (area: the emitter's normal)
+    float cosOuter;               // spot: cos of the outer cone's half angle
+    vec3 intensity;               // W/sr (directional W/m^2, area radiance W/(m^2 sr))
+    float cosInner;               // spot: cos of the inner cone's half angle
     ivec4 shadow;                 // x: first shadow layer (-1 none), y: layer count (1 or 6), z: first polygon vertex
+    float sampleArea;             // area, still frames: the mesh's area on the triangle holding the frame's point
+    float pad0, pad1, pad2;
 };
 
 struct ShadowView {
@@ -117,13 +123,17 @@ int cubeFace(vec3 d)
     return d.z > 0.0 ? 4 : 5;
 }
 
-// glTF spot falloff (core::Light::spotWeight): t^2 between the cones, a step when they coincide.
-float spotWeight(Light l, float cosAngle)
+// glTF spot falloff (core::Light::spotWeight): t^2 between the cones, a step when they coincide. Of the
+// cones' cosines, for a spot that is not a Light record (photon_trace.comp's emitters), and of a Light.
+float spotWeight(float cosOuter, float cosInner, float cosAngle)
 {
-    float cosOuter = l.directionCosOuter.w, cosInner = l.intensityCosInner.w;
     if (cosInner - cosOuter < 1e-6) return cosAngle >= cosOuter ? 1.0 : 0.0;
     float t = clamp((cosAngle - cosOuter) / (cosInner - cosOuter), 0.0, 1.0);
     return t * t;
+}
+float spotWeight(Light l, float cosAngle)
+{
+    return spotWeight(l.cosOuter, l.cosInner, cosAngle);
 }
 
 #endif

@@ -114,7 +114,7 @@ float receiverPlaneDepth(vec3 ray, vec3 origin, vec3 p, vec3 n, float fallback)
 float pcssVisibility(Light l, vec3 p, vec3 n, float lightWidth)
 {
     if (l.shadow.x < 0) return 1.0;
-    int face = cubeFace(p - l.positionType.xyz);
+    int face = cubeFace(p - l.position);
     int layer = l.shadow.x + face;
     vec4 s = shadowCoordinates(layer, p, n);
     if (s.w == 0.0) return 1.0;
@@ -125,7 +125,7 @@ float pcssVisibility(Light l, vec3 p, vec3 n, float lightWidth)
     const float bias = 1.0 - 2e-3; // relative: the map's depth quantisation and the plane's fit
     // Taps whose rays leave the one-sided emitter backwards (into the ceiling it hangs from) carry no light
     // and see that surface at once: they are left out of both the search and the filter.
-    vec3 emitterNormal = l.directionCosOuter.xyz;
+    vec3 emitterNormal = l.direction;
     // Blockers between a quarter of the way and p: their offsets from p's line reach w (d - t) / (4 t d).
     float search = clamp(0.75 * lightWidth / receiver, texel, 0.25);
     float blockers = 0.0, count = 0.0;
@@ -177,7 +177,7 @@ float shadowVisibility(Light l, vec3 p, vec3 n)
     // lane needs: two of them made cornell-spot's direct pass 20% slower).
     int layer = l.shadow.x;
     if (l.shadow.y == 6) {
-        layer += cubeFace(p - l.positionType.xyz);
+        layer += cubeFace(p - l.position);
     } else {
 #ifdef SHADOW_CASCADES
         // A directional light's cascades (gl/frame/light_views.h), finest first, then its whole-scene view:

@@ -47,14 +47,14 @@ vec3 lightIntensity(vec3 w)
             int first = t.shadow.z;
             vec3 a = lightPolygons[first].xyz, b = lightPolygons[first + 1].xyz, c = lightPolygons[first + 2].xyz;
             float area = 0.5 * length(cross(b - a, c - a));
-            sum += t.intensityCosInner.rgb * area * max(dot(t.directionCosOuter.xyz, w), 0.0);
+            sum += t.intensity * area * max(dot(t.direction, w), 0.0);
         }
         return sum;
     }
     Light l = lights[lightIndex];
-    int type = int(l.positionType.w);
-    if (type == kLightSpot) return l.intensityCosInner.rgb * spotWeight(l, dot(w, l.directionCosOuter.xyz));
-    return l.intensityCosInner.rgb;
+    int type = l.type;
+    if (type == kLightSpot) return l.intensity * spotWeight(l, dot(w, l.direction));
+    return l.intensity;
 }
 
 void main()

@@ -36,7 +36,7 @@ static_assert(sizeof(GpuPointSample) == 16, "point_cloud.glsl's PointSample");
 PassCost pointLightCost(const Frame& frame, bool keepDirect, bool glossy)
 {
     const double punctual = frame.gpuScene().punctualLightCount();
-    const double area = frame.shadowMaps().lightCount() - punctual;
+    const double area = frame.lights().count() - punctual;
     const PassCost shadow = shadowLookupCost(frame);
     PassCost c;
     c.flops = 40 + punctual * (75 + shadow.flops) + area * (420 + shadow.flops) + (glossy ? 50 : 0);
@@ -96,7 +96,7 @@ int lightKinds(const GpuScene& scene)
 void setPointLightUniforms(Program& program, const Frame& frame)
 {
     program.set("punctualLightCount", frame.gpuScene().punctualLightCount());
-    program.set("lightCount", frame.shadowMaps().lightCount());
+    program.set("lightCount", frame.lights().count());
     frame.shadowMaps().setPcfUniforms(program, frame.settings().pcfRadius);
 }
 
@@ -104,7 +104,7 @@ PassCost hitRadianceWork(const Frame& frame, double hits)
 {
     constexpr double kHitBytes = 3 * 4 + 3 * 12 + 4 + 64; // indices, vertex normals, material index, Material
     const double punctual = frame.gpuScene().punctualLightCount();
-    const PassCost lights = directLightsCost(frame.settings(), punctual, frame.shadowMaps().lightCount() - punctual);
+    const PassCost lights = directLightsCost(frame.settings(), punctual, frame.lights().count() - punctual);
     PassCost w;
     w.flopsFixed = hits * (40 + lights.flops);
     w.fetchesFixed = hits * lights.fetches;

@@ -25,7 +25,7 @@ PassCost transferCost(const RadianceAtlases& radiance, const Frame& frame, const
     const PassCost sender = kbuffer.bundleSenderCost(true), sent = radiance.senderRadianceCost();
     const PassCost shadow = shadowLookupCost(frame);
     const double punctual = s.punctual ? frame.gpuScene().punctualLightCount() : 0.0;
-    const double area = s.areaGlossy ? frame.shadowMaps().lightCount() - frame.gpuScene().punctualLightCount() : 0.0;
+    const double area = s.areaGlossy ? frame.lights().count() - frame.gpuScene().punctualLightCount() : 0.0;
     PassCost r; // per filled texel
     r.flops = 95 + sender.flops + sent.flops;
     r.fetches = 5 + sender.fetches + sent.fetches;
@@ -176,7 +176,7 @@ void RadianceAtlases::transfer(const Frame& frame, const GrbAtlas& atlas, const 
     transfer_.set("atlasWidth", width_);
     transfer_.set("punctualLightCount", frame.gpuScene().punctualLightCount());
     if (settings_.areaGlossy) {
-        transfer_.set("lightCount", frame.shadowMaps().lightCount());
+        transfer_.set("lightCount", frame.lights().count());
         // The emitters' points rotate from direction to direction (the stream AtlasAreaRotation at the count
         // of transfers so far), so that their sum over directions covers each emitter evenly.
         const auto n = std::uint64_t(++transfers_);

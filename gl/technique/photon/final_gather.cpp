@@ -56,7 +56,7 @@ PassCost gatherRayWork(const Frame& frame, const RayCaster& caster, const Photon
     // every light (a record of shared words, one shadow tap: 2x2 texels when filtered), the irradiance there,
     // the BRDF.
     const double taps = frame.settings().pcfLinear && frame.sampler().stillIndex() == 0 ? 4 : 1;
-    const double punctual = frame.gpuScene().punctualLightCount(), area = frame.shadowMaps().lightCount() - punctual;
+    const double punctual = frame.gpuScene().punctualLightCount(), area = frame.lights().count() - punctual;
     PassCost w = bvhWalkWork(caster.bvh(), rays);
     w.flopsFixed += rays * (215 + punctual * (60 + 10 * taps) + area * (250 + 10 * taps));
     w.fetchesFixed = rays * ((frame.gpuScene().hasTextures() ? 4 : 0) + (punctual + area) * taps);
@@ -125,7 +125,7 @@ void FinalGather::gather(const Frame& frame, const RayCaster& caster, const Phot
     clusters.bind();
     counters.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_PHOTON_COUNTERS);
     program_.set("punctualLightCount", frame.gpuScene().punctualLightCount());
-    program_.set("lightCount", frame.shadowMaps().lightCount());
+    program_.set("lightCount", frame.lights().count());
     // One shadow-map tap per hit: hundreds of rays average a sample's light, PCF would only cost.
     frame.shadowMaps().setPcfUniforms(program_, 0);
     program_.set("clusterCount", clusters.count());
@@ -183,7 +183,7 @@ void GlossyGather::run(Frame& frame, const RayCaster& caster, const PhotonTree& 
     photons.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_PHOTONS);
     cut.bindLookup(program_);
     program_.set("punctualLightCount", frame.gpuScene().punctualLightCount());
-    program_.set("lightCount", frame.shadowMaps().lightCount());
+    program_.set("lightCount", frame.lights().count());
     frame.shadowMaps().setPcfUniforms(program_, 0);
     program_.set("viewport", glm::ivec2(frame.width(), frame.height()));
     program_.set("cameraPosition", frame.camera().position);

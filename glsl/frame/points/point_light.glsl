@@ -50,7 +50,7 @@ float areaTriangleExtent2(Light l, vec3 p, vec3 wi)
     vec3 a = lightPolygons[first].xyz, b = lightPolygons[first + 1].xyz, c = lightPolygons[first + 2].xyz;
     vec3 d = (a + b + c) / 3.0 - p;
     float area = 0.5 * length(cross(b - a, c - a));
-    return area * abs(dot(wi, l.directionCosOuter.xyz)) / max(dot(d, d), 1e-12) / (2.0 * kPi);
+    return area * abs(dot(wi, l.direction)) / max(dot(d, d), 1e-12) / (2.0 * kPi);
 }
 
 PointLight pointDirectLight(vec3 p, vec3 n, vec3 diffuse)

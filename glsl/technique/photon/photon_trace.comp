@@ -85,8 +85,7 @@ void emit(PhotonEmitter e, uint j, uint n, out vec3 origin, out vec3 dir, out ve
         vec3 t, b;
         basisAround(e.directionCos.xyz, t, b);
         dir = normalize(r * cos(phi) * t + r * sin(phi) * b + z * e.directionCos.xyz);
-        Light l = Light(vec4(0.0), e.directionCos, vec4(0.0, 0.0, 0.0, e.powerCosInner.w), ivec4(0));
-        power *= spotWeight(l, z);
+        power *= spotWeight(cosOuter, e.powerCosInner.w, z);
 #ifdef DIRECTIONAL_LIGHTS
     } else if (kind == kLightDirectional) {
         // Uniform over the entries of the light's emission list (photon_project.comp's marked cells,
