@@ -365,7 +365,7 @@ void Frame::renderDirect(PassTimers& timers)
     // direct.frag per pixel: two to four G-buffer texels (the targets the scene has), one target, and the
     // loop over the lights.
     const double punctual = gpu_.punctualLightCount(), area = areaLightsInDirect_ ? lights_.count() - punctual : 0.0;
-    const PassCost lights = directLightsCost(settings_, punctual, area);
+    const PassCost lights = directLightsCost(*this, punctual, area);
     PassCost cost;
     cost.flops = 30 + lights.flops;
     cost.fetches = 2 + (specular_ ? 1 : 0) + (emission_ ? 1 : 0) + lights.fetches;

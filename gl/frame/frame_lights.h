@@ -16,13 +16,13 @@ namespace bounce::gl {
 // std430 mirror of scene.glsl's Light: a named field for everything a shader reads, none packed into
 // another's spare component.
 struct GpuLight {
-    glm::vec3 position{0.0f}; // point, spot: the light; area: the emitting mesh's point this frame (frame 0:
-                              // its centroid)
-    std::int32_t type = 0;    // kLight* (gpu_scene.h)
-    glm::vec3 direction{0.0f}; // spot, directional: the direction light travels; area: the emitter's normal
-    float cosOuter = -1.0f;    // spot: cos of the outer cone's half angle
-    glm::vec3 intensity{0.0f}; // W/sr (directional: W/m^2; area: radiance, W/(m^2 sr))
-    float cosInner = -1.0f;    // spot: cos of the inner cone's half angle
+    glm::vec3 position{0.0f};        // point, spot: the light; area: the emitting mesh's point this frame (frame 0:
+                                     // its centroid)
+    std::int32_t type = 0;           // kLight* (gpu_scene.h)
+    glm::vec3 direction{0.0f};       // spot, directional: the direction light travels; area: the emitter's normal
+    float cosOuter = -1.0f;          // spot: cos of the outer cone's half angle
+    glm::vec3 intensity{0.0f};       // W/sr (directional: W/m^2; area: radiance, W/(m^2 sr))
+    float cosInner = -1.0f;          // spot: cos of the inner cone's half angle
     glm::ivec4 shadow{-1, 0, -1, 0}; // first shadow layer (-1: none), layer count, first polygon vertex, unused
     // Area lights in still frames: the emitting mesh's area on the one triangle that holds the frame's point
     // (common/lighting.glsl, areaSampleUnshadowed), 0 on every other light and in frame 0.

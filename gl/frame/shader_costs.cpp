@@ -16,14 +16,14 @@ PassCost shadowLookupCost(const Frame& frame)
     return c;
 }
 
-PassCost directLightsCost(const FrameSettings& settings, double punctual, double area)
+PassCost directLightsCost(const Frame& frame, double punctual, double area)
 {
-    const double taps =
-        double((2 * settings.pcfRadius + 1) * (2 * settings.pcfRadius + 1)) * (settings.pcfLinear ? 4.0 : 1.0);
+    const PassCost shadow = shadowLookupCost(frame);
     PassCost c;
-    c.flops = punctual * (60 + 10 * taps) + area * (250 + 10 * taps);
-    c.fetches = (punctual + area) * taps;
-    c.bytesRead = (punctual + area) * taps * 4;
+    c.flops = punctual * (60 + shadow.flops) + area * (250 + shadow.flops);
+    c.fetches = (punctual + area) * shadow.fetches;
+    c.bytesRead = (punctual + area) * shadow.bytesRead;
+    c.uniformWords = punctual * (16 + shadow.uniformWords) + area * (16 + 12 + shadow.uniformWords);
     return c;
 }
 

@@ -8,7 +8,6 @@
 namespace bounce::gl {
 
 class Frame;
-struct FrameSettings;
 
 // common/brdf.glsl's brdfEvalLobes: two transmissions, GGX's D and Smith's visibility.
 constexpr double kFlopsBrdfLobes = 125;
@@ -22,9 +21,10 @@ constexpr double kFlopsPointGlossyRadiance = 90;
 // in still frames) and their weights.
 PassCost shadowLookupCost(const Frame& frame);
 
-// direct.frag's loop over the lights at one shading point: per punctual light about 60 flops and (2r+1)^2
-// shadow taps (four texels each when filtered), per emitting triangle about 250 flops (the clipped
-// polygon's form factor) and its taps. The pixel's own reads and writes are the caller's.
-PassCost directLightsCost(const FrameSettings& settings, double punctual, double area);
+// The loop over the lights at one shading point (common/lighting.glsl, as direct.frag, the point methods'
+// ray hits and photon's gather hits run it): per punctual light about 60 flops, per emitting triangle about
+// 250 (the clipped polygon's form factor), each with its record (16 words, a triangle's 12 more) and one
+// shadowLookupCost. The point's own reads and writes are the caller's.
+PassCost directLightsCost(const Frame& frame, double punctual, double area);
 
 } // namespace bounce::gl

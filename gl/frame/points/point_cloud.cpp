@@ -104,7 +104,7 @@ PassCost hitRadianceWork(const Frame& frame, double hits)
 {
     constexpr double kHitBytes = 3 * 4 + 3 * 12 + 4 + 64; // indices, vertex normals, material index, Material
     const double punctual = frame.gpuScene().punctualLightCount();
-    const PassCost lights = directLightsCost(frame.settings(), punctual, frame.lights().count() - punctual);
+    const PassCost lights = directLightsCost(frame, punctual, frame.lights().count() - punctual);
     PassCost w;
     w.flopsFixed = hits * (40 + lights.flops);
     w.fetchesFixed = hits * lights.fetches;

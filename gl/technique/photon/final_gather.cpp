@@ -7,6 +7,7 @@
 
 #include "gl/context/context.h"
 #include "gl/frame/bindings.h"
+#include "gl/frame/shader_costs.h"
 #include "gl/gl.h"
 #include "gl/probe/machine_probe.h"
 #include "gl/resource/dispatch.h"
@@ -53,15 +54,14 @@ PassCost gatherRayWork(const Frame& frame, const RayCaster& caster, const Photon
 {
     // Per ray: its direction, a BVH walk, then photon_gather.glsl reads the triangle's indices, vertices and
     // material (152 bytes; a bilinear base-colour sample where the scene has textures), its direct light from
-    // every light (a record of shared words, one shadow tap: 2x2 texels when filtered), the irradiance there,
-    // the BRDF.
-    const double taps = frame.settings().pcfLinear && frame.sampler().stillIndex() == 0 ? 4 : 1;
+    // every light (directLightsCost), the irradiance there, the BRDF.
     const double punctual = frame.gpuScene().punctualLightCount(), area = frame.lights().count() - punctual;
+    const PassCost lights = directLightsCost(frame, punctual, area);
     PassCost w = bvhWalkWork(caster.bvh(), rays);
-    w.flopsFixed += rays * (215 + punctual * (60 + 10 * taps) + area * (250 + 10 * taps));
-    w.fetchesFixed = rays * ((frame.gpuScene().hasTextures() ? 4 : 0) + (punctual + area) * taps);
-    w.bytesFixed += rays * (152 + (punctual + area) * 4 * taps);
-    w.uniformWordsFixed = rays * (16 * punctual + 28 * area);
+    w.flopsFixed += rays * (215 + lights.flops);
+    w.fetchesFixed = rays * ((frame.gpuScene().hasTextures() ? 4 : 0) + lights.fetches);
+    w.bytesFixed += rays * (152 + lights.bytesRead);
+    w.uniformWordsFixed = rays * lights.uniformWords;
     if (settings.fullPhotonMap) {
         const PassCost density = nearestPhotonsWork(tree, settings.densityPhotons, rays);
         w.flopsFixed += density.flopsFixed;
