@@ -33,8 +33,9 @@ TEST(FrameSampler, NoTwoStreamsShareADimension)
     for (const gl::SampleStreamInfo& s : all) {
         EXPECT_TRUE(names.insert(s.name).second) << "two streams named " << s.name;
         EXPECT_EQ(&FrameSampler::info(s.stream), &s) << s.name << ": the table is out of SampleStream's order";
-        if (s.sequence == SampleSequence::Halton)
+        if (s.sequence == SampleSequence::Halton) {
             EXPECT_TRUE(s.firstDimension >= 0 && s.firstDimension + 1 < core::kHaltonDimensions) << s.name;
+        }
     }
     for (std::size_t i = 0; i < all.size(); ++i)
         for (std::size_t j = i + 1; j < all.size(); ++j) {
