@@ -29,25 +29,41 @@ std::vector<Define> sceneDefines(const core::Scene& scene, const GpuScene& gpu)
     return d;
 }
 
-// The direct-light program for the kinds of light the scene has: a loop over a kind the scene lacks
-// still costs a masked pass through its body on a SIMD rasteriser (llvmpipe), the polygon form factor
-// of the emitting triangles most of all (glsl/common/lighting.glsl).
-// still: the still frames' program, where they differ from the moving frame's: area lights sampled on the
-// emitter (AREA_SAMPLED), a directional light's cascades read (SHADOW_CASCADES); none where neither is
-// in the scene. Moving: the area lights' PCSS when asked for.
-// areaLights false: the emitters' reflected light is left to the technique (Frame::setAreaLightsInDirect).
-Program directProgram(const core::Scene& scene, const GpuScene& gpu, const FrameSettings& settings, bool still = false,
-                      bool areaLights = true)
+// The defines of the frame's direct-light estimator (glsl/common/lighting.glsl, addDirectLight) for the kinds
+// of light the scene has: a loop over a kind the scene lacks still costs a masked pass through its body on a
+// SIMD rasteriser (llvmpipe), the polygon form factor of the emitting triangles most of all.
+// still: the still frames' form, where it differs from the moving frame's: area lights sampled on the
+// emitter (AREA_SAMPLED), a directional light's cascades read (SHADOW_CASCADES). Moving: the area lights'
+// PCSS when asked for. areaLights false: no emitting triangle (Frame::setAreaLightsInDirect).
+std::vector<Define> directLightKinds(const GpuScene& gpu, const FrameSettings& settings, bool still, bool areaLights)
 {
-    std::vector<Define> kinds = sceneDefines(scene, gpu);
+    std::vector<Define> kinds;
     const bool area = areaLights && int(gpu.lights().size()) > gpu.punctualLightCount();
     const bool cascades = settings.shadowCascades > 0 && hasLightOfType(gpu.lights(), kLightDirectional);
-    if (still && !area && !cascades) return Program();
     if (gpu.punctualLightCount() > 0) kinds.push_back({"PUNCTUAL_LIGHTS", "1"});
     if (area) kinds.push_back({"AREA_LIGHTS", "1"});
     if (still && area) kinds.push_back({"AREA_SAMPLED", "1"});
     if (still && cascades) kinds.push_back({"SHADOW_CASCADES", "1"});
     if (!still && area && settings.areaPcss) kinds.push_back({"SHADOW_PCSS", "1"});
+    return kinds;
+}
+
+// Whether the still frames' estimator differs from the moving frame's (directLightKinds).
+bool stillFormDiffers(const GpuScene& gpu, const FrameSettings& settings, bool areaLights)
+{
+    const bool area = areaLights && int(gpu.lights().size()) > gpu.punctualLightCount();
+    return area || (settings.shadowCascades > 0 && hasLightOfType(gpu.lights(), kLightDirectional));
+}
+
+// The direct-light program: emission plus the estimator at every pixel. The still program is none where
+// the still form is the moving one.
+Program directProgram(const core::Scene& scene, const GpuScene& gpu, const FrameSettings& settings, bool still = false,
+                      bool areaLights = true)
+{
+    if (still && !stillFormDiffers(gpu, settings, areaLights)) return Program();
+    std::vector<Define> kinds = sceneDefines(scene, gpu);
+    const std::vector<Define> light = directLightKinds(gpu, settings, still, areaLights);
+    kinds.insert(kinds.end(), light.begin(), light.end());
     return Program::graphics(still ? "direct.still" : "direct", "frame/fullscreen.vert", "frame/direct.frag", kinds);
 }
 
@@ -337,6 +353,28 @@ std::vector<Define> Frame::gbufferDefines() const
     return sceneDefines(scene_, gpu_);
 }
 
+bool Frame::directLightStill() const
+{
+    return sampler_.stillIndex() > 0 && stillFormDiffers(gpu_, settings_, true);
+}
+
+std::vector<Define> Frame::directLightDefines(bool still) const
+{
+    return directLightKinds(gpu_, settings_, still, true);
+}
+
+void Frame::setDirectLightUniforms(Program& program) const
+{
+    program.set("punctualLightCount", gpu_.punctualLightCount());
+    program.set("lightCount", lights_.count());
+    shadows_.setPcfUniforms(program, settings_.pcfRadius);
+    if (sampler_.stillIndex() > 0) {
+        // The glossy lobe's points, independent of the jitter and the sample point.
+        program.set("areaRotation",
+                    FrameSampler::sample2(SampleStream::AreaGlossyRotation, std::uint64_t(sampler_.stillIndex())));
+    }
+}
+
 void Frame::bindGBuffer() const
 {
     geometry_.bind(UNIT_G_GEOMETRY);
@@ -377,15 +415,8 @@ void Frame::renderDirect(PassTimers& timers)
     bindSceneData();
     const bool still = sampler_.stillIndex() > 0 && directStillProgram_;
     Program& program = still ? directStillProgram_ : directProgram_;
-    if (still) {
-        // The glossy lobe's points, independent of the jitter and the sample point.
-        program.set("areaRotation",
-                    FrameSampler::sample2(SampleStream::AreaGlossyRotation, std::uint64_t(sampler_.stillIndex())));
-    }
     program.set("cameraPosition", camera_.position);
-    program.set("punctualLightCount", gpu_.punctualLightCount());
-    program.set("lightCount", lights_.count());
-    shadows_.setPcfUniforms(program, settings_.pcfRadius);
+    setDirectLightUniforms(program);
     program.use();
     drawFullscreen();
 }

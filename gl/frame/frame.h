@@ -104,6 +104,17 @@ public:
     // there (common/gbuffer.glsl, brdf.glsl, base_color.glsl). Programs without them read the black 1x1
     // texture instead, and are right too.
     std::vector<Define> gbufferDefines() const;
+    // The frame's direct-light estimator (glsl/common/lighting.glsl, addDirectLight), which every pass that
+    // lights a point with the scene's lights runs, so that a pixel and a ray hit at one point get the same
+    // light: directLightDefines(still) are its defines for the kinds of light the scene has, in the still
+    // frames' form (emitters sampled at this frame's point, cascades) or the moving frame's (PCSS when asked
+    // for); directLightStill() says which form this frame runs (the still one from still frame 1 on, where
+    // it differs); setDirectLightUniforms sets the lights' counts, the shadow maps' filter and the still
+    // frame's rotation of the emitters' glossy points. A program built on them compiles once per form it
+    // meets.
+    bool directLightStill() const;
+    std::vector<Define> directLightDefines(bool still) const;
+    void setDirectLightUniforms(Program& program) const;
     bool hasSpecularTarget() const { return bool(specular_); }
     bool hasEmissionTarget() const { return bool(emission_); }
     // Binds materials (SSBO 0), lights (1), shadow views (2), area polygons (3), the scene's geometry

@@ -1,10 +1,16 @@
-// Direct light from one light at a surface point: the BRDF times the irradiance it receives, shadowed.
+// The frame's direct light at a surface point: one estimator per kind of light, and addDirectLight (at the
+// end), the one loop over the scene's lights that every pass shading a point with them calls.
 #ifndef BOUNCE_LIGHTING_GLSL
 #define BOUNCE_LIGHTING_GLSL
 
 #include "common/brdf.glsl"
 #include "common/scene.glsl"
 #include "common/shadow.glsl"
+
+// The scene's lights in their order (gl/frame/frame_lights.h): [0, punctualLightCount) point, spot and
+// directional lights, [punctualLightCount, lightCount) emitting triangles. Frame::setDirectLightUniforms.
+uniform int punctualLightCount;
+uniform int lightCount;
 
 // Irradiance at p (normal n) from a Lambertian emitting triangle of radiance L, by Lambert's formula for
 // the polygon clipped to p's upper hemisphere: E = L/2 sum_i Theta_i (n . Gamma_i). Exact, unshadowed.
@@ -28,14 +34,6 @@ float polygonFormFactor(vec3 p, vec3 n, vec3 a, vec3 b, vec3 c)
         if (len > 1e-9) sum += acos(clamp(dot(r0, r1), -1.0, 1.0)) * dot(n, g / len);
     }
     return abs(sum) / (2.0 * kPi);
-}
-
-// The shadowed BRDF times the irradiance from direction wi (both cosines are checked by brdfEval).
-vec3 shadedIrradiance(Light l, vec3 p, vec3 n, vec3 wo, BrdfParams b, vec3 wi, vec3 irradiance)
-{
-    if (max(irradiance.r, max(irradiance.g, irradiance.b)) <= 0.0) return vec3(0.0);
-    // A point on the light-facing side must see the light.
-    return brdfEval(b, n, wo, wi) * irradiance * shadowVisibility(l, p, n);
 }
 
 // Irradiance at p (normal n) from a point, spot or directional light l, unshadowed, and the direction
@@ -63,7 +61,9 @@ vec3 directFromPunctual(Light l, vec3 p, vec3 n, vec3 wo, BrdfParams b)
 {
     vec3 wi;
     vec3 irradiance = punctualIrradiance(l, p, n, wi);
-    return shadedIrradiance(l, p, n, wo, b, wi, irradiance);
+    if (max(irradiance.r, max(irradiance.g, irradiance.b)) <= 0.0) return vec3(0.0);
+    // The BRDF checks both cosines; a point on the light-facing side must see the light.
+    return brdfEval(b, n, wo, wi) * irradiance * shadowVisibility(l, p, n);
 }
 
 // Irradiance at p (normal n) from one emitting triangle l, unshadowed and exact (polygon form factor), and
@@ -77,22 +77,29 @@ vec3 areaTriangleIrradiance(Light l, vec3 p, vec3 n, out vec3 wi)
     return l.intensity * kPi * polygonFormFactor(p, n, a, bb, c);
 }
 
+// The moving frame's visibility of emitting triangle l from p: its mesh's shadow cube, seen from the mesh's
+// centroid, filtered by PCF, or by PCSS (SHADOW_PCSS) for a penumbra as wide as the emitter.
+float areaTriangleVisibility(Light l, vec3 p, vec3 n)
+{
+#ifdef SHADOW_PCSS
+    int first = l.shadow.z;
+    vec3 a = lightPolygons[first].xyz, bb = lightPolygons[first + 1].xyz, c = lightPolygons[first + 2].xyz;
+    // The side of the square this triangle is half of: the emitter's width PCSS assumes.
+    float width = sqrt(length(cross(bb - a, c - a)));
+    return pcssVisibility(l, p, n, width);
+#else
+    return shadowVisibility(l, p, n);
+#endif
+}
+
 // Outgoing radiance towards wo from one emitting triangle l at p. The diffuse part is exact (polygon
 // form factor); the glossy part evaluates the BRDF towards the triangle's centroid (an approximation).
 vec3 directFromAreaTriangle(Light l, vec3 p, vec3 n, vec3 wo, BrdfParams b)
 {
     vec3 wi;
     vec3 irradiance = areaTriangleIrradiance(l, p, n, wi);
-#ifdef SHADOW_PCSS
     if (max(irradiance.r, max(irradiance.g, irradiance.b)) <= 0.0) return vec3(0.0);
-    int first = l.shadow.z;
-    vec3 a = lightPolygons[first].xyz, bb = lightPolygons[first + 1].xyz, c = lightPolygons[first + 2].xyz;
-    // The side of the square this triangle is half of: the emitter's width PCSS assumes.
-    float width = sqrt(length(cross(bb - a, c - a)));
-    return brdfEval(b, n, wo, wi) * irradiance * pcssVisibility(l, p, n, width);
-#else
-    return shadedIrradiance(l, p, n, wo, b, wi, irradiance);
-#endif
+    return brdfEval(b, n, wo, wi) * irradiance * areaTriangleVisibility(l, p, n);
 }
 
 // Still frames (gl/frame/shadow_maps.h): one emitting triangle's outgoing radiance towards wo from this
@@ -139,21 +146,8 @@ vec3 areaGlossyUnshadowed(Light l, vec3 p, vec3 n, vec3 wo, BrdfParams b, vec2 r
     return glossy;
 }
 
-// Outgoing radiance towards wo from emitting triangle l at p, shadowed as directFromAreaTriangle: the
-// diffuse part exact (polygon form factor), the glossy part over the triangle's points
-// (areaGlossyUnshadowed) instead of towards its centroid, where a lobe narrower than the emitter turns the
-// emitter into a point: its reflection off a polished metal a bright dot instead of the emitter's image.
-vec3 directFromAreaTriangleSampled(Light l, vec3 p, vec3 n, vec3 wo, BrdfParams b, vec2 rotation)
-{
-    vec3 wi;
-    vec3 irradiance = areaTriangleIrradiance(l, p, n, wi);
-    if (max(irradiance.r, max(irradiance.g, irradiance.b)) <= 0.0) return vec3(0.0); // behind it, or beyond p's horizon
-    vec3 diffuseFactor, lobe;
-    brdfEvalLobes(b, n, wo, wi, diffuseFactor, lobe);
-    vec3 radiance = diffuseFactor * b.diffuse * irradiance + areaGlossyUnshadowed(l, p, n, wo, b, rotation);
-    return radiance * shadowVisibility(l, p, n);
-}
-
+// Still frames: emitting triangle l's light towards wo from this frame's point on its mesh, diffuse and
+// glossy as described above, before the mesh's visibility.
 vec3 areaSampleUnshadowed(Light l, vec3 p, vec3 n, vec3 wo, BrdfParams b, vec2 rotation)
 {
     float sampleArea = l.sampleArea;
@@ -192,6 +186,34 @@ vec3 sampledAreaLights(int first, int end, vec3 p, vec3 n, vec3 wo, BrdfParams b
         mesh = vec3(0.0);
     }
     return sum;
+}
+
+// The frame's direct light at surface point p (normal n, BRDF b) towards wo, added to `radiance` light by
+// light in the lights' order (so that a pixel's emission, added first, keeps its place in the sum):
+//   point, spot, directional  directFromPunctual, through the shadow maps (PCF in moving frames, one shifted
+//                             tap in still frames: Frame::setDirectLightUniforms);
+//   emitting triangles        moving frames: directFromAreaTriangle, the diffuse part exact and the lobe towards
+//                             the centroid, shadowed from the mesh's cube (PCSS with SHADOW_PCSS); still
+//                             frames (AREA_SAMPLED): sampledAreaLights, this frame's point on each mesh and the
+//                             lobe over the triangles' points rotated by `rotation`, unbiased over the frames.
+// The one estimator of every pass that lights a point with the scene's lights: the G-buffer's pixels
+// (frame/direct.frag), the point methods' ray hits (frame/points/point_light.glsl), photon mapping's gather
+// hits (technique/photon/photon_gather.glsl). Frame::directLightDefines gives the defines that choose the
+// form (PUNCTUAL_LIGHTS, AREA_LIGHTS: the kinds the scene has; AREA_SAMPLED, SHADOW_CASCADES, SHADOW_PCSS:
+// the still or the moving frame's form), so that a pixel and a ray hit at the same point get the same light
+// (tests/gl/direct_estimator_test.cpp).
+void addDirectLight(inout vec3 radiance, vec3 p, vec3 n, vec3 wo, BrdfParams b, vec2 rotation)
+{
+#ifdef PUNCTUAL_LIGHTS
+    for (int i = 0; i < punctualLightCount; ++i) radiance += directFromPunctual(lights[i], p, n, wo, b);
+#endif
+#ifdef AREA_LIGHTS
+#ifdef AREA_SAMPLED
+    radiance += sampledAreaLights(punctualLightCount, lightCount, p, n, wo, b, rotation);
+#else
+    for (int i = punctualLightCount; i < lightCount; ++i) radiance += directFromAreaTriangle(lights[i], p, n, wo, b);
+#endif
+#endif
 }
 
 #endif

@@ -80,24 +80,14 @@ GpuPointSample toGpuPointSample(const core::SurfacePoint& p, double triangleArea
     return {p.triangle, share, glm::vec2(b1, 1.0f - b0 - b1)};
 }
 
-std::vector<Define> lightKindDefines(const GpuScene& scene)
+std::vector<Define> pointLightDefines(const Frame& frame)
 {
-    std::vector<Define> d;
-    if (lightKinds(scene) & 1) d.push_back({"PUNCTUAL_LIGHTS", "1"});
-    if (lightKinds(scene) & 2) d.push_back({"AREA_LIGHTS", "1"});
-    return d;
+    return frame.directLightDefines(false);
 }
 
 int lightKinds(const GpuScene& scene)
 {
     return (scene.punctualLightCount() > 0 ? 1 : 0) | (int(scene.lights().size()) > scene.punctualLightCount() ? 2 : 0);
-}
-
-void setPointLightUniforms(Program& program, const Frame& frame)
-{
-    program.set("punctualLightCount", frame.gpuScene().punctualLightCount());
-    program.set("lightCount", frame.lights().count());
-    frame.shadowMaps().setPcfUniforms(program, frame.settings().pcfRadius);
 }
 
 PassCost hitRadianceWork(const Frame& frame, double hits)
@@ -133,7 +123,7 @@ PointCloud::PointCloud(Frame& frame, std::size_t count, std::uint64_t seed, bool
     std::vector<Define> updateDefines = defines();
     if (frame.gpuScene().hasTextures()) updateDefines.push_back({"TEXTURES", "1"});
     update_ = Program::compute("points.update", "frame/points/point_update.comp", updateDefines);
-    makeLightProgram(frame.gpuScene());
+    makeLightProgram(frame);
     if (keepDirect_) relight_ = Program::compute("points.relight", "frame/points/point_relight.comp");
 }
 
@@ -143,9 +133,10 @@ std::vector<Define> PointCloud::defines() const
     return {};
 }
 
-void PointCloud::makeLightProgram(const GpuScene& scene)
+void PointCloud::makeLightProgram(const Frame& frame)
 {
-    std::vector<Define> d = lightKindDefines(scene);
+    const GpuScene& scene = frame.gpuScene();
+    std::vector<Define> d = pointLightDefines(frame);
     for (const Define& k : defines()) d.push_back(k);
     lightKinds_ = lightKinds(scene);
     if (keepDirect_) d.push_back({"KEEP_DIRECT", "1"});
@@ -216,11 +207,11 @@ void PointCloud::light(Frame& frame, PassTimers& timers)
     if (count_ == 0) return;
     const GpuScene& scene = frame.gpuScene();
     // The demo may add or remove a kind of light (setLights): the program follows, as the direct pass's.
-    if (lightKinds(scene) != lightKinds_) makeLightProgram(scene);
+    if (lightKinds(scene) != lightKinds_) makeLightProgram(frame);
     frame.bindSceneData();
     bind();
     light_.set("pointCount", unsigned(count_));
-    setPointLightUniforms(light_, frame);
+    frame.setDirectLightUniforms(light_);
     dispatchCompute(light_, {count_, 1, 1}, {kLocal, 1, 1});
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }

@@ -87,16 +87,16 @@ private:
     Buffer reordered_;                    // reorder()'s spare samples
     std::unique_ptr<MedianSplit> median_; // made by the first reorder()
     Program update_, light_, relight_;
-    void makeLightProgram(const GpuScene& scene);
+    void makeLightProgram(const Frame& frame);
 };
 
-// The #defines of the kinds of light a scene has (PUNCTUAL_LIGHTS, AREA_LIGHTS), as the direct pass has them.
-std::vector<Define> lightKindDefines(const GpuScene& scene);
-// The same as bits (1: punctual, 2: area): a program built with lightKindDefines is built again where they
-// change (Frame::setLights, an area light flattened by Frame::moveVertices).
+// The defines of glsl/frame/points/point_light.glsl: the frame's direct-light estimator in the moving frame's
+// form in every frame (Frame::directLightDefines; point_light.glsl says why); its uniforms are
+// Frame::setDirectLightUniforms'.
+std::vector<Define> pointLightDefines(const Frame& frame);
+// The kinds of light a scene has as bits (1: punctual, 2: area): a program built with pointLightDefines is
+// built again where they change (Frame::setLights, an area light flattened by Frame::moveVertices).
 int lightKinds(const GpuScene& scene);
-// Sets the uniforms of glsl/frame/points/point_light.glsl and common/shadow.glsl.
-void setPointLightUniforms(Program& program, const Frame& frame);
 // What hit_radiance.glsl's hitDirectRadiance costs for `hits` hits, as per-scope work: the hit's normal and
 // material, and the lights at it as the direct pass counts them.
 PassCost hitRadianceWork(const Frame& frame, double hits);

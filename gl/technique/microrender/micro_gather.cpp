@@ -134,7 +134,7 @@ Program MicroGather::makeProgram(Frame& frame, const PointHierarchy& hierarchy, 
     if (settings_.cutQueue > 0) d.push_back({"CUT_QUEUE", std::to_string(std::max(settings_.cutQueue, kGroup) & ~1)});
     if (!settings_.warp) d.push_back({"NO_WARP", "1"});
     if (atPoints) d.push_back({"GATHER_AT_POINTS", "1"});
-    for (const Define& k : lightKindDefines(frame.gpuScene())) d.push_back(k);
+    for (const Define& k : pointLightDefines(frame)) d.push_back(k);
     for (const Define& k : hierarchy.defines()) d.push_back(k);
     return Program::compute(atPoints ? "microrender.bounceGather" : "microrender.gather",
                             "technique/microrender/gather.comp", d);
@@ -154,7 +154,7 @@ void MicroGather::setUniforms(Program& program, Frame& frame, const PointCloud& 
     program.set("warpAlphaCount", int(cpuTables_.alphas.size()));
     for (std::size_t i = 0; i < cpuTables_.alphas.size() && i < 16; ++i)
         program.set("warpAlphas[" + std::to_string(i) + "]", cpuTables_.alphas[i]);
-    setPointLightUniforms(program, frame);
+    frame.setDirectLightUniforms(program);
 }
 
 void MicroGather::bindCommon(Frame& frame, const PointCloud& cloud, const PointHierarchy& hierarchy,

@@ -19,14 +19,12 @@ namespace bounce::gl {
 
 namespace {
 
-// Only the kinds of light the scene has (as the frame's direct pass), and the density it gathers from.
+// The density it gathers from; the hits' direct light is the frame's (DirectLitProgram adds its defines).
 std::vector<Define> gatherDefines(const Frame& frame, const FinalGatherSettings& s)
 {
     // Gather rays pass through the holes of alpha masks (raycast.glsl, ALPHA_MASK).
     const GpuScene& scene = frame.gpuScene();
     std::vector<Define> d = scene.alphaMaskDefines();
-    if (scene.punctualLightCount() > 0) d.push_back({"PUNCTUAL_LIGHTS", "1"});
-    if (int(scene.lights().size()) > scene.punctualLightCount()) d.push_back({"AREA_LIGHTS", "1"});
     // No glossy terms at the hits (common/brdf.glsl) where the scene has no lobe.
     if (!frame.scene().hasGlossy()) d.push_back({"SCENE_DIFFUSE_ONLY", "1"});
     if (s.causticAlpha > 0.0f) d.push_back({"CAUSTIC_MAP", "1"});
@@ -97,7 +95,7 @@ bool hasNearSpecular(const core::Scene& scene, float causticRoughness)
 
 FinalGather::FinalGather(const Frame& frame, const FinalGatherSettings& settings)
     : settings_(settings),
-      program_(Program::compute("photon.gather", "technique/photon/photon_gather.comp", gatherDefines(frame, settings)))
+      program_("photon.gather", "technique/photon/photon_gather.comp", gatherDefines(frame, settings))
 {}
 
 void FinalGather::gather(const Frame& frame, const RayCaster& caster, const PhotonTree& tree, const Buffer& photons,
@@ -117,27 +115,26 @@ void FinalGather::gather(const Frame& frame, const RayCaster& caster, const Phot
         fallback_ = uncovered_ = 0;
         return;
     }
+    // The hits' direct light as the frame's pixels get it, in this frame's form (still frames: the emitters
+    // sampled at the frame's point; moving: the frame's PCF), its uniforms set.
+    Program& program = program_.forFrame(frame);
     frame.bindSceneData();
     caster.bind();
-    tree.bind(program_);
+    tree.bind(program);
     photons.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_PHOTONS);
-    cut.bindLookup(program_);
+    cut.bindLookup(program);
     clusters.bind();
     counters.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_PHOTON_COUNTERS);
-    program_.set("punctualLightCount", frame.gpuScene().punctualLightCount());
-    program_.set("lightCount", frame.lights().count());
-    // One shadow-map tap per hit: hundreds of rays average a sample's light, PCF would only cost.
-    frame.shadowMaps().setPcfUniforms(program_, 0);
-    program_.set("clusterCount", clusters.count());
-    program_.set("gatherRays", unsigned(std::max(settings_.rays, 1)));
-    program_.set("rayEpsilon", 1e-5f * sceneSize);
-    program_.set("minDistance", 1e-4f * sceneSize);
-    program_.set("maxDistance", sceneSize);
-    program_.set("seed", settings_.seed);
-    program_.set("causticAlpha", settings_.causticAlpha);
+    program.set("clusterCount", clusters.count());
+    program.set("gatherRays", unsigned(std::max(settings_.rays, 1)));
+    program.set("rayEpsilon", 1e-5f * sceneSize);
+    program.set("minDistance", 1e-4f * sceneSize);
+    program.set("maxDistance", sceneSize);
+    program.set("seed", settings_.seed);
+    program.set("causticAlpha", settings_.causticAlpha);
     // In rows: one group per cluster, and gathering at every pixel makes a cluster of each (65,536 at 256^2,
     // past the 65,535 groups a driver may allow on one axis).
-    dispatchRows(program_, clusters.count(), kGatherGroup);
+    dispatchRows(program, clusters.count(), kGatherGroup);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
     std::uint32_t hits[2] = {0, 0};
     counters.download((kCounterFirst + 1) * 4, sizeof hits, hits);
@@ -157,7 +154,7 @@ GlossyGather::GlossyGather(const Frame& frame, int rays, bool cutGrid)
     std::vector<Define> d = gatherDefines(frame, s);
     const std::vector<Define> g = frame.gbufferDefines();
     d.insert(d.end(), g.begin(), g.end());
-    program_ = Program::compute("photon.glossy", "technique/photon/photon_glossy.comp", d);
+    program_ = DirectLitProgram("photon.glossy", "technique/photon/photon_glossy.comp", d);
 }
 
 void GlossyGather::run(Frame& frame, const RayCaster& caster, const PhotonTree& tree, const Buffer& photons,
@@ -176,24 +173,22 @@ void GlossyGather::run(Frame& frame, const RayCaster& caster, const PhotonTree& 
     FinalGatherSettings s;
     s.cutGrid = cutGrid_;
     t.addWork(gatherRayWork(frame, caster, tree, cut, s, double(frame.width()) * frame.height() * rays_, 0.0));
+    Program& program = program_.forFrame(frame);
     frame.bindGBuffer();
     frame.bindSceneData();
     caster.bind();
-    tree.bind(program_);
+    tree.bind(program);
     photons.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_PHOTONS);
-    cut.bindLookup(program_);
-    program_.set("punctualLightCount", frame.gpuScene().punctualLightCount());
-    program_.set("lightCount", frame.lights().count());
-    frame.shadowMaps().setPcfUniforms(program_, 0);
-    program_.set("viewport", glm::ivec2(frame.width(), frame.height()));
-    program_.set("cameraPosition", frame.camera().position);
-    program_.set("rayCount", unsigned(rays_));
-    program_.set("seed", std::uint32_t(frame.sampler().stillIndex()));
-    program_.set("rayEpsilon", 1e-5f * sceneSize);
+    cut.bindLookup(program);
+    program.set("viewport", glm::ivec2(frame.width(), frame.height()));
+    program.set("cameraPosition", frame.camera().position);
+    program.set("rayCount", unsigned(rays_));
+    program.set("seed", std::uint32_t(frame.sampler().stillIndex()));
+    program.set("rayEpsilon", 1e-5f * sceneSize);
     frame.indirect().bindImage(0, GL_READ_WRITE);
     for (int j = 0; j < rays_; ++j) {
-        program_.set("rayIndex", unsigned(j));
-        dispatchCompute(program_, {frame.width(), frame.height(), 1}, {8, 8, 1});
+        program.set("rayIndex", unsigned(j));
+        dispatchCompute(program, {frame.width(), frame.height(), 1}, {8, 8, 1});
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     }
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);

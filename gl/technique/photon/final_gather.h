@@ -4,6 +4,7 @@
 
 #include <cstdint>
 
+#include "gl/frame/direct_lit_program.h"
 #include "gl/frame/frame.h"
 #include "gl/frame/ray_caster.h"
 #include "gl/resource/buffer.h"
@@ -41,7 +42,7 @@ public:
 
 private:
     FinalGatherSettings settings_;
-    Program program_;
+    DirectLitProgram program_;
     std::uint32_t fallback_ = 0, uncovered_ = 0;
 };
 
@@ -60,7 +61,7 @@ public:
 private:
     int rays_;
     bool cutGrid_;
-    Program program_;
+    DirectLitProgram program_;
 };
 
 // The caustic photon map (photon_caustic.comp): the caustic photons (L S+ D) near every pixel's surface

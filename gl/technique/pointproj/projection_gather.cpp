@@ -113,7 +113,7 @@ Program ProjectionGather::makeProgram(Frame& frame, bool atPoints) const
     for (const Define& k : defines_) d.push_back(k);
     if (settings_.holeRays) {
         d.push_back({"HOLE_RAYS", "1"});
-        for (const Define& k : lightKindDefines(frame.gpuScene())) d.push_back(k);
+        for (const Define& k : pointLightDefines(frame)) d.push_back(k);
         for (const Define& k : frame.rayCaster().defines()) d.push_back(k);
     }
     return Program::compute(atPoints ? "pointproj.bounceGather" : "pointproj.gather", "technique/pointproj/gather.comp",
@@ -133,7 +133,7 @@ void ProjectionGather::setUniforms(Program& program, Frame& frame, const PointCl
     if (settings_.holeRays) {
         frame.bindSceneData();
         frame.rayCaster().bind();
-        setPointLightUniforms(program, frame);
+        frame.setDirectLightUniforms(program);
     }
     cloud.bind();
     texelSolidAngles_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_PROJ_TEXEL_SOLID_ANGLES);

@@ -1,13 +1,12 @@
 // The direct light at the points through the frame's shadow maps (common/lighting.glsl), for the point light
-// pass and for any other point a gather finds (micro-rendering's ray-cast micro-pixels). Define
-// PUNCTUAL_LIGHTS / AREA_LIGHTS for the kinds the scene has; the uniforms are the direct pass's.
+// pass and for any other point a gather finds (micro-rendering's ray-cast micro-pixels, point projection's
+// hole rays). Compiled with the moving frame's Frame::directLightDefines in every frame: the points keep
+// one deterministic light per frame (the moving form's per-kind estimators), whose lobe direction and
+// spread the glossy points need; the uniforms are the direct pass's (Frame::setDirectLightUniforms).
 #ifndef BOUNCE_POINT_LIGHT_GLSL
 #define BOUNCE_POINT_LIGHT_GLSL
 
 #include "common/lighting.glsl"
-
-uniform int punctualLightCount; // lights [0, punctualLightCount): point, spot, directional
-uniform int lightCount;         // lights [punctualLightCount, lightCount): emitting triangles
 
 // The lights' direct light at a surface point p (normal n) for the points: the outgoing radiance of the
 // BRDF's diffuse lobe alone, seen along the normal (micro-rendering §2.2: "when using only diffuse surfaces,
@@ -28,12 +27,16 @@ struct PointLightSums {
     float extent2;    // sum w_i m_i, m_i the light's own mean squared angle about its centre (0: punctual)
 };
 
-// One light's share: irradiance (unshadowed) from direction wi, shadowed here; m its mean squared angle.
-void addPointLight(inout PointLight pl, inout PointLightSums sums, Light l, vec3 p, vec3 n, vec3 diffuse, vec3 wi,
-                   vec3 irradiance, float m)
+// Whether unshadowed irradiance from direction wi reaches a point of normal n at all (else its shadow lookup
+// is skipped).
+bool pointLightArrives(vec3 irradiance, vec3 n, vec3 wi)
 {
-    if (max(irradiance.r, max(irradiance.g, irradiance.b)) <= 0.0 || dot(n, wi) <= 0.0) return;
-    vec3 e = irradiance * shadowVisibility(l, p, n);
+    return max(irradiance.r, max(irradiance.g, irradiance.b)) > 0.0 && dot(n, wi) > 0.0;
+}
+
+// One light's share: shadowed irradiance e from direction wi; m the light's mean squared angle.
+void addPointLight(inout PointLight pl, inout PointLightSums sums, vec3 diffuse, vec3 wi, vec3 e, float m)
+{
     pl.radiance += diffuse * (1.0 / kPi) * e;
     pl.irradiance += e;
     float w = dot(e, kLuminance);
@@ -61,13 +64,15 @@ PointLight pointDirectLight(vec3 p, vec3 n, vec3 diffuse)
 #ifdef PUNCTUAL_LIGHTS
     for (int i = 0; i < punctualLightCount; ++i) {
         vec3 e = punctualIrradiance(lights[i], p, n, wi);
-        addPointLight(pl, sums, lights[i], p, n, diffuse, wi, e, 0.0);
+        if (pointLightArrives(e, n, wi)) addPointLight(pl, sums, diffuse, wi, e * shadowVisibility(lights[i], p, n), 0.0);
     }
 #endif
 #ifdef AREA_LIGHTS
     for (int i = punctualLightCount; i < lightCount; ++i) {
         vec3 e = areaTriangleIrradiance(lights[i], p, n, wi);
-        addPointLight(pl, sums, lights[i], p, n, diffuse, wi, e, areaTriangleExtent2(lights[i], p, wi));
+        if (pointLightArrives(e, n, wi))
+            addPointLight(pl, sums, diffuse, wi, e * areaTriangleVisibility(lights[i], p, n),
+                          areaTriangleExtent2(lights[i], p, wi));
     }
 #endif
     if (sums.weight > 0.0) {
@@ -99,16 +104,11 @@ vec3 pointDirectRadiance(vec3 p, vec3 n, vec3 diffuse)
 }
 
 // Outgoing radiance towards wo of a surface point with the BRDF b, every lobe (a ray's hit on a glossy
-// surface, seen from the gather sample).
+// surface, seen from the gather sample): the frame's estimator, as a pixel there would get it.
 vec3 surfaceDirectRadiance(vec3 p, vec3 n, vec3 wo, BrdfParams b)
 {
     vec3 radiance = vec3(0.0);
-#ifdef PUNCTUAL_LIGHTS
-    for (int i = 0; i < punctualLightCount; ++i) radiance += directFromPunctual(lights[i], p, n, wo, b);
-#endif
-#ifdef AREA_LIGHTS
-    for (int i = punctualLightCount; i < lightCount; ++i) radiance += directFromAreaTriangle(lights[i], p, n, wo, b);
-#endif
+    addDirectLight(radiance, p, n, wo, b, vec2(0.0)); // the moving form: no rotation
     return radiance;
 }
 

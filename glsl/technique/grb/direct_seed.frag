@@ -7,8 +7,6 @@
 #include "common/material.glsl"
 #include "technique/grb/atlas.glsl"
 
-uniform int punctualLightCount;
-
 layout(location = 0) out vec4 outSeed;
 
 void main()

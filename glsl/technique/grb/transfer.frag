@@ -18,9 +18,7 @@
 #include "technique/grb/radiance.glsl"
 
 uniform vec3 nextDir;           // w_i+1, for the glossy transfer atlas
-uniform int punctualLightCount; // lights [0, punctualLightCount): point, spot, directional
 #ifdef AREA_GLOSSY
-uniform int lightCount;         // lights [punctualLightCount, lightCount): emitting triangles
 uniform vec2 areaRotation;      // this direction's offset of the emitters' points
 #endif
 
@@ -65,19 +63,18 @@ void main()
     if (b.weight > 0.0 && dot(ns, wo) > 0.0) {
 #ifdef AREA_GLOSSY
         glossy = 2.0 * kPi * brdfGlossy(b, ns, wo, s.wi) * reflected * s.cosine;
-        BrdfParams lobe = b;
-        lobe.diffuse = vec3(0.0); // the glossy lobe only: the diffuse part is the bundles'
-        glossy += sampledAreaLights(punctualLightCount, lightCount, pos.xyz, ns, wo, lobe, areaRotation);
 #else
         glossy = 2.0 * kPi * brdfGlossy(b, ns, wo, s.wi) * (Le + reflected) * s.cosine;
 #endif
+        // The lights' glossy reflection by the frame's estimators (lighting.glsl), the lobe alone: the
+        // diffuse part is the bundles'. The emitters first, as the sums have always been taken.
+        BrdfParams lobe = b;
+        lobe.diffuse = vec3(0.0);
+#ifdef AREA_GLOSSY
+        glossy += sampledAreaLights(punctualLightCount, lightCount, pos.xyz, ns, wo, lobe, areaRotation);
+#endif
 #ifdef PUNCTUAL_LIGHTS
-        for (int i = 0; i < punctualLightCount; ++i) {
-            vec3 wl;
-            vec3 e = punctualIrradiance(lights[i], pos.xyz, ns, wl);
-            if (max(e.r, max(e.g, e.b)) > 0.0)
-                glossy += brdfGlossy(b, ns, wo, wl) * e * shadowVisibility(lights[i], pos.xyz, ns);
-        }
+        for (int i = 0; i < punctualLightCount; ++i) glossy += directFromPunctual(lights[i], pos.xyz, ns, wo, lobe);
 #endif
     }
     outGlossy = vec4(glossy, 1.0);

@@ -16,8 +16,6 @@
 #endif
 #include "technique/photon/scatter.glsl"
 
-uniform int punctualLightCount; // lights [0, punctualLightCount): point, spot, directional
-uniform int lightCount;         // lights [punctualLightCount, lightCount): emitting triangles
 uniform float rayEpsilon;       // scene units: how far a ray starts off its surface
 uniform float causticAlpha;     // CAUSTIC_MAP: the roughest lobe the gather passes its rays on through
 
@@ -47,9 +45,9 @@ GatherHit gatherHit(vec3 dir, Hit hit)
     return h;
 }
 
-// Radiance leaving hit h towards wo: direct light (shadow maps; an emitting triangle's glossy reflection over
-// its points, rotated by `rotation`: lighting.glsl, directFromAreaTriangleSampled) plus photon-map indirect
-// light; emission is left out (the frame's direct light has it). lobe false: the glossy lobe left out of
+// Radiance leaving hit h towards wo: the frame's direct light (lighting.glsl, addDirectLight: in still frames
+// the emitters' glossy reflection over their points rotated by `rotation`), as a pixel at h would get it,
+// plus photon-map indirect light; emission is left out (the frame's direct light has it). lobe false: the glossy lobe left out of
 // both. coverage as CutLookup's (2 with DENSITY_PHOTONS).
 vec3 hitRadiance(GatherHit h, vec3 wo, vec2 rotation, bool lobe, out int coverage)
 {
@@ -57,13 +55,7 @@ vec3 hitRadiance(GatherHit h, vec3 wo, vec2 rotation, bool lobe, out int coverag
     BrdfParams b = h.b;
     if (!lobe) b.weight = 0.0;
     vec3 radiance = vec3(0.0);
-#ifdef PUNCTUAL_LIGHTS
-    for (int l = 0; l < punctualLightCount; ++l) radiance += directFromPunctual(lights[l], h.y, h.n, wo, b);
-#endif
-#ifdef AREA_LIGHTS
-    for (int l = punctualLightCount; l < lightCount; ++l)
-        radiance += directFromAreaTriangleSampled(lights[l], h.y, h.n, wo, b, rotation);
-#endif
+    addDirectLight(radiance, h.y, h.n, wo, b, rotation);
 #ifdef DENSITY_PHOTONS
     float radius;
     PhotonNode root = photonNodes[1];
