@@ -56,6 +56,13 @@ public:
     int stillIndex() const { return stillIndex_; }
     // The still frame's offset from the pixel's centre, each component in [-0.5, 0.5) (0 in frame 0).
     glm::vec2 jitter() const { return jitter_; }
+    // A seed of a shader's hashed random numbers (glsl/common/random.glsl) for this frame: `base` in a moving
+    // frame (still frame 0), so that its image stays what it was; base mixed with the still index after, so
+    // that each still frame draws new numbers and the still frames' mean converges.
+    std::uint32_t hashSeed(std::uint32_t base) const
+    {
+        return stillIndex_ == 0 ? base : base ^ (std::uint32_t(stillIndex_) * 0x9E3779B9u);
+    }
 
 private:
     std::uint64_t frameIndex_ = 0;

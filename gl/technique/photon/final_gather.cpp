@@ -130,7 +130,8 @@ void FinalGather::gather(const Frame& frame, const RayCaster& caster, const Phot
     program.set("rayEpsilon", 1e-5f * sceneSize);
     program.set("minDistance", 1e-4f * sceneSize);
     program.set("maxDistance", sceneSize);
-    program.set("seed", settings_.seed);
+    // New rays in every still frame: the gather's noise averages out over the frames.
+    program.set("seed", frame.sampler().hashSeed(settings_.seed));
     program.set("causticAlpha", settings_.causticAlpha);
     // In rows: one group per cluster, and gathering at every pixel makes a cluster of each (65,536 at 256^2,
     // past the 65,535 groups a driver may allow on one axis).

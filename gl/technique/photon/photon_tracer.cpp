@@ -363,7 +363,8 @@ void PhotonTracer::dispatchTrace(const Frame& frame, const RayCaster& caster, Bu
         trace_.set("firstSurfaceRoulette", settings_.firstSurfaceRoulette);
         trace_.set("rayEpsilon", 1e-5f * size_);
         trace_.set("causticAlpha", causticAlpha(settings_.causticRoughness));
-        trace_.set("seed", settings_.seed);
+        // Another photon map in every still frame: the frames' mean averages the photons' noise too.
+        trace_.set("seed", frame.sampler().hashSeed(settings_.seed));
         if (paths > 0) dispatchCompute(trace_, {int(paths), 1, 1}, {64, 1, 1});
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
         std::uint32_t staged = 0;
