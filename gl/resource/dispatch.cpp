@@ -28,6 +28,12 @@ glm::ivec3 computeGroupCount(glm::ivec3 size, glm::ivec3 localSize)
     return (size - 1) / localSize + 1;
 }
 
+double computeInvocations(glm::ivec3 size, glm::ivec3 localSize)
+{
+    const glm::dvec3 launched = glm::dvec3(computeGroupCount(size, localSize)) * glm::dvec3(localSize);
+    return launched.x * launched.y * launched.z;
+}
+
 void dispatchCompute(const Program& program, glm::ivec3 size, glm::ivec3 localSize)
 {
     const glm::ivec3 groups = computeGroupCount(size, localSize);
@@ -56,6 +62,13 @@ void dispatchRows(const Program& program, std::size_t groups, int localSize)
     if (rows > std::size_t(INT_MAX))
         throw DispatchError("compute dispatch of " + std::to_string(groups) + " groups: too many rows");
     dispatchCompute(program, {int(row) * localSize, int(rows), 1}, {localSize, 1, 1});
+}
+
+double rowsInvocations(std::size_t groups, int localSize)
+{
+    if (groups == 0) return 0.0;
+    const std::size_t row = std::min(groups, kMaxRowGroups), rows = (groups + row - 1) / row;
+    return double(row) * double(rows) * double(localSize);
 }
 
 } // namespace bounce::gl

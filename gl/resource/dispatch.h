@@ -20,6 +20,11 @@ struct DispatchError : std::invalid_argument {
 // ceil(size / localSize) per axis. Throws DispatchError when a size or local size is zero or negative.
 glm::ivec3 computeGroupCount(glm::ivec3 size, glm::ivec3 localSize);
 
+// The invocations a dispatch of computeGroupCount(size, localSize) groups runs: the groups times the local
+// size, the idle invocations of the partial groups included (what the driver counts, and what a pass declares
+// to its timed scope: PassTimers::Scope::expectComputes).
+double computeInvocations(glm::ivec3 size, glm::ivec3 localSize);
+
 // Uses `program` and dispatches computeGroupCount(size, localSize) groups. Throws DispatchError, before
 // any GL call that would fail, when a size is zero or negative, when localSize is not the program's
 // declared local_size (GL_COMPUTE_WORK_GROUP_SIZE), or when a group count exceeds
@@ -36,5 +41,8 @@ constexpr std::size_t kMaxRowGroups = 65535;
 // returns past `groups` (the last row is filled up). Nothing when groups is 0. Throws DispatchError as
 // dispatchCompute.
 void dispatchRows(const Program& program, std::size_t groups, int localSize);
+
+// The invocations dispatchRows(program, groups, localSize) runs: its last row is filled up.
+double rowsInvocations(std::size_t groups, int localSize);
 
 } // namespace bounce::gl

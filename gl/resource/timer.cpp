@@ -58,6 +58,29 @@ void PassTimers::Scope::addWork(const PassCost& fixed)
     c.triangles += fixed.triangles;
 }
 
+void PassTimers::Scope::expectFragments(int width, int height, int x, int y)
+{
+    if (!owner_) return;
+    Pending& p = owner_->pending_[query_];
+    p.fragments = p.fragments.value_or(0.0) + double(width) * double(height);
+    // A rasteriser shades whole 2x2 quads; llvmpipe shades and counts whole 4x4 blocks of the framebuffer
+    // (16 invocations each, lp_query.c), and the blocks on the diagonal of a full-screen triangle's viewport
+    // twice: it draws the triangle clipped to the viewport as two triangles, and a block with pixels of both
+    // runs for each. Measured (blocks counted over blocks touched): 1x1 1/1, 4x4 2/1, 16x16 20/16, 37x29
+    // 92/80, 64x64 272/256, 128x32 288/256, 107x83 603/567, 200x7 137/100. A diagonal crosses at most
+    // bx + by - 1 of the bx x by blocks.
+    const auto blocks = [](int first, int count) { return count > 0 ? (first + count + 3) / 4 - first / 4 : 0; };
+    const double bx = blocks(x, width), by = blocks(y, height);
+    p.fragmentsAtMost += bx > 0 && by > 0 ? 16.0 * (bx * by + bx + by - 1.0) : 0.0;
+}
+
+void PassTimers::Scope::expectComputes(double invocations)
+{
+    if (!owner_) return;
+    std::optional<double>& e = owner_->pending_[query_].computes;
+    e = e.value_or(0.0) + invocations;
+}
+
 int PassTimers::pass(const std::string& name)
 {
     const auto it = std::find(order_.begin(), order_.end(), name);
@@ -99,7 +122,7 @@ PassTimers::Scope PassTimers::scope(const std::string& name, const PassCost& cos
         pool_[q].fragment = Query(kFragmentShaderInvocations, "pass-fragments." + std::to_string(q));
         pool_[q].compute = Query(kComputeShaderInvocations, "pass-computes." + std::to_string(q));
     }
-    pending_.push_back({name, q, cost});
+    pending_.push_back({name, q, cost, {}, {}, 0.0});
     // The group opens before the query and closes after it, so the capture's group holds the whole
     // timed interval. Present in every GL 4.3+ context; a message only with KHR_debug output enabled.
     const bool grouped = glPushDebugGroup != nullptr;
@@ -126,7 +149,20 @@ void PassTimers::endFrame(bool keep)
             seen.resize(i + 1, false);
         }
         Sample& s = frame[i];
-        if (!seen[i]) s.work.costDeclared = true;
+        if (!seen[i]) {
+            s.work.costDeclared = true;
+            s.work.expectedFragmentInvocations = p.fragments;
+            s.work.expectedFragmentInvocationsAtMost = p.fragmentsAtMost;
+            s.work.expectedComputeInvocations = p.computes;
+        } else {
+            // Declared for the pass only where every scope of it declared.
+            const auto add = [](std::optional<double>& sum, const std::optional<double>& e) {
+                sum = sum && e ? std::optional<double>(*sum + *e) : std::nullopt;
+            };
+            add(s.work.expectedFragmentInvocations, p.fragments);
+            s.work.expectedFragmentInvocationsAtMost += p.fragmentsAtMost;
+            add(s.work.expectedComputeInvocations, p.computes);
+        }
         const double queryMs = double(q.time.result()) * 1e-6;
         s.ms += serialize_ ? q.wallMs : queryMs;
         const double fragments = q.fragment ? double(q.fragment.result()) : 0.0;

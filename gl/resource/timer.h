@@ -8,6 +8,7 @@
 #pragma once
 
 #include <chrono>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -54,6 +55,13 @@ struct PassWork {
     double uniformWords = 0.0; // read from uniform blocks at shared addresses (PassCost::uniformWords)
     double triangles = 0.0;    // set up by the rasteriser
     bool costDeclared = false; // every scope of the pass declared a PassCost
+    // The invocations the pass declared it runs (PassTimers::Scope::expectFragments/expectComputes), summed
+    // over its scopes; unset where a scope of the pass declared none of that kind. Fragments: the pixels of
+    // the declared viewports, and the most a rasteriser may count for them (timer.cpp, expectFragments): the
+    // driver's count lies between.
+    std::optional<double> expectedFragmentInvocations;
+    double expectedFragmentInvocationsAtMost = 0.0;
+    std::optional<double> expectedComputeInvocations;
 };
 
 struct PassStat {
@@ -76,6 +84,15 @@ public:
         ~Scope();
         // Work of this scope known only once it ran (counters the pass reads back), added to its cost.
         void addWork(const PassCost& fixed);
+        // The shader invocations the scope runs, where the pass's size says them exactly, added up over the
+        // calls: a full-screen fragment pass its viewport (x, y: its corner in the framebuffer), a compute pass
+        // each dispatch's groups times its local size (computeInvocations, dispatch.h), the partial groups'
+        // idle invocations included. The driver's count must match (tests/gl/invocations_test.cpp), so a
+        // dispatch or viewport of the wrong size, or work timed in the wrong scope, fails a test. A pass that
+        // rasterises geometry (G-buffer, shadow maps, RSMs, splats, atlases, the k-buffer) declares no
+        // fragments: its coverage is known only once the rasteriser ran.
+        void expectFragments(int width, int height, int x = 0, int y = 0);
+        void expectComputes(double invocations);
         Scope(const Scope&) = delete;
         Scope& operator=(const Scope&) = delete;
 
@@ -108,6 +125,8 @@ private:
         std::string pass;
         std::size_t query;
         PassCost cost;
+        std::optional<double> fragments, computes; // expected invocations (Scope::expectFragments...)
+        double fragmentsAtMost = 0.0;
     };
     // One scope's queries: elapsed time, and the shader invocations when the driver counts them.
     struct Queries {

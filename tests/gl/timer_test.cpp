@@ -14,6 +14,7 @@
 #include "gl/gl.h"
 #include "gl/renderer.h"
 #include "gl/resource/buffer.h"
+#include "gl/resource/dispatch.h"
 #include "gl/resource/program.h"
 #include "tests/gl/gl_test_fixture.h"
 
@@ -114,6 +115,55 @@ TEST_F(TimerTest, PassWorkIsCountedInvocationsTimesDeclaredCost)
     EXPECT_TRUE(w.costDeclared);
     EXPECT_EQ(w.flops, 4096.0 * 3 + 1000);
     EXPECT_EQ(w.bytes, 4096.0 * 4 + 100);
+}
+
+// A pass's declared invocations (Scope::expectComputes/expectFragments) add up over the calls and over the
+// scopes of the pass in a frame; a compute dispatch with partial groups declares, and the driver counts, the
+// idle invocations of those groups too (computeInvocations); a viewport declares its pixels and, as the most
+// a driver may count, the 4x4 blocks of the framebuffer it touches and those of its diagonal once more. A
+// pass with one scope that declares nothing declares nothing.
+TEST_F(TimerTest, DeclaredInvocationsAddUpOverScopes)
+{
+    if (!gl::hasGlExtension("GL_ARB_pipeline_statistics_query"))
+        GTEST_SKIP() << "the driver counts no invocations (GL_ARB_pipeline_statistics_query)";
+    gl::Program compute = gl::Program::compute("test.cover", "test/dispatch_cover.comp",
+                                               {{"LOCAL_X", "8"}, {"LOCAL_Y", "8"}, {"LOCAL_Z", "1"}});
+    gl::Buffer marks("test.marks", (1 + 10 * 10) * sizeof(unsigned));
+    marks.clearToZero();
+    marks.bindBase(GL_SHADER_STORAGE_BUFFER, 0);
+    compute.set("size", glm::ivec3(10, 10, 1));
+    EXPECT_EQ(gl::computeInvocations({10, 10, 1}, {8, 8, 1}), 256.0); // 2 x 2 groups of 64
+    gl::PassTimers timers;
+    for (int i = 0; i < 2; ++i) {
+        auto t = timers.scope("cover");
+        t.expectComputes(gl::computeInvocations({10, 10, 1}, {8, 8, 1}));
+        gl::dispatchCompute(compute, {10, 10, 1}, {8, 8, 1});
+        t.expectFragments(5, 3, 2, 1); // x 2..6, y 1..3: blocks 0..1 by 0
+    }
+    {
+        auto t = timers.scope("silent");
+    }
+    {
+        auto t = timers.scope("half");
+        t.expectComputes(0.0);
+    }
+    {
+        auto t = timers.scope("half");
+    }
+    glMemoryBarrier(GL_ALL_BARRIER_BITS);
+    timers.endFrame();
+    const std::vector<gl::PassStat> stats = timers.stats();
+    ASSERT_EQ(stats.size(), 3u);
+    const gl::PassWork& cover = stats[0].work;
+    EXPECT_EQ(cover.computeInvocations, 512.0);
+    ASSERT_TRUE(cover.expectedComputeInvocations.has_value());
+    EXPECT_EQ(*cover.expectedComputeInvocations, 512.0);
+    ASSERT_TRUE(cover.expectedFragmentInvocations.has_value());
+    EXPECT_EQ(*cover.expectedFragmentInvocations, 2 * 15.0);
+    EXPECT_EQ(cover.expectedFragmentInvocationsAtMost, 2 * (2 * 1 + 2 + 1 - 1) * 16.0); // 2 x 1 blocks, a diagonal of 2
+    EXPECT_FALSE(stats[1].work.expectedComputeInvocations.has_value());
+    EXPECT_FALSE(stats[1].work.expectedFragmentInvocations.has_value());
+    EXPECT_FALSE(stats[2].work.expectedComputeInvocations.has_value()) << "one of the pass's scopes declared none";
 }
 
 TEST_F(TimerTest, FragmentPassCountsAtLeastItsPixels)
