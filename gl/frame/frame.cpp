@@ -246,6 +246,7 @@ void Frame::accumulate(PassTimers& timers, bool progressive)
     cost.bytesRead = progressive ? 64 : 32;
     cost.bytesWritten = progressive ? 48 : 16;
     auto t = timers.scope("accumulate", cost);
+    t.expectComputes(computeInvocations({settings_.width, settings_.height, 1}, {8, 8, 1}));
     Program& program = progressive ? accumulateDirectProgram_ : accumulateProgram_;
     (progressive ? direct_ : result()).bind(UNIT_COMPOSITE_DIRECT);
     accumulated_.bindImage(0, GL_READ_WRITE);
@@ -410,6 +411,7 @@ void Frame::renderDirect(PassTimers& timers)
     cost.bytesRead = 8 + 8 + (specular_ ? 8 : 0) + (emission_ ? 8 : 0) + lights.bytesRead;
     cost.bytesWritten = 16;
     auto t = timers.scope("direct", cost);
+    t.expectFragments(settings_.width, settings_.height);
     PassState::fullscreen(directFbo_, settings_.width, settings_.height).apply();
     bindGBuffer();
     bindSceneData();
@@ -437,6 +439,7 @@ void Frame::composite(PassTimers& timers, bool withIndirect)
     cost.bytesRead = 32;
     cost.bytesWritten = 16;
     auto t = timers.scope("composite", cost);
+    t.expectFragments(settings_.width, settings_.height);
     PassState::fullscreen(compositeFbo_, settings_.width, settings_.height).apply();
     direct_.bind(UNIT_COMPOSITE_DIRECT);
     indirect_.bind(UNIT_COMPOSITE_INDIRECT);

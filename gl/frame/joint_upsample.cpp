@@ -18,6 +18,7 @@ void JointUpsample::run(Frame& coarse, Frame& full, PassTimers& timers)
     cost.bytesRead = 8 + 4 * (8 + 16);
     cost.bytesWritten = 16;
     auto t = timers.scope("joint-upsample", cost);
+    t.expectFragments(full.width(), full.height());
     fbo_.attach(GL_COLOR_ATTACHMENT0, full.indirect());
     PassState::fullscreen(fbo_, full.width(), full.height()).apply();
     coarse.indirect().bind(UNIT_UPSAMPLE_COARSE_INDIRECT);

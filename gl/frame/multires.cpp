@@ -8,6 +8,7 @@
 #include "gl/frame/bindings.h"
 #include "gl/gl.h"
 #include "gl/probe/machine_probe.h"
+#include "gl/resource/dispatch.h"
 #include "gl/resource/pass_state.h"
 
 namespace bounce::gl {
@@ -154,6 +155,7 @@ void MultiresPyramid::build(Frame& frame, PassTimers& timers)
     cost.bytesRead = 4 * 44;
     cost.bytesWritten = 16 + 4 * 8 + 8;
     auto t = timers.scope("minmax-mipmap", cost);
+    t.expectComputes(0.0);
     if (levels_ == 0) return; // a 1x1 image, or coarsestLevel 0: the pixels are the only level
     frame.bindGBuffer();
     bind();
@@ -169,6 +171,7 @@ void MultiresPyramid::build(Frame& frame, PassTimers& timers)
         Program& program = l == 1 ? reduceFromGBuffer_ : reduce_;
         program.set("level", l);
         program.use();
+        t.expectComputes(computeInvocations({rects_[l].z, rects_[l].w, 1}, {8, 8, 1}));
         glDispatchCompute(GLuint(ceilDiv(rects_[l].z, 8)), GLuint(ceilDiv(rects_[l].w, 8)), 1);
         // Level l is read (texelFetch) by the next level and by every pass of the technique after it.
         glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
@@ -186,6 +189,10 @@ void MultiresPyramid::upsample(Frame& frame, const Texture& illumination, PassTi
     cost.bytesRead = 8 + 2 * 16 + 4 * 16 + 8;
     cost.bytesWritten = 16;
     auto t = timers.scope("upsample", cost);
+    if (upsampleAsFragments_)
+        t.expectFragments(width_, height_);
+    else
+        t.expectComputes(computeInvocations({width_, height_, 1}, {8, 8, 1}));
     frame.bindGBuffer();
     bind();
     illumination.bind(UNIT_MULTIRES_ILLUMINATION);

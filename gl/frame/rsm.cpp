@@ -9,6 +9,7 @@
 #include "gl/frame/bindings.h"
 #include "gl/frame/light_views.h"
 #include "gl/gl.h"
+#include "gl/resource/dispatch.h"
 #include "gl/resource/pass_state.h"
 
 namespace bounce::gl {
@@ -173,6 +174,10 @@ void RsmPass::render(Frame& frame, PassTimers& timers)
         cost.bytesRead = 4 * (3 * 16 + 3 * 8);
         cost.bytesWritten = 3 * 16 + 3 * 8;
         auto t = timers.scope("rsm-mipmap", cost);
+        for (int level = 0; level < settings_.levels; ++level) { // reduce()'s dispatches
+            const int dst = settings_.size >> (level + 1);
+            if (dst > 0) t.expectComputes(computeInvocations({dst, dst, viewCount()}, {8, 8, 1}));
+        }
         reduce();
     }
 }

@@ -114,6 +114,9 @@ int AdaptivePixels::select(Frame& frame, int level, PassTimers& timers)
     PassCost cost;
     cost.flops = 6;
     auto t = timers.scope("adaptive-select", cost);
+    t.expectComputes(computeInvocations({width_, height_, 1}, {8, 8, 1}));
+    if (level == 1) // logAverageLuminance's two dispatches
+        t.expectComputes(computeInvocations({width_, height_, 1}, {16, 16, 1}) + 16.0 * 16.0);
     if (level == 0) {
         const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
         diffuse_.clear(0, zero);
@@ -208,6 +211,7 @@ void AdaptivePixels::interpolate(Frame& frame, int level, PassTimers& timers)
     PassCost cost;
     cost.flops = 6;
     auto t = timers.scope("interpolate", cost);
+    t.expectComputes(level == 0 ? 0.0 : computeInvocations({width_, height_, 1}, {8, 8, 1}));
     if (level == 0) return;
     const int spacing = kCoarseGrid >> (level - 1);
     const double tested = candidates(width_, height_, 0, spacing);
@@ -243,6 +247,7 @@ void AdaptivePixels::compose(Frame& frame, float newWeight, PassTimers& timers)
     cost.bytesRead = 8 + 8 + 2 * 16 + (progressive ? 16 : 0) + window * (8 + 2 * 16);
     cost.bytesWritten = 2 * 16;
     auto t = timers.scope("compose", cost);
+    t.expectComputes(computeInvocations({width_, height_, 1}, {8, 8, 1}));
     frame.bindGBuffer();
     setCommon(frame, compose_, 1);
     compose_.set("newWeight", newWeight);

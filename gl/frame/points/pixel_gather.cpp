@@ -75,6 +75,7 @@ int PixelGather::select(Frame& frame, PassTimers& timers)
     targets_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_GATHER_TARGETS);
     count_buffer_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_GATHER_COUNT);
     const glm::ivec2 f = pyramid_.flattenedSize();
+    t.expectComputes(computeInvocations({f.x, f.y, 1}, {8, 8, 1}));
     select_.set("flattenedSize", f);
     dispatchCompute(select_, {f.x, f.y, 1}, {8, 8, 1});
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
@@ -106,6 +107,11 @@ void PixelGather::upsample(Frame& frame, PassTimers& timers)
 void dispatchPerTarget(const Program& program, int count, int localSize)
 {
     if (count > 0) dispatchRows(program, std::size_t(count), localSize);
+}
+
+double perTargetInvocations(int count, int localSize)
+{
+    return count > 0 ? rowsInvocations(std::size_t(count), localSize) : 0.0;
 }
 
 } // namespace bounce::gl

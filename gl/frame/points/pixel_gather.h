@@ -51,5 +51,7 @@ private:
 // One work group per target, MICRO_GROUP (localSize) invocations each: a 2D dispatch past the
 // 65535-group limit of one axis (gather_target.glsl: gatherTargetIndex). Nothing when count is 0.
 void dispatchPerTarget(const Program& program, int count, int localSize);
+// The invocations dispatchPerTarget(program, count, localSize) runs (PassTimers::Scope::expectComputes).
+double perTargetInvocations(int count, int localSize);
 
 } // namespace bounce::gl

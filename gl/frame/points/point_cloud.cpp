@@ -165,6 +165,7 @@ void PointCloud::update(Frame& frame, PassTimers& timers)
     cost.bytesRead = 16 + 3 * 4 + 3 * (12 + 12) + 4 + (textured ? 3 * 8 + 4 * 4 : 0);
     cost.bytesWritten = sizeof(GpuSurfel) + (glossy_ ? 4 : 0);
     auto t = timers.scope("point-update", cost);
+    t.expectComputes(count_ == 0 ? 0.0 : computeInvocations({count_, 1, 1}, {kLocal, 1, 1}));
     if (count_ == 0) return;
     frame.bindSceneData();
     bind();
@@ -204,6 +205,7 @@ void PointCloud::reorder(Frame& frame, PassTimers& timers, Recluster where)
 void PointCloud::light(Frame& frame, PassTimers& timers)
 {
     auto t = timers.scope("point-light", pointLightCost(frame, keepDirect_, glossy_));
+    t.expectComputes(count_ == 0 ? 0.0 : computeInvocations({count_, 1, 1}, {kLocal, 1, 1}));
     if (count_ == 0) return;
     const GpuScene& scene = frame.gpuScene();
     // The demo may add or remove a kind of light (setLights): the program follows, as the direct pass's.
@@ -225,6 +227,7 @@ void PointCloud::relight(const Buffer& gathered, int stride, PassTimers& timers)
     cost.bytesRead = 16.0 / std::max(stride, 1) + 4 + 8;
     cost.bytesWritten = 8;
     auto t = timers.scope("relight", cost);
+    t.expectComputes(count_ == 0 || !keepDirect_ ? 0.0 : computeInvocations({count_, 1, 1}, {kLocal, 1, 1}));
     if (count_ == 0 || !keepDirect_) return;
     bind();
     gathered.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_POINT_GATHERED);

@@ -66,6 +66,7 @@ void GrbDisplay::gatherFinalGlossy(const Frame& frame, const GrbAtlas& atlas, co
     cost.bytesWritten = 16;
     cost.uniformWords = 12;
     auto t = timers.scope("final-glossy", cost);
+    t.expectFragments(width_, height_);
     PassState s = PassState::fullscreen(glossyFbo_, width_, height_);
     s.blend = true; // sums over directions, the count in alpha
     s.apply();
@@ -144,6 +145,7 @@ void KBufferStats::count(const KBuffer& kbuffer, const BundleView& view, PassTim
     cost.bytesRead = 4 + (atomic ? 4 : 8 * k) + 4 * 4;
     cost.bytesWritten = 4 * 4;
     auto t = timers.scope("kbuffer-stats", cost);
+    t.expectFragments(kbuffer.size(), kbuffer.size());
     PassState::fullscreen(fbo_, kbuffer.size(), kbuffer.size()).apply();
     kbuffer.bindForRead();
     stats_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_GRB_STATS);

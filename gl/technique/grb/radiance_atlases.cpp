@@ -149,6 +149,7 @@ void RadianceAtlases::seed(const Frame& frame, const GrbAtlas& atlas, PassTimers
     cost.bytesFixed = filled * (2 * 16 + 64 + lights * shadow.bytesRead + 16);
     cost.uniformWordsFixed = filled * lights * (16 + shadow.uniformWords);
     auto t = timers.scope("seed", cost);
+    t.expectFragments(width_, height_); // every atlas texel, filled or not
     PassState::fullscreen(seedFbo_, width_, height_).apply();
     frame.bindSceneData();
     atlas.bind();
@@ -165,6 +166,7 @@ void RadianceAtlases::transfer(const Frame& frame, const GrbAtlas& atlas, const 
                                const BundleView& view, const glm::vec3& next, PassTimers& timers)
 {
     auto t = timers.scope("transfer", transferCost(*this, frame, atlas, kbuffer));
+    t.expectFragments(width_, height_);
     const int receiver = 1 - current_;
     PassState::fullscreen(fbo_[receiver], width_, height_).apply();
     frame.bindSceneData();

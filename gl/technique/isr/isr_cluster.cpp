@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "gl/gl.h"
+#include "gl/resource/dispatch.h"
 #include "gl/technique/isr/bindings.h"
 #include "gl/technique/isr/vpl_sample.h"
 
@@ -37,6 +38,11 @@ int IsrCluster::cluster(const RsmPass& rsm, Buffer& cache, const IsrClusterSetti
         cost.bytesRead = 8 * 16;
         cost.bytesWritten = 8;
         auto t = timers.scope("vpl-cluster", cost);
+        // Two passes over the finest patches of every view, and one group of the scan between them.
+        const int finest = rsm.size() >> s.minLevel;
+        t.expectComputes(rsm.viewCount() > 0
+                             ? 2.0 * computeInvocations({finest, finest, rsm.viewCount()}, {8, 8, 1}) + 1024.0
+                             : 0.0);
         counter_.clearToZero();
         if (rsm.viewCount() > 0) {
             rsm.bind();
@@ -49,7 +55,6 @@ int IsrCluster::cluster(const RsmPass& rsm, Buffer& cache, const IsrClusterSetti
             program_.set("depthThreshold", s.depthThreshold);
             program_.set("normalThreshold", s.normalThreshold);
             program_.set("capacity", unsigned(cap));
-            const int finest = rsm.size() >> s.minLevel;
             // Mark, scan, write (isr_cluster.comp): VPLs in patch order, the same cache in every run.
             for (int pass = 0; pass < 2; ++pass) {
                 if (pass == 1) {

@@ -107,6 +107,12 @@ void MultiresGather::markValidFragments(Frame& frame, PassTimers& timers)
     cost.fetchesFixed = validCoarse * 8 * 5;
     cost.flopsFixed = validCoarse * 8 * 20;
     auto t = timers.scope("stencil-setup", cost);
+    // A triangle over each level's viewport (drawLevels), the shader at every fragment of it: the stencil
+    // marks the fragments the shader keeps, after it ran.
+    for (int level = 0; level <= pyramid_.coarsestLevel(); ++level) {
+        const glm::ivec4 v = pyramid_.levelViewport(level);
+        t.expectFragments(v.z, v.w, v.x, v.y);
+    }
     PassState state = PassState::fullscreen(fbo_, illumination_.width(), illumination_.height());
     state.stencil.test = true;
     state.stencil.ref = 1;
@@ -149,6 +155,12 @@ void MultiresGather::gather(Frame& frame, Program& program, PassTimers& timers, 
         perInvocation.bytesFixed = flattened * 16;
     }
     auto t = timers.scope("gather", perInvocation);
+    // The list: a dispatch over the flattened buffer, then one of the longest list per draw. The quad
+    // declares nothing: whether the stencil test masks a fragment's shader before it runs (and is counted)
+    // is the driver's choice, between the valid fragments and the whole buffer.
+    if (!asFragments_)
+        t.expectComputes(computeInvocations({illumination_.width(), illumination_.height(), 1}, {8, 8, 1}) +
+                         draws * rowsInvocations(listGroups(invocationsPerFragment), 64));
     const double valid = asFragments_ ? gatherAsQuad(frame, program, draws, setupDraw)
                                       : gatherAsList(frame, program, draws, setupDraw, invocationsPerFragment);
     PassCost work = kernelWork(valid * draws, perFragment);
@@ -208,8 +220,7 @@ double MultiresGather::gatherAsList(Frame& frame, Program& program, int draws,
     illumination_.bindImage(0, GL_READ_WRITE);
     // Each dispatch covers the longest list there can be; invocations past its count return at once. In
     // rows of groups (valid_list.glsl: listInvocation).
-    const std::size_t groups =
-        (std::size_t(width) * std::size_t(height) * std::size_t(std::max(invocationsPerFragment, 1)) + 63) / 64;
+    const std::size_t groups = listGroups(invocationsPerFragment);
     for (int i = 0; i < draws; ++i) {
         if (setupDraw) setupDraw(program, i);
         dispatchRows(program, groups, 64);
@@ -219,6 +230,12 @@ double MultiresGather::gatherAsList(Frame& frame, Program& program, int draws,
     double valid = 0.0;                            // the list holds as many as the stencil pass counted
     for (int n : fragmentsPerLevel()) valid += n;
     return valid;
+}
+
+std::size_t MultiresGather::listGroups(int invocationsPerFragment) const
+{
+    const std::size_t texels = std::size_t(illumination_.width()) * std::size_t(illumination_.height());
+    return (texels * std::size_t(std::max(invocationsPerFragment, 1)) + 63) / 64;
 }
 
 int MultiresGather::loopBudget()
@@ -302,6 +319,7 @@ int MultiresGather::refine(Frame& frame, PassTimers& timers)
         workLists_[1 - current].bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_ISR_WORK_OUT);
         refine_.set("level", level);
         refine_.set("inCount", in);
+        t.expectComputes(computeInvocations({count, 1, 1}, {64, 1, 1}));
         glDispatchCompute(GLuint((count + 63) / 64), 1, 1);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
         unsigned next = 0;

@@ -134,6 +134,8 @@ private:
     double gatherAsQuad(Frame& frame, Program& program, int draws, const std::function<void(Program&, int)>& setupDraw);
     double gatherAsList(Frame& frame, Program& program, int draws, const std::function<void(Program&, int)>& setupDraw,
                         int invocationsPerFragment);
+    // The groups of 64 of each list dispatch: the longest list there can be, every texel valid.
+    std::size_t listGroups(int invocationsPerFragment) const;
     bool asFragments_;
     Program stencilSetup_, cacheGather_; // cacheGather_: the fragment or the compute form
     // [NW09]'s path, allocated on the first refine(): work lists, counters, the splat vertices.

@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "gl/gl.h"
+#include "gl/resource/dispatch.h"
 #include "gl/technique/isr/bindings.h"
 #include "gl/technique/isr/vpl_sample.h"
 
@@ -70,6 +71,8 @@ void VplGather::gather(Frame& frame, const Buffer& vpls, int count, PassTimers& 
     cost.bytesRead = 3 * 16 + (blocks > 1 ? 16 : 0);
     cost.bytesWritten = 16;
     auto t = timers.scope(pass, cost);
+    // One dispatch over the pixels per block of VPLs.
+    t.expectComputes(count <= 0 ? 0.0 : blocks * computeInvocations({frame.width(), frame.height(), 1}, {8, 8, 1}));
     if (count <= 0) return; // the frame's indirect texture stays cleared
     frame.bindGBuffer();
     frame.indirect().bindImage(0, GL_READ_WRITE, 0, GL_RGBA32F);

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "gl/gl.h"
+#include "gl/resource/dispatch.h"
 #include "gl/technique/isr/bindings.h"
 
 namespace bounce::gl {
@@ -27,6 +28,7 @@ int VplSampler::sample(const RsmPass& rsm, Buffer& cache, int side, PassTimers& 
     cost.bytesWritten = double(kVplBytes);
     auto t = timers.scope("vpl-sample", cost);
     const int count = side * side * rsm.viewCount();
+    t.expectComputes(count <= 0 ? 0.0 : computeInvocations({count, 1, 1}, {64, 1, 1}));
     if (count <= 0) return 0;
     if (cache.bytes() < std::size_t(count) * kVplBytes) throw std::logic_error("VPL cache too small");
     rsm.bind();

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "gl/gl.h"
+#include "gl/resource/dispatch.h"
 #include "gl/technique/isr/bindings.h"
 
 namespace bounce::gl {
@@ -63,6 +64,11 @@ void VplTree::build(const RsmPass& rsm, PassTimers& timers)
     }
     subtreeNodes_ = offset;
     roots_ = rsm.viewCount() * grid_ * grid_;
+    // The leaves over every RSM texel, then one thread per node of each coarser level.
+    double expected = roots_ == 0 ? 0.0 : computeInvocations({size, size, rsm.viewCount()}, {8, 8, 1});
+    for (int m = 1; m <= depth_ && roots_ > 0; ++m)
+        expected += computeInvocations({(1 << (2 * (depth_ - m))) * roots_, 1, 1}, {64, 1, 1});
+    t.expectComputes(expected);
     if (roots_ == 0) return;
     const std::size_t bytes = std::size_t(nodeCount()) * kNodeBytes;
     if (!nodes_ || nodes_.bytes() != bytes) {

@@ -179,6 +179,7 @@ void MicroGather::gatherPixels(Frame& frame, PixelGather& targets, const PointCl
         auto t = timers.scope("gather", gatherCost(invocationCost(false, cpuTables_.alphas.size()),
                                                    sampleWork(frame, settings_, stats_, hierarchy, caster, false),
                                                    targets.count()));
+        t.expectComputes(perTargetInvocations(targets.count(), kGroup));
         bindCommon(frame, cloud, hierarchy, caster);
         targets.bindForGather(frame, pixels_);
         setUniforms(pixels_, frame, cloud, hierarchy);
@@ -198,6 +199,7 @@ void MicroGather::gatherPoints(Frame& frame, const PointCloud& cloud, const Poin
     auto t =
         timers.scope("bounce-gather", gatherCost(invocationCost(true, 0),
                                                  sampleWork(frame, settings_, stats_, hierarchy, caster, true), count));
+    t.expectComputes(perTargetInvocations(count, kGroup));
     bindCommon(frame, cloud, hierarchy, caster);
     gathered.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_POINT_GATHERED);
     setUniforms(points_, frame, cloud, hierarchy);

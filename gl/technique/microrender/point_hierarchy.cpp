@@ -46,6 +46,10 @@ void PointHierarchy::build(const PointCloud& cloud, PassTimers& timers)
     cost.bytesFixed = leaves * (32 + 8 + (glossy_ ? 16 : 0)) + interior * 2.0 * double(nodeBytes());
     cost.flopsFixed = leaves * 4 + interior * (glossy_ ? 245 : 125);
     auto t = timers.scope("hierarchy", cost);
+    // The leaves, then one dispatch per level of the tree above them, level l's 2^l nodes.
+    t.expectComputes(computeInvocations({leaves_, 1, 1}, {64, 1, 1}));
+    for (int level = levels_ - 1; level >= 0; --level)
+        t.expectComputes(computeInvocations({1 << level, 1, 1}, {64, 1, 1}));
     cloud.bind();
     bind();
     leavesProgram_.set("leafCount", unsigned(leaves_));

@@ -108,6 +108,7 @@ void FinalGather::gather(const Frame& frame, const RayCaster& caster, const Phot
     cost.flops = 70;
     cost.bytesRead = sizeof(GpuCluster);
     auto t = timers.scope("gather", cost);
+    t.expectComputes(rowsInvocations(clusters.count(), kGatherGroup)); // a group per cluster
     const std::uint32_t zero[2] = {0, 0};
     counters.update((kCounterFirst + 1) * 4, sizeof zero, zero);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
@@ -170,6 +171,7 @@ void GlossyGather::run(Frame& frame, const RayCaster& caster, const PhotonTree& 
     cost.bytesRead = 8 + 2 * 8 + 16;
     cost.bytesWritten = 16;
     auto t = timers.scope("glossy", cost); // timed in every scene, as every declared pass: empty without a lobe
+    t.expectComputes(rays_ == 0 ? 0.0 : rays_ * computeInvocations({frame.width(), frame.height(), 1}, {8, 8, 1}));
     if (rays_ == 0) return;
     FinalGatherSettings s;
     s.cutGrid = cutGrid_;
@@ -212,6 +214,7 @@ void CausticMap::run(Frame& frame, const PhotonTree& tree, const Buffer& photons
     cost.bytesRead = 8 + 2 * 8 + 16 + 2 * 32 * double(std::max(tree.depth(), 1));
     cost.bytesWritten = 16;
     auto t = timers.scope("caustic", cost); // timed in every scene: empty without a near-specular lobe
+    t.expectComputes(active_ ? computeInvocations({frame.width(), frame.height(), 1}, {8, 8, 1}) : 0.0);
     if (!active_) return;
     frame.bindGBuffer();
     tree.bind(program_);
@@ -249,6 +252,10 @@ void Interpolation::run(Frame& frame, const ShadingClusters& clusters, float max
     cost.bytesRead = 8 + 4 + sizeof(GpuCluster) + 2 * 8;
     cost.bytesWritten = 16;
     auto t = timers.scope("interpolate", cost);
+    if (asCompute_)
+        t.expectComputes(computeInvocations({frame.width(), frame.height(), 1}, {8, 8, 1}));
+    else
+        t.expectFragments(frame.width(), frame.height());
     if (!ownSampleOnly) {
         // The walk of the tree of samples per pixel (a bound: every pixel has geometry), taken as two nodes
         // per level, a box test each above the leaves and a sample's weight at them (an estimate: the walk's

@@ -146,6 +146,7 @@ void ProjectionGather::gatherPixels(Frame& frame, AdaptivePixels& pixels, int co
     followLightKinds(frame);
     // gather.comp per invocation (the target, its frame) and per gathered pixel (pixelWork).
     auto t = timers.scope("gather", withHoleRays(gatherCost(settings_, cloud, false, count), frame, count));
+    t.expectComputes(perTargetInvocations(count, kGroup));
     pixels.bindForGather(frame, pixels_);
     setUniforms(pixels_, frame, cloud, seed);
     dispatchPerTarget(pixels_, count, kGroup);
@@ -159,6 +160,7 @@ void ProjectionGather::gatherPoints(Frame& frame, const PointCloud& cloud, int s
     followLightKinds(frame);
     // gather.comp per invocation (the point, its frame) and per gathered point (pixelWork).
     auto t = timers.scope("bounce-gather", withHoleRays(gatherCost(settings_, cloud, true, count), frame, count));
+    t.expectComputes(perTargetInvocations(count, kGroup));
     setUniforms(points_, frame, cloud, seed);
     gathered.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_POINT_GATHERED);
     points_.set("gatherStride", unsigned(stride));
