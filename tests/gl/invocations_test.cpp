@@ -81,7 +81,7 @@ void checkFrame(const std::string& technique, int frame, gl::Renderer& r, Tally&
 
 // Every technique renders cornell-spot for three frames (the first builds what later frames reuse; the
 // later ones are still frames, which accumulate), each frame checked on its own; `rsm` also runs with its
-// indirect light at half resolution (the joint upsample).
+// indirect light at half resolution (the joint upsample), `hisr` with its gather as compute.
 TEST_F(InvocationsTest, EveryDeclaredPassRunsTheInvocationsItDeclares)
 {
     if (!gl::hasGlExtension("GL_ARB_pipeline_statistics_query"))
@@ -98,6 +98,16 @@ TEST_F(InvocationsTest, EveryDeclaredPassRunsTheInvocationsItDeclares)
             r.renderFrame(true);
             checkFrame(info.name, frame, r, tally);
         }
+    }
+    // The multires gather in its other form, a compute dispatch over the list of valid fragments (the
+    // default on llvmpipe is the stencilled quad, which declares nothing).
+    {
+        const gl::TechniqueInfo& info = gl::findTechnique("hisr");
+        gl::ParamValues values = quickValues(info);
+        values.set(info.params, "gather", "compute");
+        gl::Renderer r(scene, info.name, frameValues, values, kWidth, kHeight);
+        r.renderFrame(true);
+        checkFrame("hisr(gather=compute)", 0, r, tally);
     }
     std::string checked, undeclared;
     for (const std::string& n : tally.checked) checked += " " + n;
