@@ -37,7 +37,10 @@ struct Case {
     std::string areaShadows; // frame parameter shadow.area
 };
 
-float luminance(const glm::vec4& c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
+float luminance(const glm::vec4& c)
+{
+    return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z;
+}
 
 // Renders `frames` frames (the first moving, the rest still) and compares, pixel by pixel, the frame's direct
 // texture, the estimator at the G-buffer's points and at the rays' hits.
