@@ -2,11 +2,13 @@
 
 #include "gl/debug.h"
 #include "gl/gl.h"
+#include "gl/resource/storage_bindings.h"
 
 namespace bounce::gl {
 
 void BufferDeleter::operator()(unsigned id) const
 {
+    forgetStorageBuffer(id);
     glDeleteBuffers(1, &id);
 }
 
@@ -42,7 +44,10 @@ void Buffer::clearToZero()
 
 void Buffer::bindBase(unsigned target, unsigned index) const
 {
-    glBindBufferBase(target, index, id());
+    if (target == GL_SHADER_STORAGE_BUFFER)
+        bindStorage(index, id()); // a storage name, bound by the programs that read it (storage_bindings.h)
+    else
+        glBindBufferBase(target, index, id());
 }
 
 } // namespace bounce::gl

@@ -55,7 +55,9 @@ public:
         return v;
     }
     void clearToZero();
-    void bindBase(unsigned target, unsigned index) const; // GL_SHADER_STORAGE_BUFFER, GL_UNIFORM_BUFFER...
+    // glBindBufferBase(target, index) (GL_UNIFORM_BUFFER...); for GL_SHADER_STORAGE_BUFFER `index` is a storage
+    // name (SSBO_*), which each program that reads it binds to its own point (gl/resource/storage_bindings.h).
+    void bindBase(unsigned target, unsigned index) const;
 
 private:
     Handle<BufferDeleter> handle_;

@@ -111,10 +111,11 @@ ShaderSourceObserver& sourceObserver()
     return observer;
 }
 
-unsigned compileStage(unsigned stage, const std::string& rel, const std::vector<Define>& defines)
+unsigned compileStage(unsigned stage, const std::string& rel, const std::vector<Define>& defines,
+                      StorageNames& storageNames)
 {
     std::vector<std::string> files;
-    const std::string src = preprocess(rel, withDriverDefines(defines), files);
+    const std::string src = takeStorageNames(preprocess(rel, withDriverDefines(defines), files), rel, storageNames);
     if (sourceObserver()) sourceObserver()(rel, stage, src);
     const unsigned s = glCreateShader(stage);
     const char* p = src.c_str();
@@ -172,24 +173,35 @@ std::string preprocessShader(const std::string& rel, const std::vector<Define>& 
 Program Program::graphics(const std::string& label, const std::string& vs, const std::string& fs,
                           const std::vector<Define>& defines, const std::string& gs)
 {
-    std::vector<unsigned> stages{compileStage(GL_VERTEX_SHADER, vs, defines)};
-    if (!gs.empty()) stages.push_back(compileStage(GL_GEOMETRY_SHADER, gs, defines));
-    stages.push_back(compileStage(GL_FRAGMENT_SHADER, fs, defines));
+    StorageNames names;
+    std::vector<unsigned> stages{compileStage(GL_VERTEX_SHADER, vs, defines, names)};
+    if (!gs.empty()) stages.push_back(compileStage(GL_GEOMETRY_SHADER, gs, defines, names));
+    stages.push_back(compileStage(GL_FRAGMENT_SHADER, fs, defines, names));
     Program p;
     p.handle_ = Handle<ProgramDeleter>(link(label, stages));
+    p.storage_ = assignStorageSlots(p.id(), label, names);
     return p;
 }
 
 Program Program::compute(const std::string& label, const std::string& path, const std::vector<Define>& defines)
 {
+    StorageNames names;
     Program p;
-    p.handle_ = Handle<ProgramDeleter>(link(label, {compileStage(GL_COMPUTE_SHADER, path, defines)}));
+    p.handle_ = Handle<ProgramDeleter>(link(label, {compileStage(GL_COMPUTE_SHADER, path, defines, names)}));
+    p.storage_ = assignStorageSlots(p.id(), label, names);
     return p;
 }
 
 void Program::use() const
 {
     glUseProgram(id());
+    useStorage(storage_);
+}
+
+const StorageLayout& Program::storage() const
+{
+    static const StorageLayout none;
+    return storage_ ? *storage_ : none;
 }
 
 int Program::location(const std::string& name)

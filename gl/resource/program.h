@@ -5,6 +5,7 @@
 
 #include <functional>
 #include <map>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -12,6 +13,7 @@
 #include <glm/glm.hpp>
 
 #include "gl/resource/handle.h"
+#include "gl/resource/storage_bindings.h"
 
 namespace bounce::gl {
 
@@ -49,7 +51,11 @@ public:
 
     unsigned id() const { return handle_.id(); }
     explicit operator bool() const { return bool(handle_); }
+    // glUseProgram, and the buffers bound under the program's storage names bound to its binding points
+    // (gl/resource/storage_bindings.h).
     void use() const;
+    // The program's active storage blocks: their names and binding points.
+    const StorageLayout& storage() const;
 
     // Setting a uniform the program does not have (optimised away) is silently ignored.
     void set(const std::string& name, int v);
@@ -66,6 +72,7 @@ public:
 private:
     int location(const std::string& name);
     Handle<ProgramDeleter> handle_;
+    std::shared_ptr<const StorageLayout> storage_;
     std::map<std::string, int> locations_;
 };
 

@@ -15,7 +15,10 @@
 //     reflection of the furnace's light is rho^2 L_e), all bounces at most L_e rho / (1 - rho); and where a
 //     technique knows the furnace's answer exactly (furnaceFloor), it stays above it too, in the first
 //     (moving) frame: a still frame's direct light at a ray's hit is the frame's one-sample estimate of the
-//     emitters (common/lighting.glsl, AREA_SAMPLED), exact only in the still frames' mean.
+//     emitters (common/lighting.glsl, AREA_SAMPLED), exact only in the still frames' mean;
+//   - every program it links (the frame's among them) uses at most kMaxStorageBlocksPerProgram storage
+//     blocks, three below llvmpipe's 16 (the four programs above it today no more than they use now),
+//     each under its own name and at its own binding point; the largest count is printed.
 // A second case per technique (UniformsMatchARebuild) changes each parameter declared
 // ParamUpdate::Uniform on a running technique and checks that the image equals that of the technique
 // made anew with the same value: a uniform the technique forgets to apply fails it.
@@ -37,6 +40,7 @@
 #include "gl/gl.h"
 #include "gl/renderer.h"
 #include "gl/resource/program.h"
+#include "gl/resource/storage_bindings.h"
 #include "gl/technique/technique.h"
 #include "tests/gl/closed_box.h"
 #include "tests/gl/gl_test_fixture.h"
@@ -192,10 +196,43 @@ private:
     std::map<std::string, std::pair<std::string, unsigned>> sources_;
 };
 
+// Every program linked since the case began (gl/resource/storage_bindings.h): at most
+// kMaxStorageBlocksPerProgram storage blocks (overMargin: no more than today), no two under one name or at one
+// binding point.
+void checkStorageBlocks(const std::string& technique)
+{
+    // Programs above the margin today (issue 57), each held to its count until it is brought under: the
+    // gathers and the photon tracer read the scene (seven blocks) and its BVH (two) besides their own data.
+    const std::map<std::string, int> overMargin{
+        {"photon.gather", 16}, {"pointproj.gather", 16}, {"photon.trace", 14}, {"microrender.gather", 14}};
+    const gl::StorageLayout* largest = nullptr;
+    std::set<std::string> programs;
+    for (const auto& layout : gl::linkedStorageLayouts()) {
+        programs.insert(layout->label);
+        const auto known = overMargin.find(layout->label);
+        const int most = known != overMargin.end() ? known->second : gl::kMaxStorageBlocksPerProgram;
+        EXPECT_LE(int(layout->blocks.size()), most)
+            << "program '" << layout->label << "' uses " << layout->blocks.size() << " storage blocks";
+        std::set<unsigned> names, slots;
+        for (const gl::StorageBlock& b : layout->blocks) {
+            EXPECT_TRUE(names.insert(b.name).second) << layout->label << ": two blocks under name " << b.name;
+            EXPECT_TRUE(slots.insert(b.slot).second) << layout->label << ": two blocks at point " << b.slot;
+        }
+        if (!largest || layout->blocks.size() > largest->blocks.size()) largest = layout.get();
+    }
+    ASSERT_NE(largest, nullptr) << "no program linked";
+    std::string blocks;
+    for (const gl::StorageBlock& b : largest->blocks) blocks += " " + b.block;
+    std::printf("[ storage  ] %s: %zu programs; the most storage blocks, %zu of at most %d, in '%s':%s\n",
+                technique.c_str(), programs.size(), largest->blocks.size(), gl::kMaxStorageBlocksPerProgram,
+                largest->label.c_str(), blocks.c_str());
+}
+
 TEST_P(Conformance, Technique)
 {
     const gl::TechniqueInfo& info = gl::findTechnique(GetParam());
     ReferenceCompiler reference;
+    gl::resetLinkedStorageLayouts();
     std::set<std::string> declared, required;
     for (const gl::PassDecl& p : gl::framePasses()) {
         declared.insert(p.name);
@@ -280,6 +317,7 @@ TEST_P(Conformance, Technique)
         }
     }
     reference.check(info.name);
+    checkStorageBlocks(info.name);
 }
 
 TEST_P(Conformance, UniformsMatchARebuild)
