@@ -147,7 +147,6 @@ void RadixSort::sort(const Buffer& keys, const Buffer& values, const Buffer& key
         dispatchCompute(count_, {int(runs), 1, 1}, {64, 1, 1});
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
         scan_.run(counts_, runs * 16u, counters, scratchSlot);
-        counts_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_SORT_COUNTS); // the scan's block sums had its slot
         dispatchCompute(scatter_, {int(runs), 1, 1}, {64, 1, 1});
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     }

@@ -24,7 +24,7 @@ public:
 
     GpuScan();
     // data[0..count) := exclusive prefix sums; counters (a uint array) [totalSlot] := the total. Leaves
-    // the SSBO_SCAN_SUMS slot (the sort's counts slot) bound to its own scratch.
+    // data or its scratch bound as SSBO_SCAN, counters as SSBO_SCAN_TOTALS, its scratch as SSBO_SCAN_SUMS.
     void run(const Buffer& data, std::uint32_t count, const Buffer& counters, std::uint32_t totalSlot);
     // What run() does for `count` words, as per-scope work.
     static PassCost work(std::uint32_t count);

@@ -4,9 +4,13 @@
 // buffer and the shader that reads it cannot disagree. Only #define lines and comments: the file is
 // valid GLSL and valid C++.
 //
-// Shader storage buffers (glBindBufferBase(GL_SHADER_STORAGE_BUFFER, slot)).
-// Slots not named here (7-9, 11-17, 22 and up) belong to the technique that binds them; a family names
-// its own in glsl/technique/<family>/bindings.glsl with the same pattern.
+// Shader storage names (Buffer::bindBase(GL_SHADER_STORAGE_BUFFER, name)): a name says which buffer a
+// storage block reads, it is not a GL binding point. Each program gives its own active blocks the points
+// 0..k-1 (gl/resource/storage_bindings.h), so a name costs no driver's limit and none is shared: every SSBO_*
+// of every bindings.glsl is a number of its own (tests/gl/bindings_test.cpp). The frame's are 0-29,
+// glsl/frame/sort_bindings.glsl's 30-39, glsl/frame/points/bindings.glsl's 40-59, glsl/probe/bindings.glsl's
+// 60-69; a family names its own in glsl/technique/<family>/bindings.glsl, in a free range of twenty from 100
+// up.
 #ifndef BOUNCE_BINDINGS_GLSL
 #define BOUNCE_BINDINGS_GLSL
 

@@ -7,8 +7,11 @@
 
 layout(local_size_x = 64) in;
 
-layout(std430, binding = 0) writeonly buffer Triangles { vec4 triangleOut[]; }; // 6 vec4 per triangle
-layout(std430, binding = 1) writeonly buffer Emitters { vec4 emitterOut[]; };   // 1 + count
+// Storage names of the test's own (tests/gl/gpu_scene_test.cpp binds them), apart from the scene's.
+#define SSBO_TEST_TRIANGLES 1010
+#define SSBO_TEST_EMITTERS 1011
+layout(std430, binding = SSBO_TEST_TRIANGLES) writeonly buffer Triangles { vec4 triangleOut[]; }; // 6 vec4 per triangle
+layout(std430, binding = SSBO_TEST_EMITTERS) writeonly buffer Emitters { vec4 emitterOut[]; };    // 1 + count
 uniform vec2 barycentrics;
 
 void main()

@@ -1,6 +1,9 @@
 // Binding points are named once (glsl/common/bindings.glsl, glsl/technique/<family>/bindings.glsl) and
 // used by name on both sides: these tests read the sources and fail on a literal slot number in a
-// shader's block or sampler declaration or in a C++ bind call, and on two names sharing a slot.
+// shader's block or sampler declaration or in a C++ bind call, on two storage names of one number anywhere,
+// and on two texture units or uniform blocks sharing a slot where they are bound together. Storage names are
+// not slots: each program gives its blocks points of its own (gl/resource/storage_bindings.h), and the
+// conformance test checks every program's (no two blocks under one name or at one point, at most 13).
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
@@ -18,6 +21,7 @@
 #include "gl/technique/isr/bindings.h"
 #include "gl/technique/microrender/bindings.h"
 #include "gl/technique/photon/bindings.h"
+#include "glsl/frame/sort_bindings.glsl"
 
 namespace fs = std::filesystem;
 
@@ -92,7 +96,35 @@ TEST(Bindings, CppBindsByName)
                               << ::testing::PrintToString(hits);
 }
 
-TEST(Bindings, NoTwoNamesShareASlot)
+// Every SSBO_* of every bindings.glsl is a number of its own and no other name's alias: a name is what C++
+// binds a buffer under, so two meanings under one number would read each other's buffers.
+TEST(Bindings, EveryStorageNameIsItsOwn)
+{
+    std::map<int, std::string> owner; // number -> name (file)
+    const std::regex alias(R"(^#define (SSBO_\w+) +([A-Za-z_]\w*))");
+    int files = 0;
+    for (const auto& e : fs::recursive_directory_iterator(root() / "glsl")) {
+        if (e.path().filename() != "bindings.glsl" && e.path().filename() != "sort_bindings.glsl") continue;
+        ++files;
+        const std::string where = fs::relative(e.path(), root()).string();
+        for (const auto& [name, value] : table(e.path())) {
+            if (name.rfind("SSBO_", 0) != 0) continue;
+            EXPECT_EQ(owner.count(value), 0u)
+                << name << " (" << where << ") and " << owner[value] << " are both " << value;
+            owner[value] = name + " (" + where + ")";
+        }
+        std::istringstream in(read(e.path()));
+        std::string line;
+        while (std::getline(in, line))
+            if (std::regex_search(line, alias))
+                ADD_FAILURE() << where << ": a storage name defined as another: " << line;
+    }
+    EXPECT_GE(files, 8);
+    EXPECT_NE(SSBO_SCAN_SUMS, SSBO_SORT_COUNTS); // the C++ side is the same files
+}
+
+// Texture units and uniform blocks are still slots: those bound in one run must not share one.
+TEST(Bindings, NoTwoUnitsShareASlot)
 {
     const auto frame = table(root() / "glsl/common/bindings.glsl");
     ASSERT_FALSE(frame.empty());
@@ -109,6 +141,7 @@ TEST(Bindings, NoTwoNamesShareASlot)
             for (const auto& [name, value] : *t) {
                 if (std::find(passLocal.begin(), passLocal.end(), name) != passLocal.end()) continue;
                 const std::string kind = name.substr(0, name.find('_'));
+                if (name.rfind("SSBO_", 0) == 0) continue; // storage names: EveryStorageNameIsItsOwn
                 for (int i = 0; i < span(name); ++i) {
                     const std::string key = kind + " " + std::to_string(value + i);
                     EXPECT_EQ(used.count(key), 0u) << name << " and " << used[key] << " share " << key;
@@ -133,11 +166,6 @@ TEST(Bindings, NoTwoNamesShareASlot)
         else
             checkTogether({&frame, &own});
     }
-    // The scan and the sort borrow a family's slots for the length of a call (sort_bindings.glsl), never
-    // the frame's.
-    const auto sort = table(root() / "glsl/frame/sort_bindings.glsl");
-    ASSERT_FALSE(sort.empty());
-    checkTogether({&frame, &sort});
     // The C++ side is the same file: spot-check that the macros are what the table says.
     EXPECT_EQ(SSBO_BVH_NODES, frame.at("SSBO_BVH_NODES"));
     EXPECT_EQ(UNIT_ISR_VPL_TREE_TEXELS,

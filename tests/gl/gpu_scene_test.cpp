@@ -26,8 +26,10 @@ protected:
         gl::Buffer emitters("test.emitters", (1 + n) * sizeof(glm::vec4));
         gl::Program prog = gl::Program::compute("test.sceneGeometry", "test/scene_geometry.comp");
         gpu.bindGeometry();
-        triangles.bindBase(GL_SHADER_STORAGE_BUFFER, 0);
-        emitters.bindBase(GL_SHADER_STORAGE_BUFFER, 1);
+        // test/scene_geometry.comp's storage names, SSBO_TEST_TRIANGLES and SSBO_TEST_EMITTERS: under 0 and 1
+        // they would be the scene's materials and lights, which the shader declares too.
+        triangles.bindBase(GL_SHADER_STORAGE_BUFFER, 1010);
+        emitters.bindBase(GL_SHADER_STORAGE_BUFFER, 1011);
         prog.set("barycentrics", b);
         prog.use();
         glDispatchCompute(GLuint((n + 63) / 64), 1, 1);
