@@ -40,9 +40,9 @@ struct GpuCluster {
 static_assert(sizeof(GpuCluster) == 96);
 struct GpuPointNode {
     glm::vec4 lo, hi;
-    glm::uvec4 normals; // the box of the points' normals, half floats (shading_clusters.glsl)
+    glm::uvec4 normals; // the box of the points' normals, half floats (cluster_point_tree.glsl)
 };
-// std430 mirror of QuadNode in shading_clusters.glsl: a node of the seeding quadtree.
+// std430 mirror of QuadNode in cluster_quadtree.glsl: a node of the seeding quadtree.
 struct GpuQuadNode {
     glm::vec4 position; // xyz summed member positions, w: members
     glm::vec4 normal;   // xyz summed member normals, w: eps_q

@@ -19,10 +19,10 @@
 // the gather after the cut's scans; and its fill's cursors.
 #define SSBO_CUT_GRID 169
 #define SSBO_CUT_GRID_CURSORS 170
-#define SSBO_CLUSTER_QUADTREE 171 // shading_clusters.glsl: the screen-space quadtree's nodes
+#define SSBO_CLUSTER_QUADTREE 171 // cluster_quadtree.glsl: the screen-space quadtree's nodes
 #define SSBO_CLUSTER_CENTRES 172  // shading_clusters.glsl: centres, members and samples of the clusters
 #define SSBO_CLUSTER_OF_PIXEL 173 // shading_clusters.glsl: each shading point's cluster
-#define SSBO_POINT_TREE 174       // point_tree.glsl: a tree over points (cluster centres, samples)
+#define SSBO_POINT_TREE 174       // cluster_point_tree.glsl: a tree over points (cluster centres, samples)
 #define SSBO_CLUSTER_SEEDS 175    // shading_clusters.glsl: seeds per quadtree node, then seed pixels
 #define UNIT_PHOTON_CELLS 21      // photon_trace.comp: the directional lights' projection-map cells (R32UI texels)
 

@@ -13,7 +13,7 @@
 // result is the walk's, bit for bit; the walk remains for the other pixels, and for a pixel whose survivor
 // has lost all its members (it drops out, and the next survivor is unknown).
 #include "common/gbuffer.glsl"
-#include "technique/photon/shading_clusters.glsl"
+#include "technique/photon/cluster_point_tree.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 

@@ -19,7 +19,7 @@
 #define BOUNCE_PHOTON_INTERPOLATE_GLSL
 
 #include "common/gbuffer.glsl"
-#include "technique/photon/shading_clusters.glsl"
+#include "technique/photon/cluster_point_tree.glsl"
 
 layout(std430, binding = SSBO_CLUSTER_OF_PIXEL) readonly buffer ClusterOfPixel { uint clusterOfPixel[]; };
 

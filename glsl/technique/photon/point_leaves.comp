@@ -1,6 +1,6 @@
 #version 450 core
-// The point tree's leaves, one point each, in Morton order (shading_clusters.glsl: PointNode).
-#include "technique/photon/shading_clusters.glsl"
+// The point tree's leaves, one point each, in Morton order (cluster_point_tree.glsl: PointNode).
+#include "technique/photon/cluster_point_tree.glsl"
 
 layout(local_size_x = 64) in;
 

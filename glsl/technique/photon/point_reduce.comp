@@ -1,7 +1,7 @@
 #version 450 core
 // One level of the point tree from the level below: boxes, counts, and the largest R_j under the node
 // (the interpolation's bound: a sample reaches at most R_j times its error threshold).
-#include "technique/photon/shading_clusters.glsl"
+#include "technique/photon/cluster_point_tree.glsl"
 
 layout(local_size_x = 64) in;
 

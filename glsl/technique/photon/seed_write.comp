@@ -1,7 +1,7 @@
 #version 450 core
 // The seeds become the first cluster centres: the pixel a seed reached at the quadtree's bottom.
 #include "common/gbuffer.glsl"
-#include "technique/photon/shading_clusters.glsl"
+#include "technique/photon/cluster_quadtree.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
