@@ -76,9 +76,7 @@ AdaptivePixels::AdaptivePixels(Frame& frame, const AdaptiveSettings& settings)
       interpolate_(Program::compute("points.adaptiveInterpolate", "frame/points/adaptive_interpolate.comp")),
       compose_(Program::compute("points.adaptiveCompose", "frame/points/adaptive_compose.comp")),
       mean_(Program::compute("points.adaptiveMean", "frame/points/adaptive_mean.comp")),
-      meanFinal_(
-          Program::compute("points.adaptiveMeanFinal", "frame/points/adaptive_mean.comp", {{"MEAN_FINAL", "1"}})),
-      count_("points.adaptiveCount", sizeof(std::uint32_t))
+      meanFinal_(Program::compute("points.adaptiveMeanFinal", "frame/points/adaptive_mean.comp", {{"MEAN_FINAL", "1"}}))
 {
     allocate(frame.width(), frame.height());
 }
@@ -91,7 +89,7 @@ void AdaptivePixels::allocate(int width, int height)
     diffuse_ = Texture::create2D("points.adaptive.diffuse", GL_RGBA32F, width, height);
     glossy_ = Texture::create2D("points.adaptive.glossy", GL_RGBA32F, width, height);
     accumulated_ = Texture::create2D("points.adaptive.accumulated", GL_RGBA32F, width, height);
-    targets_ = Buffer("points.adaptiveTargets", std::size_t(width) * height * 8);
+    targets_ = Buffer("points.adaptiveTargets", kGatherListHeaderBytes + std::size_t(width) * height * 8);
     partials_ = Texture::create2D("points.adaptive.meanPartials", GL_RGBA32F, (width + 15) / 16, (height + 15) / 16);
 }
 
@@ -124,7 +122,7 @@ int AdaptivePixels::select(Frame& frame, int level, PassTimers& timers)
         const GLuint undecided = 0;
         glClearTexImage(state_.id(), 0, GL_RED_INTEGER, GL_UNSIGNED_BYTE, &undecided);
     }
-    count_.clearToZero();
+    clearGatherCount(targets_);
     frame.bindGBuffer();
     setCommon(frame, select_, spacing);
     select_.set("firstGrid", firstGrid);
@@ -139,12 +137,11 @@ int AdaptivePixels::select(Frame& frame, int level, PassTimers& timers)
     diffuse_.bindImage(1, GL_READ_ONLY, 0, GL_RGBA32F);
     glossy_.bindImage(2, GL_READ_ONLY, 0, GL_RGBA32F);
     targets_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_GATHER_TARGETS);
-    count_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_GATHER_COUNT);
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
     dispatchCompute(select_, {width_, height_, 1}, {8, 8, 1});
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
     std::uint32_t n = 0;
-    count_.download(0, sizeof(n), &n);
+    targets_.download(0, sizeof(n), &n);
     selected_ = int(n);
     sampled_ = level == 0 ? int(n) : sampled_ + int(n);
     t.addWork(selectWork(double(width_) * height_, candidates(width_, height_, firstGrid, spacing), level == 0, n));
@@ -200,7 +197,6 @@ void AdaptivePixels::bindForGather(Frame& frame, Program& program)
     program.set("coarsestLevel", 0);
     program.set("cameraPosition", frame.camera().position);
     targets_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_GATHER_TARGETS);
-    count_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_GATHER_COUNT);
     diffuse_.bindImage(0, GL_WRITE_ONLY, 0, GL_RGBA32F);
     glossy_.bindImage(1, GL_WRITE_ONLY, 0, GL_RGBA32F);
 }

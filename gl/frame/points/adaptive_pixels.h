@@ -16,6 +16,7 @@
 #pragma once
 
 #include "gl/frame/frame.h"
+#include "gl/frame/points/pixel_gather.h"
 #include "gl/resource/buffer.h"
 #include "gl/resource/program.h"
 #include "gl/resource/texture.h"
@@ -72,7 +73,7 @@ private:
     int width_ = 0, height_ = 0;
     Program select_, interpolate_, compose_, mean_, meanFinal_;
     Texture state_, diffuse_, glossy_, accumulated_, partials_;
-    Buffer targets_, count_;
+    Buffer targets_; // the gather list (pixel_gather.h)
     int sampled_ = 0;
     int selected_ = 0;        // targets of the last select(), its level's alone
     float logAverage_ = 0.0f; // logAverageLuminance() of the first level's samples

@@ -41,8 +41,7 @@ PassCost selectWork(const MultiresPyramid& pyramid, int valid)
 
 PixelGather::PixelGather(Frame& frame, const MultiresSettings& settings)
     : pyramid_(frame.width(), frame.height(), settings),
-      select_(Program::compute("points.gatherSelect", "frame/points/gather_select.comp")),
-      count_buffer_("points.gatherCount", sizeof(std::uint32_t))
+      select_(Program::compute("points.gatherSelect", "frame/points/gather_select.comp"))
 {
     allocate();
 }
@@ -51,7 +50,7 @@ void PixelGather::allocate()
 {
     const glm::ivec2 f = pyramid_.flattenedSize();
     // At most one target per texel of the flattened buffer (one valid fragment per pixel in the worst case).
-    targets_ = Buffer("points.gatherTargets", std::size_t(f.x) * f.y * 8);
+    targets_ = Buffer("points.gatherTargets", kGatherListHeaderBytes + std::size_t(f.x) * f.y * 8);
     diffuse_ = Texture::create2D("points.illumination.diffuse", GL_RGBA32F, f.x, f.y);
     glossy_ = Texture::create2D("points.illumination.glossy", GL_RGBA32F, f.x, f.y);
 }
@@ -68,19 +67,18 @@ int PixelGather::select(Frame& frame, PassTimers& timers)
     const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
     diffuse_.clear(0, zero); // alpha 0: no valid fragment (what the upsampling reads)
     glossy_.clear(0, zero);
-    count_buffer_.clearToZero();
+    clearGatherCount(targets_);
     frame.bindGBuffer();
     pyramid_.bind();
     pyramid_.setUniforms(select_);
     targets_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_GATHER_TARGETS);
-    count_buffer_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_GATHER_COUNT);
     const glm::ivec2 f = pyramid_.flattenedSize();
     t.expectComputes(computeInvocations({f.x, f.y, 1}, {8, 8, 1}));
     select_.set("flattenedSize", f);
     dispatchCompute(select_, {f.x, f.y, 1}, {8, 8, 1});
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
     std::uint32_t n = 0;
-    count_buffer_.download(0, sizeof(n), &n);
+    targets_.download(0, sizeof(n), &n);
     count_ = int(n);
     t.addWork(selectWork(pyramid_, count_));
     return count_;
@@ -92,7 +90,6 @@ void PixelGather::bindForGather(Frame& frame, Program& program)
     pyramid_.bind();
     pyramid_.setUniforms(program);
     targets_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_GATHER_TARGETS);
-    count_buffer_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_GATHER_COUNT);
     diffuse_.bindImage(0, GL_WRITE_ONLY, 0, GL_RGBA32F);
     glossy_.bindImage(1, GL_WRITE_ONLY, 0, GL_RGBA32F);
     program.set("cameraPosition", frame.camera().position);

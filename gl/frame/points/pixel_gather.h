@@ -10,6 +10,8 @@
 // The gather shader includes glsl/frame/points/gather_target.glsl and calls bindForGather first.
 #pragma once
 
+#include <cstdint>
+
 #include "gl/frame/frame.h"
 #include "gl/frame/multires.h"
 #include "gl/resource/buffer.h"
@@ -18,6 +20,16 @@
 #include "gl/resource/timer.h"
 
 namespace bounce::gl {
+
+// The list of gather targets (SSBO_GATHER_TARGETS: frame/points/gather_select.comp and adaptive_select.comp
+// write it, gather_target.glsl reads it): its length in the first word, the targets from byte 8.
+constexpr std::size_t kGatherListHeaderBytes = 8;
+// Sets the list's length to 0, which the select passes count up.
+inline void clearGatherCount(Buffer& list)
+{
+    const std::uint32_t zero = 0;
+    list.update(0, sizeof(zero), &zero);
+}
 
 class PixelGather {
 public:
@@ -42,7 +54,7 @@ public:
 private:
     MultiresPyramid pyramid_;
     Program select_;
-    Buffer targets_, count_buffer_;
+    Buffer targets_; // the gather list
     Texture diffuse_, glossy_;
     int count_ = 0;
     void allocate();

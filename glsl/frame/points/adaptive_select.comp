@@ -13,8 +13,8 @@ layout(local_size_x = 8, local_size_y = 8) in;
 layout(r8ui, binding = 0) uniform uimage2D pixelState;
 layout(rgba32f, binding = 1) uniform readonly image2D lightDiffuse;
 layout(rgba32f, binding = 2) uniform readonly image2D lightGlossy;
-layout(std430, binding = SSBO_GATHER_TARGETS) writeonly buffer GatherTargets { uvec2 gatherTargets[]; };
-layout(std430, binding = SSBO_GATHER_COUNT) buffer GatherCount { uint gatherCount; };
+// The list's length, counted up here, then its targets (frame/points/bindings.glsl, SSBO_GATHER_TARGETS).
+layout(std430, binding = SSBO_GATHER_TARGETS) buffer GatherTargets { uint gatherCount; uint gatherPad; uvec2 gatherTargets[]; };
 uniform int firstGrid;   // > 0: the first level, every pixel of this grid
 uniform float epsilon;
 uniform float lambda;

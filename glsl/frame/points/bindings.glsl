@@ -9,8 +9,7 @@
 #define SSBO_POINT_RADIANCE 42 //   outgoing radiance per point, half floats (point_light.comp, point_relight.comp)
 #define SSBO_POINT_DIRECT 43   //   the direct part alone, half floats (bounces > 1)
 #define SSBO_POINT_GATHERED 44 //   diffuse light gathered at every stride-th point (bounces > 1)
-#define SSBO_GATHER_TARGETS 45 // gather_target.glsl: the flattened-buffer texels to gather at
-#define SSBO_GATHER_COUNT 46   //   how many
+#define SSBO_GATHER_TARGETS 45 // gather_target.glsl: how many texels to gather at (8 bytes), then the texels
 #define SSBO_POINT_GLOSSY 47   //   what each point's glossy lobe needs (GLOSSY_POINTS)
 // median_split.comp, for the length of a re-clustering (MedianSplit), beside the frame's scan and sort
 // (glsl/frame/sort_bindings.glsl): the positions, the three sorted lists in and out, each point's half, the

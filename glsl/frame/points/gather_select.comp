@@ -7,8 +7,8 @@
 #include "frame/points/bindings.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(std430, binding = SSBO_GATHER_TARGETS) writeonly buffer GatherTargets { uvec2 gatherTargets[]; };
-layout(std430, binding = SSBO_GATHER_COUNT) buffer GatherCount { uint gatherCount; };
+// The list's length, counted up here, then its targets (frame/points/bindings.glsl, SSBO_GATHER_TARGETS).
+layout(std430, binding = SSBO_GATHER_TARGETS) buffer GatherTargets { uint gatherCount; uint gatherPad; uvec2 gatherTargets[]; };
 uniform ivec2 flattenedSize;
 
 void main()

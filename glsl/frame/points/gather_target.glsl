@@ -59,8 +59,7 @@ void storeGather(GatherSample g, uint k, vec3 diffuse, vec3 glossy) { pointGathe
 #else
 #include "common/multires.glsl"
 
-layout(std430, binding = SSBO_GATHER_TARGETS) readonly buffer GatherTargets { uvec2 gatherTargets[]; };
-layout(std430, binding = SSBO_GATHER_COUNT) readonly buffer GatherCount { uint gatherCount; };
+layout(std430, binding = SSBO_GATHER_TARGETS) readonly buffer GatherTargets { uint gatherCount; uint gatherPad; uvec2 gatherTargets[]; };
 layout(rgba32f, binding = 0) uniform writeonly image2D illuminationDiffuse;
 layout(rgba32f, binding = 1) uniform writeonly image2D illuminationGlossy;
 uniform vec3 cameraPosition;

@@ -41,8 +41,9 @@ struct PointSurfel {
     uint diffuse;        // c_diff as unorm 8-bit RGB (packUnorm4x8)
 };
 
-// Each shader declares the arrays it reads (a compute shader has at most 16 storage blocks, and a gather
-// with the scene, the BVH and its own buffers is near that): POINT_SAMPLES, POINT_SURFELS, POINT_RADIANCE.
+// Each shader declares the arrays it reads (a program may use 13 storage blocks, gl/resource/
+// storage_bindings.h, and a gather with the scene, the BVH and its own buffers is near that): POINT_SAMPLES,
+// POINT_SURFELS, POINT_RADIANCE.
 #ifdef POINT_SAMPLES
 layout(std430, binding = SSBO_POINT_SAMPLES) readonly buffer PointSamples { PointSample pointSamples[]; };
 #endif
