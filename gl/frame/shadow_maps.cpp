@@ -14,15 +14,7 @@
 
 namespace bounce::gl {
 
-namespace {
-
-struct GpuShadowView {
-    glm::mat4 viewProj;
-    glm::vec4 originFar;
-    glm::vec4 texelWorld;
-};
-
-} // namespace
+namespace {} // namespace
 
 ShadowMaps::ShadowMaps(const GpuScene& scene, FrameLights& lights, int size, int cascades, float footprint)
     : size_(size),
@@ -82,12 +74,10 @@ void ShadowMaps::buildViews(const GpuScene& scene)
     for (const LightView& l : lightViews_.views)
         if (l.areaCount > 0 && (areaGroups_.empty() || areaGroups_.back().x != l.areaFirst))
             areaGroups_.emplace_back(l.areaFirst, l.areaCount);
-    std::vector<glm::vec4> polygons;
+    polygons_.clear();
     for (const LightSource& s : sources_)
         if (s.type == kLightArea)
-            for (const glm::vec3& p : s.triangle) polygons.emplace_back(p, 1.0f);
-    if (polygons.empty()) polygons.emplace_back(0.0f);
-    polygonsBuffer_ = Buffer::fromVector("lights.polygons", polygons);
+            for (const glm::vec3& p : s.triangle) polygons_.emplace_back(p, 1.0f);
     upload();
 }
 
@@ -203,10 +193,8 @@ void ShadowMaps::upload()
         gv.push_back(
             {corner * v.proj * v.view, glm::vec4(v.origin, v.far), glm::vec4(v.texelSide(sides_[i]), scale, 0, 0)});
     }
-    if (gv.empty()) gv.push_back({});
     // Still frames rewrite the same sizes in place.
-    lights_->set(lights);
-    Buffer::assign(viewsBuffer_, "shadow.views", gv);
+    lights_->set(lights, gv, polygons_);
 }
 
 void ShadowMaps::update(const GpuScene& scene)
@@ -300,8 +288,6 @@ void ShadowMaps::bind() const
     }
     depth_.bind(UNIT_SHADOW_DEPTHS);
     glBindSampler(UNIT_SHADOW_DEPTHS, rawSampler_.id());
-    viewsBuffer_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_SHADOW_VIEWS);
-    polygonsBuffer_.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_LIGHT_POLYGONS);
     depth_.bind(UNIT_SHADOW_MAPS);
 }
 

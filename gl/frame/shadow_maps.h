@@ -1,8 +1,8 @@
 // Shadow maps of every light in one depth array texture, one layer per view of gl/frame/light_views.h:
 // a spot gets one perspective layer (a cube when its cone is wider than 120 degrees), a point light six cube-face layers, the area lights of one
 // emitting mesh one shared cube at its centroid, a directional light one orthographic layer fitted to
-// the scene. Writes the frame's light records (FrameLights: each light's shadow layers, an emitter's point in
-// still frames) and owns the shadow views' and area polygons' SSBOs. Only what the lights need is allocated.
+// the scene. Writes the frame's light records (FrameLights: each light's shadow layers and views, an
+// emitter's point in still frames, the area lights' triangles). Only what the lights need is allocated.
 //
 // A spot's or point light's view is rendered at a side chosen from its footprint on screen (footprint > 0,
 // fitTo): `footprint` texels per pixel of what the camera sees of it (footprintSide), rounded up to a power
@@ -72,8 +72,8 @@ public:
     // The views and lights of still frame `index` (see above); 0 restores the plain ones.
     void setStill(int index);
     bool hasAreaLights() const { return !areaGroups_.empty(); }
-    // SSBO bindings 2 (shadow views), 3 (area polygons) and the depth array at unit 5 (and at
-    // UNIT_SHADOW_DEPTHS without comparison, for glsl/common/shadow.glsl's SHADOW_PCSS).
+    // The depth array at UNIT_SHADOW_MAPS (and at UNIT_SHADOW_DEPTHS without comparison, for
+    // glsl/common/shadow.glsl's SHADOW_PCSS); the views are the frame's lights' (FrameLights).
     void bind() const;
     void setPcf(bool hardwareFilter);
     // The PCF uniforms of glsl/common/shadow.glsl on a program that includes it: the kernel radius, and
@@ -110,10 +110,10 @@ private:
     mutable Handle<SamplerDeleter> rawSampler_; // nearest, no comparison: the depths PCSS averages
     Framebuffer fbo_;
     SceneProgram program_;
-    Buffer viewsBuffer_, polygonsBuffer_;
+    std::vector<glm::vec4> polygons_; // the area lights' triangles, for FrameLights
     bool linear_ = true;
     void buildViews(const GpuScene& scene);
-    void upload(); // views_ and the light records for still_, into the SSBOs and FrameLights
+    void upload(); // views_ and the light records for still_, into FrameLights
     std::vector<int> footprintSides() const;
 };
 

@@ -15,9 +15,7 @@
 #define BOUNCE_BINDINGS_GLSL
 
 #define SSBO_MATERIALS 0         // scene.glsl: Material per material index
-#define SSBO_LIGHTS 1            // scene.glsl: Light per light of GpuScene::lights()
-#define SSBO_SHADOW_VIEWS 2      // scene.glsl: ShadowView per shadow-map layer
-#define SSBO_LIGHT_POLYGONS 3    // scene.glsl: area-light triangle corners
+#define SSBO_LIGHTS 1            // scene.glsl: the lights, their shadow views and the area lights' triangles
 #define SSBO_SCENE_VERTICES 4    // scene.glsl (SCENE_GEOMETRY): GpuVertex, 9 floats each
 #define SSBO_SCENE_INDICES 5     // scene.glsl (SCENE_GEOMETRY): three per triangle
 #define SSBO_SCENE_EMISSIVE 6    // scene.glsl (SCENE_GEOMETRY): emissive triangles and their power CDF

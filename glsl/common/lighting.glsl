@@ -71,7 +71,7 @@ vec3 directFromPunctual(Light l, vec3 p, vec3 n, vec3 wo, BrdfParams b)
 vec3 areaTriangleIrradiance(Light l, vec3 p, vec3 n, out vec3 wi)
 {
     int first = l.shadow.z;
-    vec3 a = lightPolygons[first].xyz, bb = lightPolygons[first + 1].xyz, c = lightPolygons[first + 2].xyz;
+    vec3 a = lightPolygon(first), bb = lightPolygon(first + 1), c = lightPolygon(first + 2);
     wi = normalize((a + bb + c) / 3.0 - p);
     if (dot(p - a, l.direction) <= 0.0) return vec3(0.0); // behind the one-sided emitter
     return l.intensity * kPi * polygonFormFactor(p, n, a, bb, c);
@@ -83,7 +83,7 @@ float areaTriangleVisibility(Light l, vec3 p, vec3 n)
 {
 #ifdef SHADOW_PCSS
     int first = l.shadow.z;
-    vec3 a = lightPolygons[first].xyz, bb = lightPolygons[first + 1].xyz, c = lightPolygons[first + 2].xyz;
+    vec3 a = lightPolygon(first), bb = lightPolygon(first + 1), c = lightPolygon(first + 2);
     // The side of the square this triangle is half of: the emitter's width PCSS assumes.
     float width = sqrt(length(cross(bb - a, c - a)));
     return pcssVisibility(l, p, n, width);
@@ -126,7 +126,7 @@ vec3 areaGlossyUnshadowed(Light l, vec3 p, vec3 n, vec3 wo, BrdfParams b, vec2 r
     vec3 glossy = vec3(0.0);
 #ifndef SCENE_DIFFUSE_ONLY
     int first = l.shadow.z;
-    vec3 a = lightPolygons[first].xyz, bb = lightPolygons[first + 1].xyz, c = lightPolygons[first + 2].xyz;
+    vec3 a = lightPolygon(first), bb = lightPolygon(first + 1), c = lightPolygon(first + 2);
     vec3 emitterNormal = l.direction;
     float area = 0.5 * length(cross(bb - a, c - a));
     const float m = float(kAreaGlossyPoints);
@@ -155,7 +155,7 @@ vec3 areaSampleUnshadowed(Light l, vec3 p, vec3 n, vec3 wo, BrdfParams b, vec2 r
     if (sampleArea <= 0.0) return vec3(0.0);
 #endif
     int first = l.shadow.z;
-    vec3 a = lightPolygons[first].xyz;
+    vec3 a = lightPolygon(first);
     vec3 emitterNormal = l.direction;
     if (dot(p - a, emitterNormal) <= 0.0) return vec3(0.0); // behind the one-sided emitter
     vec3 L = l.intensity;
@@ -180,9 +180,10 @@ vec3 sampledAreaLights(int first, int end, vec3 p, vec3 n, vec3 wo, BrdfParams b
 {
     vec3 sum = vec3(0.0), mesh = vec3(0.0);
     for (int i = first; i < end; ++i) {
-        mesh += areaSampleUnshadowed(lights[i], p, n, wo, b, rotation);
-        if (i + 1 < end && lights[i + 1].shadow.x == lights[i].shadow.x) continue;
-        if (max(mesh.r, max(mesh.g, mesh.b)) > 0.0) sum += mesh * shadowVisibility(lights[i], p, n);
+        Light l = frameLight(i);
+        mesh += areaSampleUnshadowed(l, p, n, wo, b, rotation);
+        if (i + 1 < end && frameLight(i + 1).shadow.x == l.shadow.x) continue;
+        if (max(mesh.r, max(mesh.g, mesh.b)) > 0.0) sum += mesh * shadowVisibility(l, p, n);
         mesh = vec3(0.0);
     }
     return sum;
@@ -205,13 +206,13 @@ vec3 sampledAreaLights(int first, int end, vec3 p, vec3 n, vec3 wo, BrdfParams b
 void addDirectLight(inout vec3 radiance, vec3 p, vec3 n, vec3 wo, BrdfParams b, vec2 rotation)
 {
 #ifdef PUNCTUAL_LIGHTS
-    for (int i = 0; i < punctualLightCount; ++i) radiance += directFromPunctual(lights[i], p, n, wo, b);
+    for (int i = 0; i < punctualLightCount; ++i) radiance += directFromPunctual(frameLight(i), p, n, wo, b);
 #endif
 #ifdef AREA_LIGHTS
 #ifdef AREA_SAMPLED
     radiance += sampledAreaLights(punctualLightCount, lightCount, p, n, wo, b, rotation);
 #else
-    for (int i = punctualLightCount; i < lightCount; ++i) radiance += directFromAreaTriangle(lights[i], p, n, wo, b);
+    for (int i = punctualLightCount; i < lightCount; ++i) radiance += directFromAreaTriangle(frameLight(i), p, n, wo, b);
 #endif
 #endif
 }

@@ -13,9 +13,9 @@ struct Material {
 const int kLightPoint = 0;
 const int kLightSpot = 1;
 const int kLightDirectional = 2;
-const int kLightArea = 3;         // one emissive triangle: vertices in lightPolygons
+const int kLightArea = 3;         // one emissive triangle: vertices lightPolygon(shadow.z + 0..2)
 
-// One light (gl/frame/frame_lights.h's GpuLight, the frame's records).
+// One light (gl/frame/frame_lights.h's GpuLight, the frame's records): frameLight(i).
 struct Light {
     vec3 position;                // point, spot; area: the emitting mesh's point this frame (frame 0: its centroid)
     int type;                     // kLight*
@@ -25,9 +25,9 @@ struct Light {
     float cosInner;               // spot: cos of the inner cone's half angle
     ivec4 shadow;                 // x: first shadow layer (-1 none), y: layer count (1 or 6), z: first polygon vertex
     float sampleArea;             // area, still frames: the mesh's area on the triangle holding the frame's point
-    float pad0, pad1, pad2;
 };
 
+// The view of one shadow layer: shadowView(layer).
 struct ShadowView {
     mat4 viewProj;
     vec4 originFar;               // xyz light origin, w: far plane (perspective) or 0 (orthographic)
@@ -36,12 +36,43 @@ struct ShadowView {
 };
 
 #include "common/bindings.glsl"
-#ifndef SCENE_BINDINGS_CUSTOM
 layout(std430, binding = SSBO_MATERIALS) readonly buffer Materials { Material materials[]; };
-layout(std430, binding = SSBO_LIGHTS) readonly buffer Lights { Light lights[]; };
-layout(std430, binding = SSBO_SHADOW_VIEWS) readonly buffer ShadowViews { ShadowView shadowViews[]; };
-layout(std430, binding = SSBO_LIGHT_POLYGONS) readonly buffer LightPolygons { vec4 lightPolygons[]; };
-#endif
+
+// The frame's lights in one block (gl/frame/frame_lights.h has the layout): the header says where the
+// shadow views (x) and the area lights' triangles (y) begin, in vec4s after it; the lights begin at 0.
+layout(std430, binding = SSBO_LIGHTS) readonly buffer FrameLights {
+    ivec4 frameLightsAt;
+    vec4 frameLightData[];
+};
+
+Light frameLight(int i)
+{
+    int o = 5 * i;
+    vec4 a = frameLightData[o], b = frameLightData[o + 1], c = frameLightData[o + 2];
+    Light l;
+    l.position = a.xyz;
+    l.type = floatBitsToInt(a.w);
+    l.direction = b.xyz;
+    l.cosOuter = b.w;
+    l.intensity = c.xyz;
+    l.cosInner = c.w;
+    l.shadow = floatBitsToInt(frameLightData[o + 3]);
+    l.sampleArea = frameLightData[o + 4].x;
+    return l;
+}
+
+ShadowView shadowView(int layer)
+{
+    int o = frameLightsAt.x + 6 * layer;
+    ShadowView v;
+    v.viewProj = mat4(frameLightData[o], frameLightData[o + 1], frameLightData[o + 2], frameLightData[o + 3]);
+    v.originFar = frameLightData[o + 4];
+    v.texelWorld = frameLightData[o + 5];
+    return v;
+}
+
+// Vertex k of the area lights' triangles (a light's first is its shadow.z).
+vec3 lightPolygon(int k) { return frameLightData[frameLightsAt.y + k].xyz; }
 
 // The scene's geometry, for shaders that define SCENE_GEOMETRY before including this file (gl/frame/
 // gpu_scene.h, GpuVertex and GpuEmissiveTriangle, writes them): the rasteriser's own vertex and index

@@ -57,7 +57,7 @@ float percentageCloser(vec2 uv, float layer, float ref)
 // p is beyond the view (behind a perspective view's origin or past its far plane).
 vec4 shadowCoordinates(int layer, vec3 p, vec3 n)
 {
-    ShadowView v = shadowViews[layer];
+    ShadowView v = shadowView(layer);
     // Normal offset by shadowNormalOffset texels at the receiver's distance, so that lit surfaces do not
     // shadow themselves at grazing angles; the constant bias below covers the rest.
     float dist = v.originFar.w > 0.0 ? length(p - v.originFar.xyz) : 1.0;
@@ -118,8 +118,8 @@ float pcssVisibility(Light l, vec3 p, vec3 n, float lightWidth)
     int layer = l.shadow.x + face;
     vec4 s = shadowCoordinates(layer, p, n);
     if (s.w == 0.0) return 1.0;
-    vec3 origin = shadowViews[layer].originFar.xyz;
-    float far = shadowViews[layer].originFar.w;
+    vec3 origin = shadowView(layer).originFar.xyz;
+    float far = shadowView(layer).originFar.w;
     float receiver = shadowLinearDepth(s.z, far);
     float texel = 1.0 / float(textureSize(shadowMaps, 0).x);
     const float bias = 1.0 - 2e-3; // relative: the map's depth quantisation and the plane's fit
@@ -165,7 +165,7 @@ float percentageCloserAt(int layer, vec3 p, vec3 n)
     // A view rendered into the corner [0, scale]^2 of its layer (gl/frame/shadow_maps.h: a spot's or point
     // light's side from its footprint on screen) keeps every tap inside it, pcfRadius + 1 texels from its
     // edges; a whole layer keeps the sampler's clamp at its edges.
-    float scale = shadowViews[layer].texelWorld.y;
+    float scale = shadowView(layer).texelWorld.y;
     float margin = scale < 1.0 ? float(pcfRadius + 1) / float(textureSize(shadowMaps, 0).x) : 0.0;
     return percentageCloser(clamp(s.xy, vec2(margin), vec2(scale - margin)), float(layer), s.z);
 }

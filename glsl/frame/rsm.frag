@@ -19,8 +19,8 @@ flat in uint vMaterial;
 
 layout(binding = UNIT_RSM_SOLID_ANGLES) uniform sampler2DArray texelSolidAngles; // exact omega_t per texel, one layer per view
 
-uniform int lightIndex;        // spot, point, directional: index into lights[]
-uniform int areaFirst;         // area emitter: its triangles are lights[areaFirst .. areaFirst + areaCount)
+uniform int lightIndex;        // spot, point, directional: frameLight(lightIndex)
+uniform int areaFirst;         // area emitter: its triangles are frameLight(areaFirst .. areaFirst + areaCount - 1)
 uniform int areaCount;
 uniform vec3 viewOrigin;
 uniform vec3 viewDirection;    // orthographic: the direction light travels
@@ -43,15 +43,15 @@ vec3 lightIntensity(vec3 w)
     if (areaCount > 0) {
         vec3 sum = vec3(0.0);
         for (int i = areaFirst; i < areaFirst + areaCount; ++i) {
-            Light t = lights[i];
+            Light t = frameLight(i);
             int first = t.shadow.z;
-            vec3 a = lightPolygons[first].xyz, b = lightPolygons[first + 1].xyz, c = lightPolygons[first + 2].xyz;
+            vec3 a = lightPolygon(first), b = lightPolygon(first + 1), c = lightPolygon(first + 2);
             float area = 0.5 * length(cross(b - a, c - a));
             sum += t.intensity * area * max(dot(t.direction, w), 0.0);
         }
         return sum;
     }
-    Light l = lights[lightIndex];
+    Light l = frameLight(lightIndex);
     int type = l.type;
     if (type == kLightSpot) return l.intensity * spotWeight(l, dot(w, l.direction));
     return l.intensity;

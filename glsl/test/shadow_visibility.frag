@@ -11,5 +11,5 @@ layout(location = 0) out vec4 outVisibility;
 void main()
 {
     GSurface s = gbufferSurface(ivec2(gl_FragCoord.xy));
-    outVisibility = vec4(s.geometry ? shadowVisibility(lights[lightIndex], s.position, s.normal) : -1.0);
+    outVisibility = vec4(s.geometry ? shadowVisibility(frameLight(lightIndex), s.position, s.normal) : -1.0);
 }

@@ -50,7 +50,7 @@ void addPointLight(inout PointLight pl, inout PointLightSums sums, vec3 diffuse,
 float areaTriangleExtent2(Light l, vec3 p, vec3 wi)
 {
     int first = l.shadow.z;
-    vec3 a = lightPolygons[first].xyz, b = lightPolygons[first + 1].xyz, c = lightPolygons[first + 2].xyz;
+    vec3 a = lightPolygon(first), b = lightPolygon(first + 1), c = lightPolygon(first + 2);
     vec3 d = (a + b + c) / 3.0 - p;
     float area = 0.5 * length(cross(b - a, c - a));
     return area * abs(dot(wi, l.direction)) / max(dot(d, d), 1e-12) / (2.0 * kPi);
@@ -63,16 +63,16 @@ PointLight pointDirectLight(vec3 p, vec3 n, vec3 diffuse)
     vec3 wi;
 #ifdef PUNCTUAL_LIGHTS
     for (int i = 0; i < punctualLightCount; ++i) {
-        vec3 e = punctualIrradiance(lights[i], p, n, wi);
-        if (pointLightArrives(e, n, wi)) addPointLight(pl, sums, diffuse, wi, e * shadowVisibility(lights[i], p, n), 0.0);
+        vec3 e = punctualIrradiance(frameLight(i), p, n, wi);
+        if (pointLightArrives(e, n, wi)) addPointLight(pl, sums, diffuse, wi, e * shadowVisibility(frameLight(i), p, n), 0.0);
     }
 #endif
 #ifdef AREA_LIGHTS
     for (int i = punctualLightCount; i < lightCount; ++i) {
-        vec3 e = areaTriangleIrradiance(lights[i], p, n, wi);
+        vec3 e = areaTriangleIrradiance(frameLight(i), p, n, wi);
         if (pointLightArrives(e, n, wi))
-            addPointLight(pl, sums, diffuse, wi, e * areaTriangleVisibility(lights[i], p, n),
-                          areaTriangleExtent2(lights[i], p, wi));
+            addPointLight(pl, sums, diffuse, wi, e * areaTriangleVisibility(frameLight(i), p, n),
+                          areaTriangleExtent2(frameLight(i), p, wi));
     }
 #endif
     if (sums.weight > 0.0) {

@@ -20,9 +20,9 @@ void main()
     vec3 seed = vec3(0.0);
     for (int i = 0; i < punctualLightCount; ++i) {
         vec3 wi;
-        vec3 e = punctualIrradiance(lights[i], pos.xyz, n, wi);
+        vec3 e = punctualIrradiance(frameLight(i), pos.xyz, n, wi);
         if (max(e.r, max(e.g, e.b)) > 0.0)
-            seed += brdfTransmission(b, max(dot(n, wi), 0.0)) * e * shadowVisibility(lights[i], pos.xyz, n) / kPi;
+            seed += brdfTransmission(b, max(dot(n, wi), 0.0)) * e * shadowVisibility(frameLight(i), pos.xyz, n) / kPi;
     }
     outSeed = vec4(seed, 1.0);
 }

@@ -74,7 +74,7 @@ void main()
         glossy += sampledAreaLights(punctualLightCount, lightCount, pos.xyz, ns, wo, lobe, areaRotation);
 #endif
 #ifdef PUNCTUAL_LIGHTS
-        for (int i = 0; i < punctualLightCount; ++i) glossy += directFromPunctual(lights[i], pos.xyz, ns, wo, lobe);
+        for (int i = 0; i < punctualLightCount; ++i) glossy += directFromPunctual(frameLight(i), pos.xyz, ns, wo, lobe);
 #endif
     }
     outGlossy = vec4(glossy, 1.0);
