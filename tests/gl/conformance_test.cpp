@@ -197,25 +197,14 @@ private:
 };
 
 // Every program linked since the case began (gl/resource/storage_bindings.h): at most
-// kMaxStorageBlocksPerProgram storage blocks (overMargin: no more than today), no two under one name or at one
-// binding point.
+// kMaxStorageBlocksPerProgram storage blocks, no two under one name or at one binding point.
 void checkStorageBlocks(const std::string& technique)
 {
-    // Programs above the margin today (issue 57), each held to its count until it is brought under: the
-    // gathers and the photon tracer read the scene (seven blocks) and its BVH (two) besides their own data.
-    const std::map<std::string, int> overMargin{
-        {"photon.gather", 16}, {"pointproj.gather", 16}, {"photon.trace", 14}, {"microrender.gather", 14}};
     const gl::StorageLayout* largest = nullptr;
     std::set<std::string> programs;
     for (const auto& layout : gl::linkedStorageLayouts()) {
         programs.insert(layout->label);
-        // A program's still frames' form (gl/frame/direct_lit_program.h: label ".still") is held as the program.
-        std::string program = layout->label;
-        if (program.size() > 6 && program.compare(program.size() - 6, 6, ".still") == 0)
-            program.resize(program.size() - 6);
-        const auto known = overMargin.find(program);
-        const int most = known != overMargin.end() ? known->second : gl::kMaxStorageBlocksPerProgram;
-        EXPECT_LE(int(layout->blocks.size()), most)
+        EXPECT_LE(int(layout->blocks.size()), gl::kMaxStorageBlocksPerProgram)
             << "program '" << layout->label << "' uses " << layout->blocks.size() << " storage blocks";
         std::set<unsigned> names, slots;
         for (const gl::StorageBlock& b : layout->blocks) {
