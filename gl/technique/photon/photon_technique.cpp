@@ -66,7 +66,7 @@ public:
         const bool everyPixel = settings_.clusters.everyPixel;
         if (!everyPixel && clusters_.count() > 0) {
             // The tree of samples: its kernels' work from the cluster count (ShadingClusters::addPointTreeWork).
-            auto t = timers.scope("interpolate");
+            auto t = timers.scope("sample-tree");
             clusters_.buildPointTree(true, counters_);
             clusters_.addPointTreeWork(t);
         }
@@ -164,7 +164,8 @@ TechniqueInfo photonTechniqueInfo()
         {"cut", "E_min, the valid cut, its refinement and the irradiance cached per cut node", ""},
         {"kmeans", "quadtree seeding and k-means shading clusters with their samples", ""},
         {"gather", "final gather at every cluster's sample through the cut", ""},
-        {"interpolate", "the tree of samples and the interpolation to every pixel", ""},
+        {"sample-tree", "the tree of the clusters' samples, which the interpolation walks", "gatherAt=clusters"},
+        {"interpolate", "each pixel's irradiance interpolated from the samples near it (section 3.4)", ""},
         {"glossy", "the glossy last bounce sampled from the lobe at every pixel with one, through the cut", ""},
         {"caustic", "the caustic photons (L S+ D) near every pixel, where the scene has a near-specular lobe", ""},
     };
