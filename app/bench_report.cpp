@@ -32,10 +32,17 @@ double imageMs(const nlohmann::json& record)
     return record.value("imageMs", record["totalMs"].get<double>());
 }
 
+std::string rendererOf(const BenchRow& r)
+{
+    return r.record.value("renderer", "");
+}
+
 // The Pareto fronts, computed here once for every reader (report.md's table, results.json's "pareto",
 // results.csv's pareto_own and pareto_full, plot_speed_error.py, report.html): per scene and image size,
 // the rows that no other row beats in both the time of the image and the relative RMSE, against the row's
 // own light paths ("own") and against `full` ("full"). A row without a finite error is on no front.
+// Rows timed on different GL renderers (a merged run of shards on several machines, app/bench_shard.h)
+// are on fronts of their own: their times do not compare.
 void markParetoFronts(std::vector<BenchRow>& rows)
 {
     const auto mark = [&](const char* key, double BenchRow::*error) {
@@ -44,7 +51,8 @@ void markParetoFronts(std::vector<BenchRow>& rows)
             bool front = on(a);
             for (const BenchRow& b : rows) {
                 if (!front) break;
-                if (&a == &b || !on(b) || b.scene != a.scene || b.size != a.size) continue;
+                if (&a == &b || !on(b) || b.scene != a.scene || b.size != a.size || rendererOf(b) != rendererOf(a))
+                    continue;
                 const double ta = imageMs(a.record), tb = imageMs(b.record);
                 front = !(tb <= ta && b.*error <= a.*error && (tb < ta || b.*error < a.*error));
             }
@@ -61,7 +69,7 @@ std::string csvText(const BenchConfig& config, const std::vector<BenchRow>& rows
     csv << "scene,technique,params,size,light_paths,total_ms,rel_rmse_own,rel_rmse_full,rmse_own,ssim_own,baseline,"
            "rel_rmse_baseline,flicker,nonfinite_values,passes";
     for (const std::string& p : config.compareTo) csv << ",rel_rmse_" << p;
-    csv << ",rel_rmse_direct_light,image_ms,pareto_own,pareto_full\n";
+    csv << ",rel_rmse_direct_light,image_ms,pareto_own,pareto_full,renderer\n";
     for (const BenchRow& r : rows) {
         csv << csvField(r.scene) << "," << r.technique << "," << csvField(r.settings) << "," << r.size << ","
             << r.lightPaths << "," << r.totalMs << "," << r.relRmseOwn << "," << r.relRmseFull << "," << r.rmseOwn
@@ -70,7 +78,7 @@ std::string csvText(const BenchConfig& config, const std::vector<BenchRow>& rows
         for (double v : r.relRmseCompareTo) csv << "," << v;
         const nlohmann::json& front = r.record.value("pareto", nlohmann::json::object());
         csv << "," << r.relRmseDirectLight << "," << imageMs(r.record) << "," << int(front.value("own", false)) << ","
-            << int(front.value("full", false)) << "\n";
+            << int(front.value("full", false)) << "," << csvField(rendererOf(r)) << "\n";
     }
     return csv.str();
 }
@@ -213,11 +221,15 @@ std::string raysMarkdown(const std::vector<SceneRays>& rays)
     return md.str();
 }
 
-std::string markdownText(const BenchConfig& config, const std::vector<BenchRow>& rows, const gl::ContextInfo& context)
+std::string markdownText(const BenchConfig& config, const std::vector<BenchRow>& rows, const gl::ContextInfo& context,
+                         const std::vector<std::string>& notes)
 {
     std::ostringstream md;
-    md << "# Bounce benchmark\n\nGL renderer: " << context.renderer << " (" << context.platform << "). " << config.width
-       << "x" << config.height << " unless a row says otherwise, " << config.warmup << " warm-up + " << config.frames
+    md << "# Bounce benchmark\n\n";
+    // What a reader must know before the tables: a merge's missing tasks, several renderers' timings.
+    for (const std::string& note : notes) md << "**" << note << "**\n\n";
+    md << "GL renderer: " << context.renderer << " (" << context.platform << "). " << config.width << "x"
+       << config.height << " unless a row says otherwise, " << config.warmup << " warm-up + " << config.frames
        << " timed frames (median GPU ms). Timings compare only within this run. Errors leave out the pixels that see"
           " an emitter directly (and a one-pixel margin): emission is the same exact G-buffer value in every"
           " technique, and its edges alias against the box-filtered references.\n\n";
@@ -252,7 +264,7 @@ std::string markdownText(const BenchConfig& config, const std::vector<BenchRow>&
 
 void writeBenchReport(const std::filesystem::path& out, const BenchConfig& config,
                       const std::vector<BenchRow>& measured, const std::vector<SceneRays>& rays,
-                      const gl::ContextInfo& context)
+                      const gl::ContextInfo& context, const std::vector<std::string>& notes)
 {
     std::vector<BenchRow> rows = measured;
     markParetoFronts(rows);
@@ -260,7 +272,7 @@ void writeBenchReport(const std::filesystem::path& out, const BenchConfig& confi
     for (const BenchRow& r : rows) results.push_back(r.record);
     core::writeFileAtomic((out / "results.csv").string(), csvText(config, rows));
     core::writeFileAtomic((out / "results.json").string(), recordText(results));
-    std::string md = markdownText(config, rows, context);
+    std::string md = markdownText(config, rows, context, notes);
     if (!rays.empty()) {
         md += raysMarkdown(rays);
         nlohmann::json j = nlohmann::json::array();
@@ -276,16 +288,17 @@ void writeBenchReport(const std::filesystem::path& out, const BenchConfig& confi
         core::writeFileAtomic((out / "roofline.csv").string(), rooflineCsv(rows));
     }
     core::writeFileAtomic((out / "report.md").string(), md);
-    writeHtmlReport(out, rows, context);
+    writeHtmlReport(out, rows, context, notes);
 }
 
 void writeHtmlReport(const std::filesystem::path& out, const std::vector<BenchRow>& rows,
-                     const gl::ContextInfo& context)
+                     const gl::ContextInfo& context, const std::vector<std::string>& notes)
 {
     nlohmann::json results = nlohmann::json::array();
     for (const BenchRow& r : rows) results.push_back(r.record);
     const nlohmann::json data = {{"renderer", context.renderer},
                                  {"platform", context.platform},
+                                 {"notes", notes},
                                  {"results", nlohmann::json::parse(recordText(results))}};
     core::writeFileAtomic((out / "report-data.js").string(), "window.BOUNCE_REPORT = " + data.dump() + ";\n");
     // The page itself is static: copied from the source tree, so that it is read and tested as code.
@@ -307,6 +320,34 @@ int plotSpeedError(const std::filesystem::path& out)
 int plotConvergence(const std::filesystem::path& out)
 {
     return runPlotScript("bench/plot_convergence.py", out / "results.json", out / "convergence.png");
+}
+
+} // namespace bounce::app
+
+namespace bounce::app {
+
+int finishBenchReport(const std::filesystem::path& out, const std::vector<BenchRow>& rows)
+{
+    int rc = plotSpeedError(out);
+    std::printf("wrote %s/{results.csv,results.json,report.md,report.html%s}\n", out.string().c_str(),
+                rc == 0 ? ",speed_error.png" : "; not speed_error.png: the plot script failed");
+    if (std::any_of(rows.begin(), rows.end(), [](const BenchRow& r) { return r.record.contains("curve"); })) {
+        rc |= plotConvergence(out);
+        std::printf("wrote %s/convergence.png: the curves' error against time and steps, beside the path tracer\n",
+                    out.string().c_str());
+    }
+    if (hasRoofline(rows)) {
+        rc |= plotRoofline(out);
+        std::printf("wrote %s/{roofline.csv,roofline.png}: every pass against its bound\n", out.string().c_str());
+    }
+    std::size_t failed = 0;
+    for (const BenchRow& r : rows)
+        if (r.nonFiniteValues > 0) {
+            std::fprintf(stderr, "bounce bench: error: %s (%s) on %s wrote %zu NaN/Inf values\n", r.technique.c_str(),
+                         r.settings.c_str(), r.scene.c_str(), r.nonFiniteValues);
+            ++failed;
+        }
+    return rc == 0 && failed == 0 ? 0 : 1;
 }
 
 } // namespace bounce::app

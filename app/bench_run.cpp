@@ -6,6 +6,8 @@
 #include <limits>
 #include <map>
 
+#include <unistd.h>
+
 #include "app/bench_images.h"
 #include "app/commands.h"
 #include "app/render_job.h"
@@ -307,59 +309,64 @@ BenchRow runSetting(const BenchConfig& config, const BenchSetting& s, const std:
     return row;
 }
 
-// The path tracer's own time against error: `full` at each of config.pathTracerSpp samples per pixel,
-// rendered afresh (never cached: the time is the figure), against the scene's reference.
-std::vector<BenchRow> pathTracerCurve(const BenchConfig& config, const std::string& sceneName, const core::Scene& scene,
-                                      SceneCache& cache, const std::filesystem::path& out, std::size_t firstIndex)
+// The path tracer's own time against error: `full` at `spp` samples per pixel, rendered afresh (never
+// cached: the time is the figure), against the scene's reference.
+BenchRow pathTracerRow(const BenchConfig& config, const std::string& sceneName, const core::Scene& scene, int spp,
+                       SceneCache& cache, const std::filesystem::path& out, std::size_t index)
 {
-    std::vector<BenchRow> rows;
     const int w = config.reference.width > 0 ? config.reference.width : config.width;
     const int h = config.reference.height > 0 ? config.reference.height : config.height;
     const std::string key = "full@" + std::to_string(w) + "x" + std::to_string(h);
     if (!cache.references.count(key))
         cache.references[key] = referenceImage(scene, sceneName, "full", w, h, config.reference);
-    for (int spp : config.pathTracerSpp) {
-        ref::RenderSettings rs;
-        rs.paths = ref::LightPaths::Full;
-        rs.width = w;
-        rs.height = h;
-        rs.spp = spp;
-        rs.seed = 1234; // not the reference's seed: independent noise
-        rs.progress = false;
-        const ref::RenderResult res = ref::render(scene, scene.camera, rs);
-        BenchRow row;
-        row.scene = sceneName;
-        row.technique = "path-tracer";
-        row.settings = "spp=" + std::to_string(spp);
-        row.size = std::to_string(w) + "x" + std::to_string(h);
-        row.lightPaths = "full";
-        row.totalMs = res.seconds * 1000.0;
-        const std::vector<bool> emitters = emitterMaskOf(scene, w, h);
-        const core::ImageMetrics m =
-            core::compareImages(core::blanked(res.image, emitters), core::blanked(cache.references[key], emitters));
-        row.relRmseFull = row.relRmseOwn = m.relativeRmse;
-        row.rmseOwn = m.rmse;
-        row.ssimOwn = m.ssim;
-        row.relRmseBaseline = row.flicker = row.relRmseDirectLight = NAN;
-        row.relRmseCompareTo.assign(config.compareTo.size(), NAN);
-        row.record = {{"scene", sceneName},
-                      {"technique", "path-tracer"},
-                      {"settings", row.settings},
-                      {"size", row.size},
-                      {"lightPaths", "full"},
-                      {"totalMs", row.totalMs},
-                      {"imageFrames", 1},
-                      {"imageMs", row.totalMs},
-                      {"rays", res.rays},
-                      {"spp", spp},
-                      {"passes", nlohmann::json::array()},
-                      {"error", {{"full", {{"relativeRmse", m.relativeRmse}, {"rmse", m.rmse}, {"ssim", m.ssim}}}}},
-                      {"command", "bounce reference --scene " + sceneName + " --paths full --size " + row.size +
-                                      " --spp " + std::to_string(spp) + " --seed 1234 --out path-tracer.exr"}};
-        writeRowImages(out, res.image, firstIndex + rows.size(), row.size, cache, row);
-        rows.push_back(row);
-    }
-    return rows;
+    ref::RenderSettings rs;
+    rs.paths = ref::LightPaths::Full;
+    rs.width = w;
+    rs.height = h;
+    rs.spp = spp;
+    rs.seed = 1234; // not the reference's seed: independent noise
+    rs.progress = false;
+    const ref::RenderResult res = ref::render(scene, scene.camera, rs);
+    BenchRow row;
+    row.scene = sceneName;
+    row.technique = "path-tracer";
+    row.settings = "spp=" + std::to_string(spp);
+    row.size = std::to_string(w) + "x" + std::to_string(h);
+    row.lightPaths = "full";
+    row.totalMs = res.seconds * 1000.0;
+    const std::vector<bool> emitters = emitterMaskOf(scene, w, h);
+    const core::ImageMetrics m =
+        core::compareImages(core::blanked(res.image, emitters), core::blanked(cache.references[key], emitters));
+    row.relRmseFull = row.relRmseOwn = m.relativeRmse;
+    row.rmseOwn = m.rmse;
+    row.ssimOwn = m.ssim;
+    row.relRmseBaseline = row.flicker = row.relRmseDirectLight = NAN;
+    row.relRmseCompareTo.assign(config.compareTo.size(), NAN);
+    row.record = {{"scene", sceneName},
+                  {"technique", "path-tracer"},
+                  {"settings", row.settings},
+                  {"size", row.size},
+                  {"lightPaths", "full"},
+                  {"totalMs", row.totalMs},
+                  {"imageFrames", 1},
+                  {"imageMs", row.totalMs},
+                  {"rays", res.rays},
+                  {"spp", spp},
+                  {"passes", nlohmann::json::array()},
+                  {"error", {{"full", {{"relativeRmse", m.relativeRmse}, {"rmse", m.rmse}, {"ssim", m.ssim}}}}},
+                  {"command", "bounce reference --scene " + sceneName + " --paths full --size " + row.size + " --spp " +
+                                  std::to_string(spp) + " --seed 1234 --out path-tracer.exr"}};
+    writeRowImages(out, res.image, index, row.size, cache, row);
+    return row;
+}
+
+// Where a row was measured: the machine, and the GL renderer and driver whose timings (and, for the path
+// tracer, whose host's CPU) it holds. The report draws a Pareto front per renderer.
+void recordMachine(const gl::ContextInfo& context, BenchRow& row)
+{
+    row.record["host"] = hostName();
+    row.record["renderer"] = context.renderer;
+    row.record["glVersion"] = context.version;
 }
 
 } // namespace
@@ -375,18 +382,43 @@ std::vector<BenchRow> runBenchmark(const BenchConfig& config, const gl::ContextI
     std::vector<BenchRow> rows;
     for (std::size_t si = 0; si < config.scenes.size(); ++si) {
         SceneCache cache;
-        for (BenchRow& row : pathTracerCurve(config, config.sceneNames[si], config.scenes[si], cache, out, rows.size()))
-            rows.push_back(std::move(row));
+        for (int spp : config.pathTracerSpp) {
+            rows.push_back(
+                pathTracerRow(config, config.sceneNames[si], config.scenes[si], spp, cache, out, rows.size()));
+            recordMachine(context, rows.back());
+        }
         for (const BenchSetting& s : config.settings) {
             if (!s.runsOn(config.sceneNames[si])) continue;
             rows.push_back(
                 runSetting(config, s, config.sceneNames[si], config.scenes[si], context, cache, out, rows.size()));
+            recordMachine(context, rows.back());
             progress.add(1.0);
             if (afterRow) afterRow(rows);
         }
     }
     progress.finish();
     return rows;
+}
+
+BenchRow runTaskRow(const BenchConfig& config, const BenchTask& task, const gl::ContextInfo& context,
+                    const std::filesystem::path& out)
+{
+    SceneCache cache;
+    const std::string& sceneName = config.sceneNames[task.scene];
+    const core::Scene& scene = config.scenes[task.scene];
+    BenchRow row =
+        task.kind == BenchTask::Kind::PathTracer
+            ? pathTracerRow(config, sceneName, scene, task.spp, cache, out, task.row)
+            : runSetting(config, config.settings[task.setting], sceneName, scene, context, cache, out, task.row);
+    recordMachine(context, row);
+    return row;
+}
+
+std::string hostName()
+{
+    char name[256] = {};
+    if (::gethostname(name, sizeof name - 1) != 0) return "unknown";
+    return name;
 }
 
 } // namespace bounce::app

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/bench_config.h"
+#include "app/bench_tasks.h"
 #include "gl/context/context.h"
 
 namespace bounce::app {
@@ -45,5 +46,13 @@ void markNonFinite(BenchRow& row);
 std::vector<BenchRow> runBenchmark(const BenchConfig& config, const gl::ContextInfo& context,
                                    const std::function<void(const std::vector<BenchRow>&)>& afterRow = {},
                                    const std::filesystem::path& out = {});
+
+// One render or path-tracer task of app/bench_tasks.h alone (with its own cache of references and
+// baselines): the row a one-machine run makes at the task's index, its images under out/images/.
+BenchRow runTaskRow(const BenchConfig& config, const BenchTask& task, const gl::ContextInfo& context,
+                    const std::filesystem::path& out);
+
+// This machine's host name ("unknown" when it has none), recorded with every row.
+std::string hostName();
 
 } // namespace bounce::app

@@ -11,6 +11,8 @@
 #include "app/bench_report.h"
 #include "app/bench_roofline.h"
 #include "app/bench_run.h"
+#include "app/bench_shard.h"
+#include "app/bench_tasks.h"
 #include "app/commands.h"
 #include "app/options.h"
 #include "app/render_job.h"
@@ -22,6 +24,9 @@ namespace {
 
 const char* kUsage =
     "usage: bounce bench --config bench/NAME.json --out DIR [--backend egl|osmesa] [--cache DIR] [--full]\n"
+    "                    [--shard I/N]\n"
+    "       bounce bench --config bench/NAME.json --list-tasks [--full]\n"
+    "       bounce bench --merge DIR... --out OUT\n"
     "\n"
     "For each scene x technique x parameter setting of the config: render (warm-up frames, then timed\n"
     "frames: median, min, max GPU ms per pass), compare with the cached references (the technique's own\n"
@@ -52,21 +57,66 @@ const char* kUsage =
     "              (bench/study.json: the default run is the quick study, --full all of it)\n"
     "  --roofline  measure this machine's ceilings first when they are not cached (bounce probe); with\n"
     "              cached ceilings report.md gives every pass's bound and efficiency, and DIR/roofline.csv\n"
-    "              and DIR/roofline.png (achieved GFLOP/s against flop/byte under the ceilings)\n";
+    "              and DIR/roofline.png (achieved GFLOP/s against flop/byte under the ceilings)\n"
+    "\n"
+    "On a cluster or several machines (README, \"The study\"; scripts/slurm/):\n"
+    "  --list-tasks  print the config's tasks, one per line: INDEX ID KIND SCENE TECHNIQUE PARAMS (tab-separated;\n"
+    "                KIND reference, render or path-tracer; ID a hash of what the task computes), references\n"
+    "                first; the same config gives the same list everywhere\n"
+    "  --shard I/N   run the tasks whose index modulo N is I (0 <= I < N) into DIR, which all shards share:\n"
+    "                DIR/manifest.json, DIR/tasks/ID.json per task (written after its images), DIR/images/.\n"
+    "                A task with a record of the same sources is skipped, so a run resubmitted resumes. Under\n"
+    "                a Slurm array, without --shard: I = SLURM_ARRAY_TASK_ID - SLURM_ARRAY_TASK_MIN (over the\n"
+    "                step), N = SLURM_ARRAY_TASK_COUNT. The shards write no report and skip \"rays\".\n"
+    "  --merge DIR...  read every record of the DIRs and write into --out OUT what a one-machine run writes;\n"
+    "                a task without a record is named in report.md and makes the merge exit with status 1;\n"
+    "                rows of different GL renderers are on Pareto fronts of their own, and report.md says so\n";
 
 } // namespace
 
 int cmdBench(const Args& args)
 {
-    const Options o(args, {{"config"}, {"out"}, {"backend"}, {"cache"}, {"roofline", false}, {"full", false}}, kUsage);
+    const Options o(args,
+                    {{"config"},
+                     {"out"},
+                     {"backend"},
+                     {"cache"},
+                     {"roofline", false},
+                     {"full", false},
+                     {"list-tasks", false},
+                     {"shard"},
+                     {"merge", false}},
+                    kUsage);
     if (o.helpRequested()) {
         std::fputs(kUsage, stdout);
         return 0;
     }
+    if (o.has("merge")) {
+        if (!o.has("out") || o.positional().empty() || o.has("config") || o.has("shard") || o.has("list-tasks"))
+            throw UsageError("--merge takes folders of shards and --out, nothing else\n\n" + std::string(kUsage));
+        return mergeBenchShards({o.positional().begin(), o.positional().end()}, o.get("out"));
+    }
+    if (!o.positional().empty())
+        throw UsageError("unexpected argument '" + o.positional().front() + "'\n\n" + std::string(kUsage));
+    if (o.has("list-tasks")) {
+        if (!o.has("config")) throw UsageError("--list-tasks needs --config\n\n" + std::string(kUsage));
+        const BenchConfig config = readBenchConfig(o.get("config"), o.get("cache"), o.has("full"));
+        for (const BenchTask& t : benchTasks(config)) std::printf("%s\n", taskLine(t, config).c_str());
+        return 0;
+    }
     if (!o.has("config") || !o.has("out"))
         throw UsageError("--config and --out are required\n\n" + std::string(kUsage));
-    // Everything is checked before the first (long) render and before anything is written.
+    // Everything is checked before the first (long) render and before anything is written: the shard
+    // (--shard, or the Slurm array's variables) and the config.
+    Shard shard;
+    const bool sharded = o.has("shard") ? (shard = parseShard(o.get("shard")), true) : slurmShard(shard);
     const BenchConfig config = readBenchConfig(o.get("config"), o.get("cache"), o.has("full"));
+    if (sharded) {
+        if (config.rays > 0)
+            std::printf("note: the config's \"rays\" table is not measured by shards (a one-machine run has it)\n");
+        return runBenchShard(
+            config, {o.get("config"), o.has("full"), o.get("out"), shard, o.get("backend", "egl"), o.has("roofline")});
+    }
     const std::filesystem::path out = o.get("out");
     std::filesystem::create_directories(out);
     auto context = createContextForCli(o.get("backend", "egl"));
@@ -87,26 +137,7 @@ int cmdBench(const Args& args)
             rays.push_back({config.sceneNames[i], measureRayThroughput(config.scenes[i], config.rays, 3, 0)});
         }
     writeBenchReport(out, config, rows, rays, context->info());
-    int rc = plotSpeedError(out);
-    std::printf("wrote %s/{results.csv,results.json,report.md,report.html%s}\n", out.string().c_str(),
-                rc == 0 ? ",speed_error.png" : "; not speed_error.png: the plot script failed");
-    if (std::any_of(rows.begin(), rows.end(), [](const BenchRow& r) { return r.record.contains("curve"); })) {
-        rc |= plotConvergence(out);
-        std::printf("wrote %s/convergence.png: the curves' error against time and steps, beside the path tracer\n",
-                    out.string().c_str());
-    }
-    if (hasRoofline(rows)) {
-        rc |= plotRoofline(out);
-        std::printf("wrote %s/{roofline.csv,roofline.png}: every pass against its bound\n", out.string().c_str());
-    }
-    std::size_t failed = 0;
-    for (const BenchRow& r : rows)
-        if (r.nonFiniteValues > 0) {
-            std::fprintf(stderr, "bounce bench: error: %s (%s) on %s wrote %zu NaN/Inf values\n", r.technique.c_str(),
-                         r.settings.c_str(), r.scene.c_str(), r.nonFiniteValues);
-            ++failed;
-        }
-    return rc == 0 && failed == 0 ? 0 : 1;
+    return finishBenchReport(out, rows);
 }
 
 } // namespace bounce::app

@@ -58,11 +58,15 @@ def main(argv):
             print("pareto front, %s %s, %s: %s" % (scene, size, column, "; ".join(
                 "%s (%s) %s %s" % (named[i]["technique"], named[i]["params"], named[i]["image_ms"], named[i][column])
                 for i in front)))
-            if front:
-                ax.step([points[i][0] for i in front], [points[i][1] for i in front], "k--", where="post",
-                        linewidth=1, label="Pareto front")
-                ax.scatter([points[i][0] for i in front], [points[i][1] for i in front], s=80, facecolors="none",
-                           edgecolors="k", zorder=3)
+            # A front per GL renderer (a merge of shards run on several machines): their times do not compare.
+            renderers = sorted({named[i].get("renderer", "") for i in front})
+            for k, renderer in enumerate(renderers):
+                mine = [i for i in front if named[i].get("renderer", "") == renderer]
+                ax.step([points[i][0] for i in mine], [points[i][1] for i in mine], "k--", where="post",
+                        linewidth=1, label="Pareto front" + (" (%s)" % renderer if len(renderers) > 1 else ""),
+                        dashes=(4 + 3 * k, 2 + k))
+                ax.scatter([points[i][0] for i in mine], [points[i][1] for i in mine], s=80, facecolors="none",
+                           edgecolors="k", zorder=3, marker="os^Dv"[k % 5])
             ax.set_xscale("log")
             ax.set_yscale("log")
             ax.set_title("%s, %s" % (scene, size), fontsize=10)

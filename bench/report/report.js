@@ -95,12 +95,14 @@
   }
 
   // The runs no other run of their size beats in both time and error, as the bench marked them
-  // (results.json's "pareto", app/bench_report.cpp), one front per image size, fastest first.
+  // (results.json's "pareto", app/bench_report.cpp), one front per image size and GL renderer (a merge of
+  // shards run on several machines: their times do not compare), fastest first.
   function paretoFronts(runs) {
     const fronts = new Map();
     for (const r of runs.filter((x) => x.pareto && x.pareto.full)) {
-      if (!fronts.has(r.size)) fronts.set(r.size, []);
-      fronts.get(r.size).push(r);
+      const key = `${r.size} ${r.renderer || ''}`;
+      if (!fronts.has(key)) fronts.set(key, []);
+      fronts.get(key).push(r);
     }
     return [...fronts.values()].map((f) => f.sort((a, b) => imageMs(a) - imageMs(b)));
   }
@@ -482,6 +484,9 @@
 
   document.getElementById('renderer').textContent =
     `GL renderer: ${data.renderer} (${data.platform}). ${records.length} rows. Timings compare only within one run.`;
+  // What the bench says first (a merge's missing tasks, several renderers' timings: app/bench_shard.cpp).
+  for (const note of data.notes || [])
+    document.getElementById('notes').append(el('p', { class: 'note' }, note));
   const nav = document.getElementById('scenes');
   for (const s of scenes) {
     const b = el('button', {}, s);
