@@ -31,17 +31,23 @@ struct Result {
     std::string output; // stdout and stderr together
 };
 
-Result run(const std::string& args, const std::string& env = "")
+// Runs a shell command line, its stderr with its stdout.
+Result shell(const std::string& command)
 {
-    const std::string cmd = "BOUNCE_POISON_STORAGE=1 " + env + " " + std::string(BOUNCE_BINARY) + " " + args + " 2>&1";
     Result r;
-    FILE* p = popen(cmd.c_str(), "r");
+    FILE* p = popen((command + " 2>&1").c_str(), "r");
     if (!p) return r;
     char buf[4096];
     while (std::fgets(buf, sizeof buf, p)) r.output += buf;
     const int s = pclose(p);
     r.status = WIFEXITED(s) ? WEXITSTATUS(s) : -1;
     return r;
+}
+
+// `bounce ARGS` with the variables `env` ("NAME=value ..."); new GL storage poisoned, as in the GL suite.
+Result run(const std::string& args, const std::string& env = "")
+{
+    return shell("BOUNCE_POISON_STORAGE=1 " + env + " " + std::string(BOUNCE_BINARY) + " " + args);
 }
 
 fs::path outDir(const std::string& name)
@@ -296,6 +302,71 @@ TEST(BenchShard, MergeOfTwoRenderersDrawsAFrontPerRenderer)
     const std::string md = text(d / "two" / "report.md");
     EXPECT_NE(md.find("Timings from 2 GL renderers"), std::string::npos) << md;
     EXPECT_NE(md.find("Another GPU/PCIe/SSE2"), std::string::npos) << md;
+}
+
+// scripts/slurm/submit.sh against a stand-in for sbatch that runs what it is given at once, here: the array's
+// tasks one after another with the variables Slurm sets, then the merge. It checks the wiring (the shards
+// found from the array, the merge after the array with afterany, both job ids printed, one report in DIR),
+// not Slurm itself.
+TEST(BenchShard, SlurmSubmitRunsTheArrayThenTheMerge)
+{
+    const fs::path d = outDir("slurm");
+    std::ofstream(d / "tiny.json") << kTinyConfig;
+    fs::create_directories(d / "bin");
+    const fs::path sbatch = d / "bin" / "sbatch";
+    std::ofstream(sbatch) << R"(#!/usr/bin/env bash
+# A stand-in for sbatch: runs the job now. Job ids count from 1001 (kept in $SBATCH_STUB_STATE).
+set -eu
+echo "$*" >> "$SBATCH_STUB_STATE.args"
+id=$(( $(cat "$SBATCH_STUB_STATE.id" 2>/dev/null || echo 1000) + 1 )); echo $id > "$SBATCH_STUB_STATE.id"
+array="" output="" wrap="" script=""
+for a in "$@"; do
+  case $a in
+    --array=*) array=${a#--array=} ;;
+    --output=*) output=${a#--output=} ;;
+    --wrap=*) wrap=${a#--wrap=} ;;
+    --*) ;;
+    *) script=$a ;;
+  esac
+done
+if [ -n "$wrap" ]; then
+  bash -c "$wrap" > "${output//%j/$id}" 2>&1 || true
+else
+  first=${array%-*} last=${array#*-}
+  for ((t = first; t <= last; ++t)); do
+    log=${output//%A/$id}; log=${log//%a/$t}
+    SLURM_ARRAY_JOB_ID=$id SLURM_ARRAY_TASK_ID=$t SLURM_ARRAY_TASK_MIN=$first SLURM_ARRAY_TASK_MAX=$last \
+      SLURM_ARRAY_TASK_COUNT=$((last - first + 1)) bash "$script" > "$log" 2>&1 || true
+  done
+fi
+echo "$id"
+)";
+    fs::permissions(sbatch, fs::perms::owner_all);
+    const fs::path dir = d / "study";
+    const std::string stub = "PATH=" + (d / "bin").string() + ":$PATH SBATCH_STUB_STATE=" + (d / "sbatch").string();
+    const std::string submit = (fs::path(BOUNCE_SOURCE_ROOT) / "scripts/slurm/submit.sh").string();
+    const Result r = shell(stub + " BOUNCE_BIN=" + BOUNCE_BINARY + " BOUNCE_POISON_STORAGE=1 " + submit + " " +
+                           (d / "tiny.json").string() + " 3 " + dir.string() + " --backend " + testBackend() +
+                           " --cache " + (d / "cache").string());
+    ASSERT_EQ(r.status, 0) << r.output;
+    EXPECT_NE(r.output.find("array job 1001"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("merge job 1002"), std::string::npos) << r.output;
+    const std::string args = text(d / "sbatch.args");
+    EXPECT_NE(args.find("--array=0-2"), std::string::npos) << args;
+    EXPECT_NE(args.find("--dependency=afterany:1001"), std::string::npos) << args;
+    for (int shard = 0; shard < 3; ++shard) {
+        const std::string log = text(dir / "logs" / ("shard-1001_" + std::to_string(shard) + ".log"));
+        EXPECT_NE(log.find("shard " + std::to_string(shard) + "/3"), std::string::npos) << log;
+    }
+    const std::string merge = text(dir / "logs" / "merge-1002.log");
+    EXPECT_NE(merge.find("merged 7 of 7 tasks"), std::string::npos) << merge;
+    EXPECT_EQ(json::parse(text(dir / "results.json")).size(), 4u);
+    EXPECT_TRUE(fs::exists(dir / "report.html"));
+
+    // A bad shard count is refused before anything is queued.
+    const Result bad = shell(stub + " " + submit + " " + (d / "tiny.json").string() + " 0 " + (d / "none").string());
+    EXPECT_EQ(bad.status, 2) << bad.output;
+    EXPECT_FALSE(fs::exists(d / "none"));
 }
 
 } // namespace
