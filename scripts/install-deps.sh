@@ -6,6 +6,8 @@
 # sanitizer runtimes, which apt does not install with clang-14 when recommends are off.
 # glslang-tools: the Khronos reference GLSL compiler, which checks every shader stage the conformance
 # tests compile (tests/gl/conformance_test.cpp), as a GPU driver's stricter front end would.
+# munge, slurmctld, slurmd and slurm-client: the single-node Slurm that scripts/slurm/local-slurm-test.sh
+# starts from a slurm.conf of its own (.ci/run), to run the bench as a job array for real.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -17,6 +19,7 @@ packages=(
   xvfb xauth python3-matplotlib python3-numpy
   chromium glslang-tools
   clang-14 libclang-rt-14-dev
+  munge slurmctld slurmd slurm-client
 )
 missing=()
 for p in "${packages[@]}"; do
