@@ -10,6 +10,8 @@
 #include <set>
 #include <sstream>
 
+#include <cerrno>
+#include <csignal>
 #include <unistd.h>
 
 #include <nlohmann/json.hpp>
@@ -185,6 +187,22 @@ void moveImages(const fs::path& staging, const fs::path& out)
         fs::rename(e.path(), out / "images" / e.path().filename());
 }
 
+// A task killed part way (a time limit, scancel) leaves its staging folder, ID.HOST.PID. When the task runs
+// again on the same host, the folders of its earlier runs whose process is gone are removed; a run still
+// at work (the same shard started twice) keeps its own.
+void removeDeadStaging(const fs::path& stagingDir, const std::string& id, const std::string& host)
+{
+    if (!fs::exists(stagingDir)) return;
+    const std::string prefix = id + "." + host + ".";
+    for (const fs::directory_entry& e : fs::directory_iterator(stagingDir)) {
+        const std::string name = e.path().filename().string();
+        if (name.rfind(prefix, 0) != 0) continue;
+        const std::string pid = name.substr(prefix.size());
+        if (pid.empty() || pid.find_first_not_of("0123456789") != std::string::npos) continue;
+        if (::kill(pid_t(std::stol(pid)), 0) != 0 && errno == ESRCH) fs::remove_all(e.path());
+    }
+}
+
 } // namespace
 
 int runBenchShard(const BenchConfig& config, const ShardRun& run)
@@ -235,6 +253,7 @@ int runBenchShard(const BenchConfig& config, const ShardRun& run)
                        {"renderer", info.renderer},
                        {"glVersion", info.version},
                        {"platform", info.platform}};
+        removeDeadStaging(run.out / "staging", t.id, host);
         if (t.kind == BenchTask::Kind::Reference) {
             // Into the shared cache (ref/: concurrent writers each rename a whole file); the renders that
             // compare with it write it into images/ beside themselves.
@@ -242,7 +261,6 @@ int runBenchShard(const BenchConfig& config, const ShardRun& run)
                            config.reference);
         } else {
             const fs::path staging = run.out / "staging" / (t.id + "." + host + "." + std::to_string(::getpid()));
-            fs::remove_all(staging);
             const BenchRow row = runTaskRow(config, t, info, staging);
             moveImages(staging, run.out);
             fs::remove_all(staging);

@@ -239,7 +239,12 @@ TEST(BenchShard, TwoShardsAndAMergeGiveTheRecordsOfOneMachine)
     EXPECT_NE(again.output.find("done before: 0\t" + firstId), std::string::npos) << again.output;
     EXPECT_EQ(fs::last_write_time(firstRecord), written);
 
-    // A record of other sources is run again; the others are not.
+    // A record of other sources is run again; the others are not. The staging folder a killed run of the
+    // task left on this host (its process gone) is removed.
+    const fs::path killed =
+        shards / "staging" / (firstId + "." + json::parse(text(firstRecord))["host"].get<std::string>() + ".999999999");
+    fs::create_directories(killed / "images");
+    std::ofstream(killed / "images" / "half.exr") << "half an image";
     json stale = json::parse(text(firstRecord));
     stale["sourceHash"] = "0000000000000000";
     std::ofstream(firstRecord) << stale.dump();
@@ -247,6 +252,7 @@ TEST(BenchShard, TwoShardsAndAMergeGiveTheRecordsOfOneMachine)
     ASSERT_EQ(rerun.status, 0) << rerun.output;
     EXPECT_NE(rerun.output.find("task 0\t" + firstId), std::string::npos) << rerun.output;
     EXPECT_EQ(json::parse(text(firstRecord))["sourceHash"], manifest["sourceHash"]);
+    EXPECT_FALSE(fs::exists(shards / "staging")) << "a killed run's staging folder is removed";
     for (const char* other : {"task 2\t", "task 4\t", "task 6\t"})
         EXPECT_EQ(rerun.output.find(other), std::string::npos) << rerun.output;
 
