@@ -84,15 +84,23 @@ done
 sinfo -h -o %T 2>/dev/null | grep -qx idle || fail "the node did not come up"
 echo "local-slurm-test: slurm up ($node, $(sinfo -h -o %c) CPUs)"
 
-# Two renders, a sweep and the path tracer on one scene at 16x16: 7 tasks, seconds each.
+# Two renders, a sweep and the path tracer on one scene at 16x16: 7 tasks, a second or less each.
 cat >"$tmp/tiny.json" <<'EOF'
 {"size": "16x16", "warmup": 0, "frames": 1, "reference": {"spp": 16}, "scenes": ["cornell-spot"],
  "pathTracerSpp": [4], "runs": [{"technique": "direct"}, {"technique": "rsm", "sweep": {"vpls": [4, 16]}}]}
 EOF
+# The one to cancel part way: more tasks per shard (17 in all), so that shards running side by side on a
+# machine of many cores are still at work when the first record appears.
+cat >"$tmp/longer.json" <<'EOF'
+{"size": "16x16", "warmup": 0, "frames": 1, "reference": {"spp": 16}, "scenes": ["cornell-spot"],
+ "pathTracerSpp": [4, 16, 64], "runs": [{"technique": "direct"},
+ {"technique": "rsm", "sweep": {"vpls": [4, 8, 16, 32, 64, 128, 256, 512, 1024, 2048]}}]}
+EOF
 args=(--backend osmesa --cache "$tmp/cache")
-"$bin" bench --config "$tmp/tiny.json" --out "$tmp/whole" "${args[@]}" >"$tmp/whole.log" 2>&1 ||
-  fail "the one-machine run"
-tasks=$("$bin" bench --config "$tmp/tiny.json" --list-tasks | wc -l)
+for c in tiny longer; do
+  "$bin" bench --config "$tmp/$c.json" --out "$tmp/whole-$c" "${args[@]}" >"$tmp/whole-$c.log" 2>&1 ||
+    fail "the one-machine run of $c.json"
+done
 
 # Waits for a job to leave the queue (at most $2 seconds).
 wait_job() {
@@ -128,12 +136,13 @@ EOF
 
 # 1. Three shards and the merge.
 start=$(date +%s)
+tasks=$("$bin" bench --config "$tmp/tiny.json" --list-tasks | wc -l)
 out=$(scripts/slurm/submit.sh "$tmp/tiny.json" 3 "$tmp/run" "${args[@]}") || fail "submit.sh: $out"
 echo "$out"
 wait_job "$(merge_id "$out")" 120
 echo "local-slurm-test: array and merge done in $(($(date +%s) - start)) s"
 grep -q "merged $tasks of $tasks tasks" "$tmp"/run/logs/merge-*.log || fail "the merge: $(cat "$tmp"/run/logs/merge-*.log)"
-same_records "$tmp/whole/results.json" "$tmp/run/results.json" || fail "merged records differ from one machine's"
+same_records "$tmp/whole-tiny/results.json" "$tmp/run/results.json" || fail "merged records differ from one machine's"
 if command -v node >/dev/null && [[ -d node_modules/playwright-core ]]; then
   node tests/app/report_browser.mjs "$tmp/run" || fail "report.html in headless Chromium"
   echo "local-slurm-test: report.html opens in headless Chromium"
@@ -142,7 +151,8 @@ else
 fi
 
 # 2. Cancelled half-way (as soon as a task is recorded), then submitted again.
-out=$(scripts/slurm/submit.sh "$tmp/tiny.json" 3 "$tmp/resume" "${args[@]}") || fail "submit.sh: $out"
+tasks=$("$bin" bench --config "$tmp/longer.json" --list-tasks | wc -l)
+out=$(scripts/slurm/submit.sh "$tmp/longer.json" 3 "$tmp/resume" "${args[@]}") || fail "submit.sh: $out"
 for _ in $(seq 400); do
   compgen -G "$tmp/resume/tasks/*.json" >/dev/null && break
   sleep 0.05
@@ -153,7 +163,7 @@ before=$(find "$tmp/resume/tasks" -name '*.json' | wc -l)
 ((before < tasks)) || fail "the array had finished before it was cancelled: resuming was not tested"
 grep -q "missing task" "$tmp"/resume/logs/merge-*.log || fail "the merge of a cancelled array names no missing task"
 stamps=$(cd "$tmp/resume/tasks" && stat -c '%n %Y.%y' -- *.json)
-out=$(scripts/slurm/submit.sh "$tmp/tiny.json" 3 "$tmp/resume" "${args[@]}") || fail "submit.sh again: $out"
+out=$(scripts/slurm/submit.sh "$tmp/longer.json" 3 "$tmp/resume" "${args[@]}") || fail "submit.sh again: $out"
 wait_job "$(merge_id "$out")" 120
 after=$(find "$tmp/resume/tasks" -name '*.json' | wc -l)
 [[ $after == "$tasks" ]] || fail "$after records for $tasks tasks after the resubmission"
@@ -161,6 +171,6 @@ while read -r name stamp; do
   [[ $(cd "$tmp/resume/tasks" && stat -c '%Y.%y' -- "$name") == "$stamp" ]] || fail "$name was run again"
 done <<<"$stamps"
 grep -q "merged $tasks of $tasks tasks" "$tmp/resume/logs/merge-$(merge_id "$out").log" || fail "the second merge"
-same_records "$tmp/whole/results.json" "$tmp/resume/results.json" || fail "resumed records differ"
+same_records "$tmp/whole-longer/results.json" "$tmp/resume/results.json" || fail "resumed records differ"
 echo "local-slurm-test: cancelled with $before of $tasks tasks recorded; resubmitted, $after records, none run twice"
 echo "local-slurm-test: passed in $(($(date +%s) - start)) s"
