@@ -4,7 +4,6 @@
 // field but the timings and the host), a shard run again skips what it did, a record of other sources is
 // run again, and a missing task makes the merge fail and is named in its report.
 #include <algorithm>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -16,8 +15,8 @@
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
-#include <sys/wait.h>
 
+#include "tests/app/run_command.h"
 #include "tests/app/test_backend.h"
 
 namespace {
@@ -26,28 +25,13 @@ namespace fs = std::filesystem;
 using bounce::testing::testBackend;
 using nlohmann::json;
 
-struct Result {
-    int status = -1;
-    std::string output; // stdout and stderr together
-};
+using Result = bounce::testing::CommandRun;
+using bounce::testing::runShell;
 
-// Runs a shell command line, its stderr with its stdout.
-Result shell(const std::string& command)
-{
-    Result r;
-    FILE* p = popen((command + " 2>&1").c_str(), "r");
-    if (!p) return r;
-    char buf[4096];
-    while (std::fgets(buf, sizeof buf, p)) r.output += buf;
-    const int s = pclose(p);
-    r.status = WIFEXITED(s) ? WEXITSTATUS(s) : -1;
-    return r;
-}
-
-// `bounce ARGS` with the variables `env` ("NAME=value ..."); new GL storage poisoned, as in the GL suite.
+// `bounce ARGS` with the variables `env` ("NAME=value ...").
 Result run(const std::string& args, const std::string& env = "")
 {
-    return shell("BOUNCE_POISON_STORAGE=1 " + env + " " + std::string(BOUNCE_BINARY) + " " + args);
+    return bounce::testing::runBounce(args, env + " ");
 }
 
 fs::path outDir(const std::string& name)
@@ -351,9 +335,9 @@ echo "$id"
     const fs::path dir = d / "study";
     const std::string stub = "PATH=" + (d / "bin").string() + ":$PATH SBATCH_STUB_STATE=" + (d / "sbatch").string();
     const std::string submit = (fs::path(BOUNCE_SOURCE_ROOT) / "scripts/slurm/submit.sh").string();
-    const Result r = shell(stub + " BOUNCE_BIN=" + BOUNCE_BINARY + " BOUNCE_POISON_STORAGE=1 " + submit + " " +
-                           (d / "tiny.json").string() + " 3 " + dir.string() + " --backend " + testBackend() +
-                           " --cache " + (d / "cache").string());
+    const Result r = runShell(stub + " BOUNCE_BIN=" + BOUNCE_BINARY + " BOUNCE_POISON_STORAGE=1 " + submit + " " +
+                              (d / "tiny.json").string() + " 3 " + dir.string() + " --backend " + testBackend() +
+                              " --cache " + (d / "cache").string());
     ASSERT_EQ(r.status, 0) << r.output;
     EXPECT_NE(r.output.find("array job 1001"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("merge job 1002"), std::string::npos) << r.output;
@@ -370,7 +354,7 @@ echo "$id"
     EXPECT_TRUE(fs::exists(dir / "report.html"));
 
     // A bad shard count is refused before anything is queued.
-    const Result bad = shell(stub + " " + submit + " " + (d / "tiny.json").string() + " 0 " + (d / "none").string());
+    const Result bad = runShell(stub + " " + submit + " " + (d / "tiny.json").string() + " 0 " + (d / "none").string());
     EXPECT_EQ(bad.status, 2) << bad.output;
     EXPECT_FALSE(fs::exists(d / "none"));
 }

@@ -13,12 +13,12 @@
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
-#include <sys/wait.h>
 
 #include "core/cornell.h"
 #include "core/gltf_io.h"
 #include "core/image.h"
 #include "core/metrics.h"
+#include "tests/app/run_command.h"
 #include "tests/app/test_backend.h"
 #include "tests/core/gltf_bad_cases.h"
 
@@ -27,30 +27,12 @@ namespace {
 namespace fs = std::filesystem;
 using bounce::testing::testBackend;
 
-struct CliRun {
-    int status = -1;
-    std::string output; // stdout and stderr together
-};
+using bounce::testing::CommandRun;
+using bounce::testing::runShell;
 
-// Runs a shell command line, its stderr with its stdout.
-CliRun runCommand(const std::string& command)
+CommandRun run(const std::string& args, const std::string& prefix = "")
 {
-    const std::string cmd = command + " 2>&1";
-    CliRun r;
-    FILE* p = popen(cmd.c_str(), "r");
-    if (!p) return r;
-    char buf[4096];
-    while (std::fgets(buf, sizeof buf, p)) r.output += buf;
-    const int s = pclose(p);
-    r.status = WIFEXITED(s) ? WEXITSTATUS(s) : -1;
-    return r;
-}
-
-// `prefix` runs the binary under another command (e.g. env -u DISPLAY). New GL storage is poisoned
-// (gl/resource/allocations.h), as in the GL suite.
-CliRun run(const std::string& args, const std::string& prefix = "")
-{
-    return runCommand("BOUNCE_POISON_STORAGE=1 " + prefix + std::string(BOUNCE_BINARY) + " " + args);
+    return bounce::testing::runBounce(args, prefix);
 }
 
 bool commandExists(const std::string& name)
@@ -75,7 +57,7 @@ TEST(Cli, HelpEverywhere)
 {
     for (const char* cmd : {"--help", "render --help", "list --help", "demo --help", "reference --help",
                             "compare --help", "bench --help", "probe --help"}) {
-        const CliRun r = run(cmd);
+        const CommandRun r = run(cmd);
         EXPECT_EQ(r.status, 0) << cmd << "\n" << r.output;
         EXPECT_NE(r.output.find("usage"), std::string::npos) << cmd;
     }
@@ -83,7 +65,7 @@ TEST(Cli, HelpEverywhere)
 
 TEST(Cli, ListShowsScenesTechniquesAndParameters)
 {
-    const CliRun r = run("list");
+    const CommandRun r = run("list");
     ASSERT_EQ(r.status, 0) << r.output;
     for (const char* s : {"cornell-area", "cornell-spot", "cornell-point", "direct", "shadow.size", "default"})
         EXPECT_NE(r.output.find(s), std::string::npos) << s;
@@ -119,7 +101,7 @@ TEST(Cli, BadInputExitsTwoAndWritesNothing)
         {"bench --config /nonexistent/bench.json --out " + (d / "bench").string(), "bench.json"},
     };
     for (const auto& c : cases) {
-        const CliRun r = run(c.args);
+        const CommandRun r = run(c.args);
         EXPECT_EQ(r.status, 2) << c.args << "\n" << r.output;
         EXPECT_NE(r.output.find(c.says), std::string::npos) << c.args << "\n" << r.output;
         EXPECT_TRUE(emptyDir(d)) << c.args << " left files behind";
@@ -149,7 +131,7 @@ TEST(Cli, MalformedGltfExitsTwoWithTheMessageAndLeavesNothing)
         const std::string file = c.write(scene);
         const auto before = listing(scene);
         const std::string common = " --scene '" + file + "' --size 16x16 --out '";
-        const CliRun r =
+        const CommandRun r =
             run("render" + common + (out / "x.exr").string() + "' --frames 1 --warmup 0 --backend " + testBackend());
         if (c.words.empty()) {
             EXPECT_EQ(r.status, 0) << c.name << "\n" << r.output;
@@ -159,10 +141,10 @@ TEST(Cli, MalformedGltfExitsTwoWithTheMessageAndLeavesNothing)
         // The path tracer reads lights and cameras too (the loader is shared; one process start each).
         const bool traced =
             c.name.rfind("light", 0) == 0 || c.name.rfind("spot", 0) == 0 || c.name.rfind("camera", 0) == 0;
-        const CliRun ref = !traced ? r
-                                   : run("reference" + common + (out / "r.exr").string() + "' --spp 1 --cache-dir '" +
-                                         (root / "cache").string() + "'");
-        for (const CliRun* x : {&r, &ref}) {
+        const CommandRun ref = !traced ? r
+                                       : run("reference" + common + (out / "r.exr").string() +
+                                             "' --spp 1 --cache-dir '" + (root / "cache").string() + "'");
+        for (const CommandRun* x : {&r, &ref}) {
             const std::string command = x == &r ? "render" : "reference";
             EXPECT_EQ(x->status, 2) << c.name << " (" << command << ")\n" << x->output;
             EXPECT_NE(x->output.find(c.words), std::string::npos) << c.name << " (" << command << ")\n" << x->output;
@@ -176,8 +158,8 @@ TEST(Cli, MalformedGltfExitsTwoWithTheMessageAndLeavesNothing)
 TEST(Cli, RenderWritesExrPngAndJsonRecord)
 {
     const fs::path d = outDir("render");
-    const CliRun r = run("render --scene cornell-spot --size 48x32 --frames 2 --warmup 1 --backend " + testBackend() +
-                         " --out " + (d / "spot.png").string());
+    const CommandRun r = run("render --scene cornell-spot --size 48x32 --frames 2 --warmup 1 --backend " +
+                             testBackend() + " --out " + (d / "spot.png").string());
     ASSERT_EQ(r.status, 0) << r.output;
     EXPECT_NE(r.output.find("GL renderer"), std::string::npos);
     ASSERT_TRUE(fs::exists(d / "spot.exr"));
@@ -207,9 +189,9 @@ TEST(Cli, ProbeCachesCeilingsAndRenderRecordsBounds)
 {
     const fs::path d = outDir("probe");
     const std::string env = "env BOUNCE_CACHE=" + (d / "cache").string() + " ";
-    const CliRun bad = run("probe --size 5 --backend " + testBackend(), env);
+    const CommandRun bad = run("probe --size 5 --backend " + testBackend(), env);
     EXPECT_EQ(bad.status, 2) << bad.output;
-    const CliRun probe =
+    const CommandRun probe =
         run("probe --size 64 --repeats 1 --backend " + testBackend() + " --json " + (d / "c.json").string(), env);
     ASSERT_EQ(probe.status, 0) << probe.output;
     std::ifstream cin(d / "c.json");
@@ -222,9 +204,9 @@ TEST(Cli, ProbeCachesCeilingsAndRenderRecordsBounds)
     for (const auto& e : fs::directory_iterator(d / "cache"))
         cached |= e.path().filename().string().rfind("probe-", 0) == 0;
     ASSERT_TRUE(cached) << "the measured ceilings are cached under the renderer";
-    const CliRun render = run("render --scene cornell-spot --size 32x32 --frames 1 --warmup 0 --backend " +
-                                  testBackend() + " --out " + (d / "r.exr").string(),
-                              env);
+    const CommandRun render = run("render --scene cornell-spot --size 32x32 --frames 1 --warmup 0 --backend " +
+                                      testBackend() + " --out " + (d / "r.exr").string(),
+                                  env);
     ASSERT_EQ(render.status, 0) << render.output;
     std::ifstream rin(d / "r.json");
     const nlohmann::json j = nlohmann::json::parse(rin);
@@ -240,9 +222,9 @@ TEST(Cli, ProbeCachesCeilingsAndRenderRecordsBounds)
     EXPECT_TRUE(anyBound) << render.output;
     // Without cached ceilings the record has the work but no bounds.
     fs::remove_all(d / "cache");
-    const CliRun plain = run("render --scene cornell-spot --size 32x32 --frames 1 --warmup 0 --backend " +
-                                 testBackend() + " --out " + (d / "p.exr").string(),
-                             env);
+    const CommandRun plain = run("render --scene cornell-spot --size 32x32 --frames 1 --warmup 0 --backend " +
+                                     testBackend() + " --out " + (d / "p.exr").string(),
+                                 env);
     ASSERT_EQ(plain.status, 0) << plain.output;
     std::ifstream pin(d / "p.json");
     // Named: a range-for over a member of the temporary parse() returns reads freed memory.
@@ -257,7 +239,7 @@ TEST(Cli, ReferenceWritesImageAndRecordThenHitsTheCache)
     const std::string args =
         "reference --scene cornell-spot --paths direct --size 24x16 --spp 8 --threads 2 --cache-dir " +
         (d / "cache").string() + " --out " + (d / "ref.exr").string() + " --json " + (d / "ref.json").string();
-    const CliRun first = run(args);
+    const CommandRun first = run(args);
     ASSERT_EQ(first.status, 0) << first.output;
     EXPECT_NE(first.output.find("rays/s"), std::string::npos) << first.output;
     const bounce::core::Image img = bounce::core::readImage((d / "ref.exr").string());
@@ -269,7 +251,7 @@ TEST(Cli, ReferenceWritesImageAndRecordThenHitsTheCache)
     EXPECT_EQ(j["spp"], 8);
     EXPECT_FALSE(j["fromCache"].get<bool>());
     EXPECT_GT(j["raysPerSecond"].get<double>(), 0.0);
-    const CliRun second = run(args);
+    const CommandRun second = run(args);
     ASSERT_EQ(second.status, 0) << second.output;
     std::ifstream in2(d / "ref.json");
     EXPECT_TRUE(nlohmann::json::parse(in2)["fromCache"].get<bool>()) << second.output;
@@ -288,8 +270,8 @@ TEST(Cli, CompareReportsFiguresAndRefusesDifferentSizes)
     bounce::core::writeImage((d / "a.exr").string(), a);
     bounce::core::writeImage((d / "b.exr").string(), b);
     bounce::core::writeImage((d / "c.exr").string(), c);
-    const CliRun same = run("compare " + (d / "a.exr").string() + " " + (d / "b.exr").string() + " --json " +
-                            (d / "ab.json").string() + " --heatmap " + (d / "ab.png").string());
+    const CommandRun same = run("compare " + (d / "a.exr").string() + " " + (d / "b.exr").string() + " --json " +
+                                (d / "ab.json").string() + " --heatmap " + (d / "ab.png").string());
     ASSERT_EQ(same.status, 0) << same.output;
     EXPECT_TRUE(fs::exists(d / "ab.png"));
     std::ifstream in(d / "ab.json");
@@ -301,7 +283,7 @@ TEST(Cli, CompareReportsFiguresAndRefusesDifferentSizes)
         EXPECT_NEAR(j["channelMeanReference"][c].get<double>(), 1.5, 1e-6) << j.dump();
     }
     const fs::path before = d / "ac.json";
-    const CliRun different =
+    const CommandRun different =
         run("compare " + (d / "a.exr").string() + " " + (d / "c.exr").string() + " --json " + before.string());
     EXPECT_EQ(different.status, 2) << different.output;
     EXPECT_NE(different.output.find("8x6"), std::string::npos) << different.output;
@@ -328,7 +310,7 @@ TEST(Cli, CompareByBlocksWithTheEmitterMasked)
     bounce::core::writeImage((d / "fine.exr").string(), fine);
     const auto figure = [&](const std::string& args, const char* key) {
         const fs::path json = d / "c.json";
-        const CliRun r = run("compare " + args + " --json " + json.string());
+        const CommandRun r = run("compare " + args + " --json " + json.string());
         EXPECT_EQ(r.status, 0) << r.output;
         return nlohmann::json::parse(std::ifstream(json))[key].get<double>();
     };
@@ -452,8 +434,8 @@ TEST(Cli, BenchPlotsCurvesAndWritesAReportThatABrowserOpens)
                                 "runs": [{"technique": "grb", "curve": true,
                                           "set": {"directionsPerFrame": 2, "kbufferSize": 32, "atlasTexels": 1024}},
                                          {"technique": "direct", "size": "24x20", "frames": 1}]})";
-    const CliRun r = run("bench --backend " + testBackend() + " --config " + config.string() + " --out " +
-                         (d / "out").string() + " --cache " + (d / "cache").string());
+    const CommandRun r = run("bench --backend " + testBackend() + " --config " + config.string() + " --out " +
+                             (d / "out").string() + " --cache " + (d / "cache").string());
     ASSERT_EQ(r.status, 0) << r.output;
     EXPECT_GT(fs::file_size(d / "out" / "convergence.png"), 1000u) << r.output;
     std::ifstream in(d / "out" / "results.json");
@@ -487,9 +469,9 @@ TEST(Cli, BenchPlotsCurvesAndWritesAReportThatABrowserOpens)
     // What the browser does with the page needs node and Chromium (scripts/install-deps.sh, .ci/run installs
     // both); a GPU machine that runs the suites from scripts/device-check.sh has neither.
     if (!commandExists("node")) GTEST_SKIP() << "node is not installed (scripts/install-deps.sh installs it)";
-    const CliRun browser =
-        runCommand("node " + (fs::path(BOUNCE_SOURCE_ROOT) / "tests/app/report_browser.mjs").string() + " " +
-                   (d / "out").string());
+    const CommandRun browser =
+        runShell("node " + (fs::path(BOUNCE_SOURCE_ROOT) / "tests/app/report_browser.mjs").string() + " " +
+                 (d / "out").string());
     EXPECT_EQ(browser.status, 0) << browser.output;
 }
 
@@ -501,8 +483,8 @@ TEST(Cli, BenchWritesTheFourFilesWithTheirFigures)
                                 "scenes": ["cornell-area"],
                                 "runs": [{"technique": "direct"}, {"technique": "rsm", "sweep": {"vpls": [4, 64]}}]})";
     const std::string cache = " --cache-dir " + (d / "cache").string();
-    const CliRun r = run("bench --backend " + testBackend() + " --config " + config.string() + " --out " +
-                         (d / "out").string() + " --cache " + (d / "cache").string());
+    const CommandRun r = run("bench --backend " + testBackend() + " --config " + config.string() + " --out " +
+                             (d / "out").string() + " --cache " + (d / "cache").string());
     ASSERT_EQ(r.status, 0) << r.output;
     for (const char* f : {"results.csv", "results.json", "report.md", "speed_error.png"})
         EXPECT_TRUE(fs::exists(d / "out" / f)) << f << "\n" << r.output;
@@ -518,8 +500,8 @@ TEST(Cli, BenchWritesTheFourFilesWithTheirFigures)
     std::map<std::string, bounce::core::Image> references;
     for (const char* paths : {"direct", "onebounce-novis", "full"}) {
         const fs::path file = d / (std::string("ref-") + paths + ".exr");
-        const CliRun ref = run(std::string("reference --scene cornell-area --size 16x16 --spp 64 --paths ") + paths +
-                               cache + " --out " + file.string());
+        const CommandRun ref = run(std::string("reference --scene cornell-area --size 16x16 --spp 64 --paths ") +
+                                   paths + cache + " --out " + file.string());
         ASSERT_EQ(ref.status, 0) << ref.output;
         EXPECT_NE(ref.output.find("cache"), std::string::npos) << "the bench's own reference: " << ref.output;
         references[paths] = withoutEmitters(bounce::core::readImage(file.string()), emitters);
@@ -529,10 +511,10 @@ TEST(Cli, BenchWritesTheFourFilesWithTheirFigures)
         const std::string technique = row.at("technique"), params = row.at("params");
         const fs::path file = d / ("render-" + technique + std::to_string(&row - &rows[0]) + ".exr");
         const std::string set = params == "defaults" ? "" : " --set " + params;
-        const CliRun render = run("render --backend " + testBackend() +
-                                  " --scene cornell-area --size 16x16 --frames 1 --warmup 0 "
-                                  "--technique " +
-                                  technique + set + " --out " + file.string());
+        const CommandRun render = run("render --backend " + testBackend() +
+                                      " --scene cornell-area --size 16x16 --frames 1 --warmup 0 "
+                                      "--technique " +
+                                      technique + set + " --out " + file.string());
         ASSERT_EQ(render.status, 0) << render.output;
         const bounce::core::Image image = withoutEmitters(bounce::core::readImage(file.string()), emitters);
         const double own = relativeRmseOf(image, references.at(row.at("light_paths")));
@@ -641,8 +623,8 @@ TEST(Cli, BenchConfigIsCheckedBeforeAnythingRuns)
         const fs::path config = d / ("config" + std::to_string(i++) + ".json");
         std::ofstream(config) << c.config;
         const fs::path out = d / "out";
-        const CliRun r = run("bench --backend " + testBackend() + " --config " + config.string() + " --out " +
-                             out.string() + " --cache " + (d / "cache").string());
+        const CommandRun r = run("bench --backend " + testBackend() + " --config " + config.string() + " --out " +
+                                 out.string() + " --cache " + (d / "cache").string());
         EXPECT_EQ(r.status, 2) << c.config << "\n" << r.output;
         EXPECT_NE(r.output.find("bench config: " + c.key + ": "), std::string::npos) << c.config << "\n" << r.output;
         EXPECT_NE(r.output.find(c.says), std::string::npos) << c.config << "\n" << r.output;
@@ -659,8 +641,8 @@ TEST(Cli, BenchReportsRayCastingAgainstEmbree)
     const fs::path config = d / "rays.json";
     std::ofstream(config) << R"({"size": "8x8", "warmup": 0, "frames": 1, "reference": {"spp": 1}, "rays": 1024,
                                 "scenes": ["cornell-area"], "runs": [{"technique": "direct"}]})";
-    const CliRun r = run("bench --backend " + testBackend() + " --config " + config.string() + " --out " +
-                         (d / "out").string() + " --cache " + (d / "cache").string());
+    const CommandRun r = run("bench --backend " + testBackend() + " --config " + config.string() + " --out " +
+                             (d / "out").string() + " --cache " + (d / "cache").string());
     ASSERT_EQ(r.status, 0) << r.output;
     std::ifstream in(d / "out" / "rays.json");
     ASSERT_TRUE(in) << r.output;
@@ -686,11 +668,11 @@ TEST(Cli, RenderAGltfByPath)
 {
     const fs::path d = outDir("gltf");
     const std::string asset = std::string(BOUNCE_SOURCE_ROOT) + "/assets/cornell-spot.gltf";
-    const CliRun a = run("render --scene " + asset + " --size 32x32 --frames 1 --warmup 0 --backend " + testBackend() +
-                         " --out " + (d / "a.exr").string());
+    const CommandRun a = run("render --scene " + asset + " --size 32x32 --frames 1 --warmup 0 --backend " +
+                             testBackend() + " --out " + (d / "a.exr").string());
     ASSERT_EQ(a.status, 0) << a.output;
-    const CliRun b = run("render --scene cornell-spot --size 32x32 --frames 1 --warmup 0 --backend " + testBackend() +
-                         " --out " + (d / "b.exr").string());
+    const CommandRun b = run("render --scene cornell-spot --size 32x32 --frames 1 --warmup 0 --backend " +
+                             testBackend() + " --out " + (d / "b.exr").string());
     ASSERT_EQ(b.status, 0) << b.output;
     const auto ia = bounce::core::readImage((d / "a.exr").string()),
                ib = bounce::core::readImage((d / "b.exr").string());
@@ -715,8 +697,8 @@ TEST(Cli, DemoScriptIsCheckedBeforeTheWindowOpens)
         {"fly:1", "unknown step"},
     };
     for (const auto& c : cases) {
-        const CliRun r = run("demo --scene cornell-spot --size 32x32 --script '" + c.script + "'",
-                             "env -u DISPLAY -u WAYLAND_DISPLAY ");
+        const CommandRun r = run("demo --scene cornell-spot --size 32x32 --script '" + c.script + "'",
+                                 "env -u DISPLAY -u WAYLAND_DISPLAY ");
         EXPECT_EQ(r.status, 2) << c.script << "\n" << r.output;
         EXPECT_NE(r.output.find(c.says), std::string::npos) << c.script << "\n" << r.output;
         EXPECT_NE(r.output.find("--script"), std::string::npos) << c.script << "\n" << r.output;
@@ -728,7 +710,7 @@ TEST(Cli, DemoScriptIsCheckedBeforeTheWindowOpens)
 TEST(Cli, DemoChecksCameraAndLightBeforeTheWindowOpens)
 {
     for (const std::string& bad : {std::string("--light 'bogus:x=1'"), std::string("--camera 1,2,3")}) {
-        const CliRun r = run("demo --scene cornell-spot --size 32x32 " + bad, "env -u DISPLAY -u WAYLAND_DISPLAY ");
+        const CommandRun r = run("demo --scene cornell-spot --size 32x32 " + bad, "env -u DISPLAY -u WAYLAND_DISPLAY ");
         EXPECT_EQ(r.status, 2) << bad << "\n" << r.output;
         EXPECT_EQ(r.output.find("GL renderer"), std::string::npos) << "a context was created: " << r.output;
     }
@@ -743,10 +725,10 @@ TEST(Cli, DemoRunsSwitchesTechniqueAndShowsTheCornellBox)
     if (!std::getenv("DISPLAY")) GTEST_SKIP() << "no DISPLAY: the suite runs under xvfb-run in CI (test.sh)";
     const fs::path d = outDir("demo");
     const fs::path shot = d / "shot.exr", direct = d / "direct.exr";
-    const CliRun r = run("demo --scene cornell-area --size 160x120 --script wait:2,screenshot:" + direct.string() +
-                         ",technique:multires-gather,set:vpls=64,wait:1,technique:isr,set:rsmSize=64,wait:1,"
-                         "technique:hisr,set:rsmSize=64,wait:1,technique:rsm,set:vpls=64,wait:2,screenshot:" +
-                         shot.string() + ",compare:isr,wait:1,set:shadow.pcf=2,wait:1,quit");
+    const CommandRun r = run("demo --scene cornell-area --size 160x120 --script wait:2,screenshot:" + direct.string() +
+                             ",technique:multires-gather,set:vpls=64,wait:1,technique:isr,set:rsmSize=64,wait:1,"
+                             "technique:hisr,set:rsmSize=64,wait:1,technique:rsm,set:vpls=64,wait:2,screenshot:" +
+                             shot.string() + ",compare:isr,wait:1,set:shadow.pcf=2,wait:1,quit");
     ASSERT_EQ(r.status, 0) << r.output;
     ASSERT_TRUE(fs::exists(shot)) << r.output;
     ASSERT_TRUE(fs::exists(d / "shot.png"));
@@ -783,9 +765,9 @@ TEST(Cli, DemoFrameBudgetCoarsensWhileMovingAndReturnsWhenStill)
     const fs::path d = outDir("demo-budget");
     const std::string moved = (d / "moved.exr").string(), still = (d / "still.exr").string();
     const std::string log = (d / "frames.csv").string();
-    const CliRun r = run("demo --scene cornell-spot --size 96x64 --technique rsm --frame-log " + log +
-                         " --script set:vpls=16,budget:1,move:4,screenshot:" + moved +
-                         ",move:3,wait:60,screenshot:" + still + ",quit");
+    const CommandRun r = run("demo --scene cornell-spot --size 96x64 --technique rsm --frame-log " + log +
+                             " --script set:vpls=16,budget:1,move:4,screenshot:" + moved +
+                             ",move:3,wait:60,screenshot:" + still + ",quit");
     ASSERT_EQ(r.status, 0) << r.output;
     const auto coarse = r.output.find("budget: indirect light at 1/2 resolution (48x32) while moving");
     ASSERT_NE(coarse, std::string::npos) << r.output;
@@ -824,9 +806,10 @@ TEST(Cli, DemoFrameParameterRebuildsBothSidesOfAComparison)
     if (!std::getenv("DISPLAY")) GTEST_SKIP() << "no DISPLAY: the suite runs under xvfb-run in CI (test.sh)";
     const fs::path d = outDir("demo-frame");
     const auto file = [&](const char* name) { return (d / name).string(); };
-    const CliRun r = run("demo --scene cornell-spot --size 128x64 --script wait:1,compare:direct,wait:1,screenshot:" +
-                         file("before.exr") + ",set:shadow.size=16,wait:1,screenshot:" + file("after.exr") +
-                         ",compare:rsm,wait:1,screenshot:" + file("mixed.exr") + ",quit");
+    const CommandRun r =
+        run("demo --scene cornell-spot --size 128x64 --script wait:1,compare:direct,wait:1,screenshot:" +
+            file("before.exr") + ",set:shadow.size=16,wait:1,screenshot:" + file("after.exr") +
+            ",compare:rsm,wait:1,screenshot:" + file("mixed.exr") + ",quit");
     ASSERT_EQ(r.status, 0) << r.output;
     using bounce::core::readImage;
     using bounce::core::relativeRmse;
@@ -855,7 +838,7 @@ namespace {
 // G-buffer reads and typed parameters, the frame's passes and parameters.
 TEST(Cli, ListJsonIsTheWholeRegistry)
 {
-    const CliRun r = run("list --json");
+    const CommandRun r = run("list --json");
     ASSERT_EQ(r.status, 0) << r.output;
     const nlohmann::json j = nlohmann::json::parse(r.output);
     ASSERT_TRUE(j["techniques"].is_array());
@@ -890,16 +873,16 @@ TEST(Cli, RenderReferenceGivesTheErrorInTheRecord)
                   " --technique direct --size 16x16 --frames 1 --warmup 0 --out " + (d / "ref.exr").string())
                   .status,
               0);
-    const CliRun same = run("render --backend " + testBackend() +
-                            " --technique direct --size 16x16 --frames 1 --warmup 0 --reference " +
-                            (d / "ref.exr").string() + " --out " + (d / "same.exr").string());
+    const CommandRun same = run("render --backend " + testBackend() +
+                                " --technique direct --size 16x16 --frames 1 --warmup 0 --reference " +
+                                (d / "ref.exr").string() + " --out " + (d / "same.exr").string());
     ASSERT_EQ(same.status, 0) << same.output;
     EXPECT_EQ(nlohmann::json::parse(std::ifstream(d / "same.json"))["relativeRmse"].get<double>(), 0.0)
         << "the same deterministic render";
 
     // Another technique at twice the size: the record's figure is the error of its image, box-downsampled
     // to the reference's size, as computed here from the written files.
-    const CliRun other =
+    const CommandRun other =
         run("render --backend " + testBackend() + " --technique rsm --size 32x32 --frames 1 --warmup 0 --reference " +
             (d / "ref.exr").string() + " --out " + (d / "rsm.exr").string());
     ASSERT_EQ(other.status, 0) << other.output;
@@ -911,8 +894,8 @@ TEST(Cli, RenderReferenceGivesTheErrorInTheRecord)
     EXPECT_NEAR(recorded, expected, 1e-6 * expected);
 
     const fs::path bad = outDir("reference-error-bad");
-    const CliRun r = run("render --backend " + testBackend() + " --technique direct --size 30x30 --reference " +
-                         (d / "ref.exr").string() + " --out " + (bad / "x.exr").string());
+    const CommandRun r = run("render --backend " + testBackend() + " --technique direct --size 30x30 --reference " +
+                             (d / "ref.exr").string() + " --out " + (bad / "x.exr").string());
     EXPECT_EQ(r.status, 2) << r.output;
     EXPECT_NE(r.output.find("must divide"), std::string::npos) << r.output;
     EXPECT_TRUE(emptyDir(bad));
@@ -932,8 +915,8 @@ TEST(Cli, CompareOfANanImageFails)
     for (float& v : nan.rgb) v = std::numeric_limits<float>::quiet_NaN();
     bounce::core::writeImage((d / "ref.exr").string(), ref);
     bounce::core::writeImage((d / "nan.exr").string(), nan);
-    const CliRun r = run("compare " + (d / "nan.exr").string() + " " + (d / "ref.exr").string() + " --json " +
-                         (d / "c.json").string());
+    const CommandRun r = run("compare " + (d / "nan.exr").string() + " " + (d / "ref.exr").string() + " --json " +
+                             (d / "c.json").string());
     EXPECT_EQ(r.status, 1) << r.output;
     EXPECT_NE(r.output.find("NaN/Inf"), std::string::npos) << r.output;
     const nlohmann::json j = nlohmann::json::parse(std::ifstream(d / "c.json"));
@@ -954,8 +937,9 @@ TEST(Cli, RenderAgainstANanReferenceRecordsAnInfiniteError)
     bounce::core::Image nan(8, 8);
     for (float& v : nan.rgb) v = std::numeric_limits<float>::quiet_NaN();
     bounce::core::writeImage((d / "nan.exr").string(), nan);
-    const CliRun r = run("render --scene cornell-spot --size 16x16 --frames 1 --warmup 0 --backend " + testBackend() +
-                         " --reference " + (d / "nan.exr").string() + " --out " + (d / "x.exr").string());
+    const CommandRun r =
+        run("render --scene cornell-spot --size 16x16 --frames 1 --warmup 0 --backend " + testBackend() +
+            " --reference " + (d / "nan.exr").string() + " --out " + (d / "x.exr").string());
     EXPECT_EQ(r.status, 0) << r.output << " (the image itself is finite)";
     const nlohmann::json j = nlohmann::json::parse(std::ifstream(d / "x.json"));
     EXPECT_EQ(j["relativeRmse"], "inf") << j.dump();
@@ -977,8 +961,8 @@ TEST(Cli, RenderSizeBeyondMemoryIsRefusedUpFront)
     if (available <= 0.0 || side > 16384.0) GTEST_SKIP() << "this machine's memory holds the largest --size";
     const fs::path d = outDir("too-big");
     const std::string size = std::to_string(int(side)) + "x" + std::to_string(int(side));
-    const CliRun r = run("render --scene cornell-glossy --backend " + testBackend() + " --size " + size + " --out " +
-                         (d / "x.exr").string());
+    const CommandRun r = run("render --scene cornell-glossy --backend " + testBackend() + " --size " + size +
+                             " --out " + (d / "x.exr").string());
     EXPECT_EQ(r.status, 2) << r.output;
     EXPECT_NE(r.output.find("--size " + size), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("GiB"), std::string::npos) << r.output;
@@ -991,8 +975,8 @@ TEST(Cli, RenderWritesItsFilesAsASet)
 {
     const fs::path d = outDir("file-set");
     fs::create_directories(d / "record.json"); // a folder where the JSON should go
-    const CliRun r = run("render --backend " + testBackend() + " --size 8x8 --frames 1 --warmup 0 --out " +
-                         (d / "img.exr").string() + " --json " + (d / "record.json").string());
+    const CommandRun r = run("render --backend " + testBackend() + " --size 8x8 --frames 1 --warmup 0 --out " +
+                             (d / "img.exr").string() + " --json " + (d / "record.json").string());
     EXPECT_EQ(r.status, 2) << r.output;
     EXPECT_FALSE(fs::exists(d / "img.exr"));
     EXPECT_FALSE(fs::exists(d / "img.png"));
@@ -1004,8 +988,8 @@ TEST(Cli, ReferenceChecksTheCacheFolderFirst)
 {
     const fs::path d = outDir("cache-file");
     std::ofstream(d / "not-a-folder") << "x";
-    const CliRun r = run("reference --scene cornell-spot --paths direct --size 8x8 --spp 100000 --out " +
-                         (d / "ref.exr").string() + " --cache-dir " + (d / "not-a-folder").string());
+    const CommandRun r = run("reference --scene cornell-spot --paths direct --size 8x8 --spp 100000 --out " +
+                             (d / "ref.exr").string() + " --cache-dir " + (d / "not-a-folder").string());
     EXPECT_EQ(r.status, 2) << r.output;
     EXPECT_NE(r.output.find("--no-cache"), std::string::npos) << r.output;
     EXPECT_EQ(r.output.find("samples:"), std::string::npos) << "it rendered first";
@@ -1044,12 +1028,12 @@ TEST(Cli, GltfWithoutCameraOrLightRendersWithFramingCameraAndCommandLineLight)
 {
     const fs::path d = outDir("bare-gltf");
     const fs::path bare = cornellWithoutCameraAndLight(d);
-    const CliRun dark = run("render --backend " + testBackend() + " --size 16x16 --frames 1 --warmup 0 --scene " +
-                            bare.string() + " --out " + (d / "dark.exr").string());
+    const CommandRun dark = run("render --backend " + testBackend() + " --size 16x16 --frames 1 --warmup 0 --scene " +
+                                bare.string() + " --out " + (d / "dark.exr").string());
     ASSERT_EQ(dark.status, 0) << dark.output;
     EXPECT_NE(dark.output.find("no light"), std::string::npos) << dark.output;
     EXPECT_NE(dark.output.find("framed the bounds"), std::string::npos) << dark.output;
-    const CliRun lit =
+    const CommandRun lit =
         run("render --backend " + testBackend() + " --size 16x16 --frames 1 --warmup 0 --scene " + bare.string() +
             " --light 'point:position=0.278,0.4,0.279;intensity=1' --out " + (d / "lit.exr").string());
     ASSERT_EQ(lit.status, 0) << lit.output;
@@ -1077,10 +1061,11 @@ TEST(Cli, CommandLineLightEqualsTheSameLightInTheGltf)
     const glm::vec3 target = c.position + c.forward;
     std::snprintf(camera, sizeof camera, "%.9g,%.9g,%.9g:%.9g,%.9g,%.9g:%.9g", c.position.x, c.position.y, c.position.z,
                   target.x, target.y, target.z, double(c.yfovRad) * 180.0 / M_PI);
-    const CliRun a = run("render --backend " + testBackend() +
-                         " --size 32x32 --frames 1 --warmup 0 --scene cornell-spot --out " + (d / "gltf.exr").string());
+    const CommandRun a =
+        run("render --backend " + testBackend() + " --size 32x32 --frames 1 --warmup 0 --scene cornell-spot --out " +
+            (d / "gltf.exr").string());
     ASSERT_EQ(a.status, 0) << a.output;
-    const CliRun b =
+    const CommandRun b =
         run("render --backend " + testBackend() + " --size 32x32 --frames 1 --warmup 0 --scene " + bare.string() +
             " --light '" + light + "' --camera '" + camera + "' --out " + (d / "cli.exr").string());
     ASSERT_EQ(b.status, 0) << b.output;
@@ -1096,8 +1081,8 @@ TEST(Cli, SetupWithAMissingAssetExitsTwoNamingTheFile)
 {
     const fs::path d = outDir("setup-missing");
     std::ofstream(d / "s.json") << R"({"gltf": "not-here/model.gltf", "lights": []})";
-    const CliRun r = run("render --backend " + testBackend() + " --size 8x8 --scene " + (d / "s.json").string() +
-                         " --out " + (d / "out" / "a.exr").string());
+    const CommandRun r = run("render --backend " + testBackend() + " --size 8x8 --scene " + (d / "s.json").string() +
+                             " --out " + (d / "out" / "a.exr").string());
     EXPECT_EQ(r.status, 2) << r.output;
     EXPECT_NE(r.output.find("not-here/model.gltf"), std::string::npos) << r.output;
     EXPECT_FALSE(fs::exists(d / "out" / "a.exr"));
@@ -1113,8 +1098,8 @@ TEST(Cli, GeneratedSetupWithALightRendersLit)
       "camera": {"position": [0.278, 0.273, -0.8], "target": [0.278, 0.273, 0.0], "yfovDeg": 39.3},
       "lights": [{"type": "spot", "position": [0.278, 0.54, 0.279], "direction": [0, -1, 0], "intensity": 1,
                   "outerDeg": 40}]})";
-    const CliRun r = run("render --backend " + testBackend() + " --size 16x16 --frames 1 --warmup 0 --scene " +
-                         (d / "setup.json").string() + " --out " + (d / "render.exr").string());
+    const CommandRun r = run("render --backend " + testBackend() + " --size 16x16 --frames 1 --warmup 0 --scene " +
+                             (d / "setup.json").string() + " --out " + (d / "render.exr").string());
     ASSERT_EQ(r.status, 0) << r.output;
     EXPECT_EQ(r.output.find("no light"), std::string::npos) << r.output;
     EXPECT_GT(imageMean(bounce::core::readImage((d / "render.exr").string())), 0.01);
@@ -1127,8 +1112,8 @@ TEST(Cli, ShippedSetupsRenderLit)
 {
     const fs::path d = outDir("setups");
     for (const auto& e : fs::directory_iterator(fs::path(BOUNCE_SOURCE_ROOT) / "assets" / "setups")) {
-        const CliRun r = run("render --backend " + testBackend() + " --size 16x16 --frames 1 --warmup 0 --scene " +
-                             e.path().string() + " --out " + (d / e.path().stem()).string() + ".exr");
+        const CommandRun r = run("render --backend " + testBackend() + " --size 16x16 --frames 1 --warmup 0 --scene " +
+                                 e.path().string() + " --out " + (d / e.path().stem()).string() + ".exr");
         if (r.status == 2 && r.output.find("is not there") != std::string::npos) {
             std::printf("[ skipped  ] %s: its asset is not there\n", e.path().filename().c_str());
             continue;
@@ -1148,7 +1133,7 @@ namespace {
 TEST(Cli, RaysComparesTheGpuCasterWithEmbree)
 {
     const fs::path d = outDir("rays");
-    const CliRun r =
+    const CommandRun r =
         run("rays --backend " + testBackend() + " --scene cornell-spot --rays 1024 --repeat 1 --threads 1 --json " +
             (d / "rays.json").string());
     ASSERT_EQ(r.status, 0) << r.output;
