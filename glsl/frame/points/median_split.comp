@@ -26,15 +26,29 @@
 #define STAGE_PERMUTE 4
 layout(local_size_x = 64) in;
 
+// Each stage declares only the blocks it reads or writes (a declared block counts and must be bound).
+#if STAGE == STAGE_KEYS || STAGE == STAGE_SIDE
 layout(std430, binding = SSBO_MEDIAN_POSITIONS) readonly buffer Positions { float positions[]; };
-layout(std430, binding = SSBO_SORT_KEYS) buffer Keys { uint keys[]; };
-layout(std430, binding = SSBO_SORT_VALUES) buffer Values { uint values[]; };
+#endif
+#if STAGE == STAGE_KEYS
+layout(std430, binding = SSBO_SORT_KEYS) writeonly buffer Keys { uint keys[]; };
+layout(std430, binding = SSBO_SORT_VALUES) writeonly buffer Values { uint values[]; };
+#else
 layout(std430, binding = SSBO_MEDIAN_LISTS) readonly buffer Lists { uint lists[]; };
+#endif
+#if STAGE == STAGE_SCATTER
 layout(std430, binding = SSBO_MEDIAN_LISTS_OUT) writeonly buffer ListsOut { uint listsOut[]; };
+#endif
+#if STAGE == STAGE_SIDE || STAGE == STAGE_FLAGS || STAGE == STAGE_SCATTER
 layout(std430, binding = SSBO_MEDIAN_SIDE) buffer Side { uint side[]; };
+#endif
+#if STAGE == STAGE_FLAGS || STAGE == STAGE_SCATTER
 layout(std430, binding = SSBO_SCAN) buffer Scan { uint scan[]; };
+#endif
+#if STAGE == STAGE_PERMUTE
 layout(std430, binding = SSBO_POINT_SAMPLES) readonly buffer Samples { uvec4 samples[]; };
 layout(std430, binding = SSBO_MEDIAN_SAMPLES_OUT) writeonly buffer SamplesOut { uvec4 samplesOut[]; };
+#endif
 
 uniform uint count;
 uniform uint stride; // floats from one point's position to the next's
@@ -43,6 +57,7 @@ uniform int level;   // SIDE, FLAGS, SCATTER
 
 bool finiteBits(float x) { return (floatBitsToUint(x) & 0x7f800000u) != 0x7f800000u; }
 
+#if STAGE == STAGE_KEYS || STAGE == STAGE_SIDE
 // core's finiteOrZero: a point with a coordinate that is NaN or infinite lies at the origin.
 float coordinate(uint point, uint a)
 {
@@ -50,6 +65,7 @@ float coordinate(uint point, uint a)
     bool finite = finiteBits(positions[i]) && finiteBits(positions[i + 1u]) && finiteBits(positions[i + 2u]);
     return finite ? positions[i + a] : 0.0;
 }
+#endif
 
 // The bits of a coordinate, ordered as unsigned integers as the floats are ordered, -0 as +0 (core compares
 // floats: -0 == +0, ties by index). On the bits, so that no flush of denormals can change an order.

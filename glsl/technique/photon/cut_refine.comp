@@ -8,6 +8,7 @@
 // The invocations are the nodes that entered the cut in the last iteration (all of the coarse cut's at
 // first), not the whole cut: the others have passed, or are leaves, and have nothing to do. Each writes
 // how many children it sent into the cut, for cut_enter.comp, which lists them for the next iteration.
+#include "technique/photon/illumination_cut.glsl"
 #include "technique/photon/density.glsl"
 
 layout(local_size_x = 64) in;

@@ -8,7 +8,7 @@
 #define BOUNCE_PHOTON_DENSITY_GLSL
 
 #include "common/brdf.glsl"
-#include "technique/photon/illumination_cut.glsl"
+#include "technique/photon/photon_tree.glsl"
 #include "technique/photon/tree_walk.glsl"
 
 #ifndef NEAREST_K

@@ -2,6 +2,7 @@
 // Temporal reuse: each pixel the classification kept, in the cluster it joined (its nearest previous
 // centre, which therefore survived), numbered as the survivors now are (the marks scanned into positions);
 // kUnclassified for the others. kmeans_assign.comp starts every k-means iteration of the frame from it.
+#define CLUSTERS_UNUSED
 #include "technique/photon/shading_clusters.glsl"
 
 layout(local_size_x = 64) in;

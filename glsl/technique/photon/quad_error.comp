@@ -9,6 +9,7 @@
 //   whole image took most of a 512x512 still frame's k-means on an NVIDIA H200 (52 ms against 10).
 // Either way the order of the sums is fixed: the same eps_q in every run.
 #include "common/gbuffer.glsl"
+#define CLUSTERS_UNUSED
 #include "technique/photon/cluster_quadtree.glsl"
 
 #ifdef QUAD_GROUP

@@ -2,6 +2,7 @@
 // The quadtree's pixels (section 3.2, "Adaptive Seeding"): a shading point is a pixel with geometry;
 // with onlyUnclassified, only those that temporal reuse left without a cluster (kmeans_classify.comp).
 #include "common/gbuffer.glsl"
+#define CLUSTERS_UNUSED
 #include "technique/photon/cluster_quadtree.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;

@@ -1,5 +1,6 @@
 #version 450 core
 // One quadtree level from the one below: members, summed positions and normals.
+#define CLUSTERS_UNUSED
 #include "technique/photon/cluster_quadtree.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;

@@ -5,6 +5,7 @@
 // gives it to one child at random in proportion to its members (the paper's jittered sample within the
 // quad). The root takes min(seedCount, members). Seed slots stay contiguous: a node's seeds are
 // [first, first + count), its children's consecutive ranges of them.
+#define CLUSTERS_UNUSED
 #include "technique/photon/cluster_quadtree.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;

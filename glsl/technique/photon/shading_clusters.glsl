@@ -22,7 +22,9 @@ struct Cluster {
 const uint kNoCluster = 0xFFFFFFFFu;    // a pixel without geometry
 const uint kUnclassified = 0xFFFFFFFEu; // temporal reuse: no previous cluster takes the pixel
 
-#ifndef CLUSTERS_CUSTOM
+// The clusters' block, unless the pass declares its own (CLUSTERS_CUSTOM) or reads no cluster
+// (CLUSTERS_UNUSED: it takes the layout, the constants and Eq. 2 only; a declared block must be bound).
+#if !defined(CLUSTERS_CUSTOM) && !defined(CLUSTERS_UNUSED)
 layout(std430, binding = SSBO_CLUSTER_CENTRES) buffer Clusters { Cluster clusters[]; };
 #endif
 
