@@ -6,6 +6,7 @@
 
 #include "gl/gl.h"
 #include "gl/resource/program.h"
+#include "gl/resource/storage_bindings.h"
 
 namespace bounce::gl {
 
@@ -51,6 +52,10 @@ void dispatchCompute(const Program& program, glm::ivec3 size, glm::ivec3 localSi
                                 str(localSize) + ", more than GL_MAX_COMPUTE_WORK_GROUP_COUNT (" +
                                 std::to_string(most) + ") on axis " + std::to_string(axis));
     }
+    // A block under whose name no buffer is bound would read nothing at all (storage_bindings.h).
+    if (const std::string unbound = unboundStorage(program.storage()); !unbound.empty())
+        throw DispatchError("compute dispatch of '" + program.storage().label +
+                            "' with no buffer bound under the storage names of " + unbound);
     program.use();
     glDispatchCompute(GLuint(groups.x), GLuint(groups.y), GLuint(groups.z));
 }

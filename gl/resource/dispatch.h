@@ -28,7 +28,8 @@ double computeInvocations(glm::ivec3 size, glm::ivec3 localSize);
 // Uses `program` and dispatches computeGroupCount(size, localSize) groups. Throws DispatchError, before
 // any GL call that would fail, when a size is zero or negative, when localSize is not the program's
 // declared local_size (GL_COMPUTE_WORK_GROUP_SIZE), or when a group count exceeds
-// GL_MAX_COMPUTE_WORK_GROUP_COUNT on its axis. The caller still issues the memory barrier it needs.
+// GL_MAX_COMPUTE_WORK_GROUP_COUNT on its axis, or when no buffer is bound under the storage name of one of
+// the program's blocks (unboundStorage). The caller still issues the memory barrier it needs.
 void dispatchCompute(const Program& program, glm::ivec3 size, glm::ivec3 localSize);
 
 // The most work groups dispatchRows puts in one row: the least GL_MAX_COMPUTE_WORK_GROUP_COUNT a driver may

@@ -65,9 +65,9 @@ void forgetStorageBuffer(unsigned buffer);
 // no buffer was bound under a name, so that it never reads another name's buffer).
 void useStorage(std::shared_ptr<const StorageLayout> layout);
 // The blocks of `layout` under whose names no buffer is bound, as "Block (storage name N), ..."; empty when
-// there are none. Not an error in itself: a std430 block is active wherever it is declared, and shared
-// includes declare blocks that some of their passes never read (photon's quad_leaves.comp and the clusters
-// of shading_clusters.glsl), so a pass may run before a buffer of such a name exists.
+// there are none. dispatchCompute (gl/resource/dispatch.h) refuses such a dispatch: a std430 block is
+// active wherever it is declared, so a pass declares only the blocks it reads, and each is bound before it
+// runs.
 std::string unboundStorage(const StorageLayout& layout);
 
 } // namespace bounce::gl

@@ -95,6 +95,29 @@ TEST_F(DispatchTest, RowsReachEveryGroupOncePastOneAxisLimit)
     }
 }
 
+// A program whose storage block has no buffer under its name reads nothing: the dispatch is refused, naming
+// the block; with a buffer bound it runs. The buffer bound and then deleted is bound under no name.
+TEST_F(DispatchTest, RefusesAProgramWithUnboundStorage)
+{
+    gl::Program prog = gl::Program::compute("test.dispatchRows", "test/dispatch_rows.comp");
+    prog.set("groups", 1u);
+    {
+        gl::Buffer gone("test.dispatch.gone", 16);
+        gone.bindBase(GL_SHADER_STORAGE_BUFFER, 0);
+    }
+    try {
+        gl::dispatchRows(prog, 1, 1);
+        ADD_FAILURE() << "a dispatch with nothing bound under its block's name was accepted";
+    } catch (const gl::DispatchError& e) {
+        EXPECT_NE(std::string(e.what()).find("Cells"), std::string::npos) << e.what();
+    }
+    gl::Buffer buffer = gl::Buffer::fromVector("test.dispatch.bound", std::vector<std::uint32_t>(2, 0u));
+    buffer.bindBase(GL_SHADER_STORAGE_BUFFER, 0);
+    EXPECT_NO_THROW(gl::dispatchRows(prog, 1, 1));
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    EXPECT_EQ(buffer.download<std::uint32_t>()[1], 1u);
+}
+
 TEST_F(DispatchTest, RefusesBadSizes)
 {
     gl::Program prog = program({8, 8, 1});
