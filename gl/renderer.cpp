@@ -51,8 +51,6 @@ void Renderer::make(const TechniqueInfo& info, const ParamValues& techniqueValue
     technique_ = info_->create(*frame_, techniqueValues_);
     techniqueWidth_ = frame_->width();
     techniqueHeight_ = frame_->height();
-    coarse_.reset();
-    coarseTechnique_.reset();
     timers_.clear();
     stillReady_ = false;
 }
@@ -61,9 +59,7 @@ void Renderer::setIndirectScale(int scale)
 {
     if (scale < 1 || scale > 16) throw std::invalid_argument("indirect scale must be in 1..16");
     indirectScale_ = scale;
-    coarse_.reset();
-    coarseTechnique_.reset();
-    stillReady_ = false;
+    stillReady_ = false; // the still mean starts again from the first frame at this scale
 }
 
 void Renderer::advanceStill()
@@ -72,49 +68,6 @@ void Renderer::advanceStill()
     stillVersion_ = frame_->version();
     stillReady_ = true;
     frame_->beginFrame(still);
-}
-
-bool Renderer::moveVertices(const std::vector<glm::vec3>& positions, const std::vector<glm::vec3>& normals)
-{
-    if (!frame_->moveVertices(positions, normals)) return false;
-    movedPositions_ = positions;
-    movedNormals_ = normals;
-    if (coarse_) coarse_->moveVertices(positions, normals);
-    return true;
-}
-
-void Renderer::renderCoarseIndirect()
-{
-    const int w = (frame_->width() + indirectScale_ - 1) / indirectScale_;
-    const int h = (frame_->height() + indirectScale_ - 1) / indirectScale_;
-    if (!coarse_ || coarse_->width() != w || coarse_->height() != h) {
-        FrameSettings s = frame_->settings();
-        s.width = w;
-        s.height = h;
-        coarse_ = std::make_unique<Frame>(frame_->scene(), s);
-        coarse_->setLights(frame_->gpuScene().punctualLights());
-        coarseLights_ = frame_->version().lights;
-        if (!movedPositions_.empty()) coarse_->moveVertices(movedPositions_, movedNormals_);
-        coarseTechnique_ = info_->create(*coarse_, techniqueValues_);
-        if (!upsample_) upsample_ = std::make_unique<JointUpsample>();
-    }
-    // The same view and lights as the full frame.
-    coarse_->setCamera(frame_->camera());
-    if (coarseLights_ != frame_->version().lights) {
-        coarse_->setLights(frame_->gpuScene().punctualLights());
-        coarseLights_ = frame_->version().lights;
-    }
-    coarse_->beginFrame();
-    coarse_->setAreaLightsInDirect(frame_->areaLightsInDirect(), technique_->readsAreaShadowMaps());
-    coarse_->renderShadowMaps(timers_);
-    coarse_->renderGBuffer(timers_);
-    // The viewer sees the full frame's direct light: the coarse frame draws its own only for a technique
-    // that reads it.
-    if (std::find(info_->reads.begin(), info_->reads.end(), GBufferChannel::Direct) != info_->reads.end())
-        coarse_->renderDirect(timers_);
-    coarse_->clearIndirect();
-    coarseTechnique_->render(*coarse_, timers_);
-    upsample_->run(*coarse_, *frame_, timers_);
 }
 
 void Renderer::renderFrame(bool keepTimings)
@@ -127,10 +80,13 @@ void Renderer::renderFrame(bool keepTimings)
     frame_->renderGBuffer(timers_);
     frame_->renderDirect(timers_);
     frame_->clearIndirect();
-    if (indirectScale_ > 1)
-        renderCoarseIndirect();
-    else
-        technique_->render(*frame_, timers_);
+    // At a coarser scale the frame draws its own direct light at that scale only for a technique that
+    // reads it: the viewer sees the full-resolution direct light.
+    const bool readsDirect =
+        std::find(info_->reads.begin(), info_->reads.end(), GBufferChannel::Direct) != info_->reads.end();
+    frame_->beginIndirect(indirectScale_, timers_, readsDirect);
+    technique_->render(*frame_, timers_);
+    frame_->endIndirect(timers_);
     // A technique that claims only direct light adds nothing: no composite pass, the result is the direct light.
     frame_->composite(timers_, info_->lightPaths != core::LightPaths::Direct);
     frame_->accumulate(timers_, info_->progressive);

@@ -8,7 +8,6 @@
 
 #include "core/scene.h"
 #include "gl/frame/frame.h"
-#include "gl/frame/joint_upsample.h"
 #include "gl/technique/technique.h"
 
 namespace bounce::gl {
@@ -47,11 +46,13 @@ public:
     int stillFrames() const { return frame_->sampler().stillIndex(); }
 
     // Indirect light at 1/scale of the frame's resolution (the demo's frame budget while the camera or a
-    // light moves): the technique runs on a coarse frame of ceil(w/scale) x ceil(h/scale) with the same
-    // scene, camera and lights, and its indirect light reaches the full frame through joint bilateral
-    // upsampling (gl/frame/joint_upsample.h); shadows, G-buffer and direct light stay at full resolution.
-    // Scale 1 renders as before (the full-resolution technique, which a progressive technique keeps
-    // accumulating in). Throws std::invalid_argument outside 1..16.
+    // light moves): the same technique instance runs on the frame's coarse targets of ceil(w/scale) x
+    // ceil(h/scale) (Frame::beginIndirect: a G-buffer rasterised at that size from the same camera, the same
+    // shadow maps, GPU scene and ray caster), and its indirect light reaches the full frame through joint
+    // bilateral upsampling (gl/frame/joint_upsample.h); the G-buffer and direct light the viewer sees stay
+    // at full resolution. What the technique built that does not depend on the camera (ray-bundle atlases,
+    // point hierarchies, clusters, compiled programs) survives a change of scale, and a progressive one
+    // keeps accumulating through it. Throws std::invalid_argument outside 1..16.
     void setIndirectScale(int scale);
     int indirectScale() const { return indirectScale_; }
     // The resolution the indirect light is computed at.
@@ -59,8 +60,10 @@ public:
     int indirectHeight() const { return (frame_->height() + indirectScale_ - 1) / indirectScale_; }
 
     Frame& frame() { return *frame_; }
-    // Frame::moveVertices on the frame and on the coarse frame of setIndirectScale, now and when it is made.
-    bool moveVertices(const std::vector<glm::vec3>& positions, const std::vector<glm::vec3>& normals);
+    bool moveVertices(const std::vector<glm::vec3>& positions, const std::vector<glm::vec3>& normals)
+    {
+        return frame_->moveVertices(positions, normals);
+    }
     const TechniqueInfo& technique() const { return *info_; }
     // The technique writes the emitters' reflected light into indirect() (Technique::carriesEmittersLight).
     bool indirectCarriesEmittersLight() const { return technique_->carriesEmittersLight(); }
@@ -83,12 +86,6 @@ private:
     PassTimers timers_;
     int techniqueWidth_ = 0, techniqueHeight_ = 0;
     int indirectScale_ = 1;
-    std::unique_ptr<Frame> coarse_;              // indirectScale_ > 1: the coarse frame the technique runs on
-    std::unique_ptr<Technique> coarseTechnique_; //   and its technique
-    std::unique_ptr<JointUpsample> upsample_;
-    std::uint64_t coarseLights_ = 0;                       // the full frame's lights version the coarse frame has
-    std::vector<glm::vec3> movedPositions_, movedNormals_; // the last moveVertices, for a coarse frame made later
-    void renderCoarseIndirect();
     bool stillReady_ = false; // the last frame's version below is comparable (no technique change since)
     FrameVersion stillVersion_;
     void advanceStill();

@@ -1,6 +1,7 @@
 #include "gl/frame/frame.h"
 
 #include <algorithm>
+#include <stdexcept>
 #include <tuple>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -8,6 +9,7 @@
 #include "core/sampling.h"
 #include "gl/frame/bindings.h"
 #include "gl/frame/frame_budget.h"
+#include "gl/frame/joint_upsample.h"
 #include "gl/frame/shader_costs.h"
 #include "gl/gl.h"
 #include "gl/resource/dispatch.h"
@@ -90,8 +92,6 @@ Frame::Frame(const core::Scene& scene, const FrameSettings& settings)
       camera_(scene.camera),
       gpu_(scene, settings.textureSize),
       shadows_(gpu_, lights_, settings.shadowMapSize, settings.shadowCascades, settings.shadowFootprint),
-      gbufferFbo_("gbuffer.fbo"),
-      directFbo_("direct.fbo"),
       compositeFbo_("composite.fbo"),
       emptyVao_("fullscreen"),
       gbufferProgram_(gbufferProgram(scene, gpu_, settings)),
@@ -105,44 +105,76 @@ Frame::Frame(const core::Scene& scene, const FrameSettings& settings)
     allocateTargets();
 }
 
+Frame::~Frame() = default;
+
 void Frame::allocateTargets()
 {
-    const bool glossy = scene_.hasGlossy(), emitters = gpu_.emissiveTriangleCount() > 0;
     // Before any target: a size the driver cannot hold stops the run at once.
-    checkFrameFits(settings_, frameTargetBytesPerPixel(glossy, emitters));
-    const int w = settings_.width, h = settings_.height;
-    geometry_ = Texture::create2D("gbuffer.geometry", GL_RG32UI, w, h);
-    diffuse_ = Texture::create2D("gbuffer.diffuse", GL_RGBA16F, w, h);
-    specular_ = glossy ? Texture::create2D("gbuffer.specular", GL_RGBA16F, w, h) : Texture();
-    emission_ = emitters ? Texture::create2D("gbuffer.emission", GL_RGBA16F, w, h) : Texture();
-    depth_ = Texture::create2D("gbuffer.depth", GL_DEPTH_COMPONENT32F, w, h);
-    direct_ = Texture::create2D("direct", GL_RGBA32F, w, h);
-    indirect_ = Texture::create2D("indirect", GL_RGBA32F, w, h);
-    composite_ = Texture::create2D("composite", GL_RGBA32F, w, h);
-    gbufferFbo_ = Framebuffer("gbuffer.fbo"); // a fresh object: no attachment of an earlier size survives
-    gbufferFbo_.attach(GL_COLOR_ATTACHMENT0, geometry_);
-    gbufferFbo_.attach(GL_COLOR_ATTACHMENT1, diffuse_);
-    if (specular_) gbufferFbo_.attach(GL_COLOR_ATTACHMENT2, specular_);
-    if (emission_) gbufferFbo_.attach(GL_COLOR_ATTACHMENT3, emission_);
-    gbufferFbo_.attach(GL_DEPTH_ATTACHMENT, depth_);
-    gbufferFbo_.setDrawBuffers({GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1,
-                                GLenum(specular_ ? GL_COLOR_ATTACHMENT2 : GL_NONE),
-                                GLenum(emission_ ? GL_COLOR_ATTACHMENT3 : GL_NONE)});
-    gbufferFbo_.checkComplete();
+    checkFrameFits(settings_, frameTargetBytesPerPixel(scene_.hasGlossy(), gpu_.emissiveTriangleCount() > 0));
+    allocate(full_, settings_.width, settings_.height, "");
+    coarse_ = Targets(); // allocated again by the next beginIndirect at the new size
+    coarseActive_ = false;
+    composite_ = Texture::create2D("composite", GL_RGBA32F, settings_.width, settings_.height);
     if (!black_) {
         black_ = Texture::create2D("frame.absentTarget", GL_RGBA16F, 1, 1);
         const float zero[4] = {0, 0, 0, 0};
         black_.clear(0, zero);
     }
-    if (!gbufferCamera_) gbufferCamera_ = Buffer("frame.gbufferCamera", sizeof(GBufferCamera));
-    directFbo_.attach(GL_COLOR_ATTACHMENT0, direct_);
-    directFbo_.checkComplete();
     compositeFbo_.attach(GL_COLOR_ATTACHMENT0, composite_);
     compositeFbo_.checkComplete();
     accumulated_ = Texture();
     accumulatedIndirect_ = Texture();
     accumulatedResult_ = false;
     clearIndirect();
+}
+
+void Frame::allocate(Targets& t, int w, int h, const std::string& suffix)
+{
+    const bool glossy = scene_.hasGlossy(), emitters = gpu_.emissiveTriangleCount() > 0;
+    t.width = w;
+    t.height = h;
+    t.geometry = Texture::create2D("gbuffer.geometry" + suffix, GL_RG32UI, w, h);
+    t.diffuse = Texture::create2D("gbuffer.diffuse" + suffix, GL_RGBA16F, w, h);
+    t.specular = glossy ? Texture::create2D("gbuffer.specular" + suffix, GL_RGBA16F, w, h) : Texture();
+    t.emission = emitters ? Texture::create2D("gbuffer.emission" + suffix, GL_RGBA16F, w, h) : Texture();
+    t.depth = Texture::create2D("gbuffer.depth" + suffix, GL_DEPTH_COMPONENT32F, w, h);
+    t.direct = Texture::create2D("direct" + suffix, GL_RGBA32F, w, h);
+    t.indirect = Texture::create2D("indirect" + suffix, GL_RGBA32F, w, h);
+    t.gbufferFbo = Framebuffer("gbuffer.fbo" + suffix); // fresh objects: no attachment of an earlier size survives
+    t.gbufferFbo.attach(GL_COLOR_ATTACHMENT0, t.geometry);
+    t.gbufferFbo.attach(GL_COLOR_ATTACHMENT1, t.diffuse);
+    if (t.specular) t.gbufferFbo.attach(GL_COLOR_ATTACHMENT2, t.specular);
+    if (t.emission) t.gbufferFbo.attach(GL_COLOR_ATTACHMENT3, t.emission);
+    t.gbufferFbo.attach(GL_DEPTH_ATTACHMENT, t.depth);
+    t.gbufferFbo.setDrawBuffers({GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1,
+                                 GLenum(t.specular ? GL_COLOR_ATTACHMENT2 : GL_NONE),
+                                 GLenum(t.emission ? GL_COLOR_ATTACHMENT3 : GL_NONE)});
+    t.gbufferFbo.checkComplete();
+    t.directFbo = Framebuffer("direct.fbo" + suffix);
+    t.directFbo.attach(GL_COLOR_ATTACHMENT0, t.direct);
+    t.directFbo.checkComplete();
+    if (!t.camera) t.camera = Buffer("frame.gbufferCamera" + suffix, sizeof(GBufferCamera));
+}
+
+void Frame::beginIndirect(int scale, PassTimers& timers, bool withDirect)
+{
+    if (scale < 1 || scale > 16) throw std::invalid_argument("indirect scale must be in 1..16");
+    scale_ = scale;
+    if (scale == 1) return;
+    const int w = (settings_.width + scale - 1) / scale, h = (settings_.height + scale - 1) / scale;
+    if (coarse_.width != w || coarse_.height != h) allocate(coarse_, w, h, ".coarse");
+    coarseActive_ = true;
+    renderGBuffer(timers);
+    if (withDirect) renderDirect(timers);
+    clearIndirect();
+}
+
+void Frame::endIndirect(PassTimers& timers)
+{
+    if (!coarseActive_) return;
+    coarseActive_ = false;
+    if (!upsample_) upsample_ = std::make_unique<JointUpsample>();
+    upsample_->run(*this, coarse_.geometry, coarse_.indirect, full_.geometry, full_.indirect, timers);
 }
 
 void Frame::setCamera(const core::Camera& camera)
@@ -228,11 +260,11 @@ void Frame::beginFrame(bool still)
 
 glm::mat4 Frame::projection() const
 {
-    const glm::mat4 p = camera_.projection(float(settings_.width) / float(settings_.height));
+    const glm::mat4 p = camera_.projection(float(width()) / float(height()));
     const glm::vec2 jitter = sampler_.jitter();
     if (jitter == glm::vec2(0.0f)) return p;
     // Shifting NDC by -2 j / size puts the point that was at pixel centre + j onto the pixel centre.
-    const glm::vec3 shift(-2.0f * jitter.x / float(settings_.width), -2.0f * jitter.y / float(settings_.height), 0.0f);
+    const glm::vec3 shift(-2.0f * jitter.x / float(width()), -2.0f * jitter.y / float(height()), 0.0f);
     return glm::translate(glm::mat4(1.0f), shift) * p;
 }
 
@@ -248,13 +280,13 @@ void Frame::accumulate(PassTimers& timers, bool progressive)
     auto t = timers.scope("accumulate", cost);
     t.expectComputes(computeInvocations({settings_.width, settings_.height, 1}, {8, 8, 1}));
     Program& program = progressive ? accumulateDirectProgram_ : accumulateProgram_;
-    (progressive ? direct_ : result()).bind(UNIT_COMPOSITE_DIRECT);
+    (progressive ? full_.direct : result()).bind(UNIT_COMPOSITE_DIRECT);
     accumulated_.bindImage(0, GL_READ_WRITE);
     if (progressive) {
         if (!accumulatedIndirect_)
             accumulatedIndirect_ =
                 Texture::create2D("accumulated.indirect", GL_RGBA32F, settings_.width, settings_.height);
-        indirect_.bind(UNIT_COMPOSITE_INDIRECT);
+        full_.indirect.bind(UNIT_COMPOSITE_INDIRECT);
         composite_.bindImage(1, GL_WRITE_ONLY);
         accumulatedIndirect_.bindImage(2, GL_READ_WRITE);
         compositeUsed_ = true;
@@ -294,37 +326,37 @@ void Frame::renderShadowMaps(PassTimers& timers)
 
 void Frame::renderGBuffer(PassTimers& timers)
 {
+    Targets& t = targets();
     // gbuffer.frag per fragment: eye depth and octahedral normal (8 bytes), diffuse (8), and where the
     // scene has them specular (8) and emission (8); the depth test reads and writes 4.
-    const double targetBytes = 8 + 8 + (specular_ ? 8 : 0) + (emission_ ? 8 : 0);
+    const double targetBytes = 8 + 8 + (t.specular ? 8 : 0) + (t.emission ? 8 : 0);
     PassCost cost;
     cost.flops = 50;                           // normalize, brdfParams, the back-face case, the octahedral map
     cost.fetches = gpu_.hasTextures() ? 4 : 0; // one bilinear base-colour sample
     cost.bytesRead = 4;                        // depth test
     cost.bytesWritten = targetBytes + 4;
-    const double pixels = double(settings_.width) * settings_.height;
+    const double pixels = double(t.width) * t.height;
     cost.bytesFixed = pixels * (targetBytes + 4) + 3.0 * gpu_.triangleCount() * kVertexBytes; // clears, vertices
     cost.triangles = double(gpu_.triangleCount());
-    auto t = timers.scope("gbuffer", cost);
+    auto timer = timers.scope("gbuffer", cost);
     updateGBufferCamera();
-    PassState state = PassState::fullscreen(gbufferFbo_, settings_.width, settings_.height);
+    PassState state = PassState::fullscreen(t.gbufferFbo, t.width, t.height);
     state.depthTest = true; // no culling: back faces of one-sided surfaces are drawn black (gbuffer.frag)
     state.apply();          // before the clears, which obey the write masks
     const GLuint zeroBits[4] = {0, 0, 0, 0};
     const float zero[4] = {0, 0, 0, 0};
-    glClearNamedFramebufferuiv(gbufferFbo_.id(), GL_COLOR, 0, zeroBits); // eye depth 0: background
-    glClearNamedFramebufferfv(gbufferFbo_.id(), GL_COLOR, 1, zero);
-    if (specular_) glClearNamedFramebufferfv(gbufferFbo_.id(), GL_COLOR, 2, zero);
-    if (emission_) glClearNamedFramebufferfv(gbufferFbo_.id(), GL_COLOR, 3, zero);
-    glClearNamedFramebufferfi(gbufferFbo_.id(), GL_DEPTH_STENCIL, 0, 1.0f, 0);
+    glClearNamedFramebufferuiv(t.gbufferFbo.id(), GL_COLOR, 0, zeroBits); // eye depth 0: background
+    glClearNamedFramebufferfv(t.gbufferFbo.id(), GL_COLOR, 1, zero);
+    if (t.specular) glClearNamedFramebufferfv(t.gbufferFbo.id(), GL_COLOR, 2, zero);
+    if (t.emission) glClearNamedFramebufferfv(t.gbufferFbo.id(), GL_COLOR, 3, zero);
+    glClearNamedFramebufferfi(t.gbufferFbo.id(), GL_DEPTH_STENCIL, 0, 1.0f, 0);
     gbufferProgram_.set("viewProj", projection() * view());
     gbufferProgram_.set("view", view());
     // The eye-space ray through pixel centre c (gl_FragCoord.xy) is ((2 c / size - 1 + P[2].xy) / diag(P), -1)
     // (P[2].xy: the still frame's jitter): the same ray updateGBufferCamera gives in world space.
     const glm::mat4 p = projection();
-    gbufferProgram_.set("eyeRay",
-                        glm::vec4(2.0f / (float(settings_.width) * p[0][0]), 2.0f / (float(settings_.height) * p[1][1]),
-                                  (p[2][0] - 1.0f) / p[0][0], (p[2][1] - 1.0f) / p[1][1]));
+    gbufferProgram_.set("eyeRay", glm::vec4(2.0f / (float(t.width) * p[0][0]), 2.0f / (float(t.height) * p[1][1]),
+                                            (p[2][0] - 1.0f) / p[0][0], (p[2][1] - 1.0f) / p[1][1]));
     gpu_.materials().bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_MATERIALS);
     gpu_.baseColorTextures().bind(UNIT_BASE_COLOR);
     gbufferProgram_.draw(gpu_);
@@ -332,6 +364,7 @@ void Frame::renderGBuffer(PassTimers& timers)
 
 void Frame::updateGBufferCamera()
 {
+    Targets& t = targets();
     // The eye axes from the very matrices the G-buffer was rasterised with: row r of the view matrix is
     // eye axis r in world space, and the projection's diagonal holds 1 / tan of the half field of view.
     const glm::mat4 v = view(), p = projection();
@@ -343,10 +376,10 @@ void Frame::updateGBufferCamera()
     GBufferCamera c;
     c.origin = glm::vec4(camera_.position, 1.0f);
     c.corner = glm::vec4(forward + (p[2][0] - 1.0f) * x + (p[2][1] - 1.0f) * y, 0.0f);
-    c.axisX = glm::vec4(2.0f * x / float(settings_.width), 0.0f);
-    c.axisY = glm::vec4(2.0f * y / float(settings_.height), 0.0f);
-    c.present = glm::ivec4(specular_ ? 1 : 0, emission_ ? 1 : 0, 0, 0);
-    gbufferCamera_.update(0, sizeof c, &c);
+    c.axisX = glm::vec4(2.0f * x / float(t.width), 0.0f);
+    c.axisY = glm::vec4(2.0f * y / float(t.height), 0.0f);
+    c.present = glm::ivec4(t.specular ? 1 : 0, t.emission ? 1 : 0, 0, 0);
+    t.camera.update(0, sizeof c, &c);
 }
 
 std::vector<Define> Frame::gbufferDefines() const
@@ -378,11 +411,12 @@ void Frame::setDirectLightUniforms(Program& program) const
 
 void Frame::bindGBuffer() const
 {
-    geometry_.bind(UNIT_G_GEOMETRY);
-    diffuse_.bind(UNIT_G_DIFFUSE);
-    (specular_ ? specular_ : black_).bind(UNIT_G_SPECULAR);
-    (emission_ ? emission_ : black_).bind(UNIT_G_EMISSION);
-    gbufferCamera_.bindBase(GL_UNIFORM_BUFFER, UBO_GBUFFER_CAMERA);
+    const Targets& t = targets();
+    t.geometry.bind(UNIT_G_GEOMETRY);
+    t.diffuse.bind(UNIT_G_DIFFUSE);
+    (t.specular ? t.specular : black_).bind(UNIT_G_SPECULAR);
+    (t.emission ? t.emission : black_).bind(UNIT_G_EMISSION);
+    t.camera.bindBase(GL_UNIFORM_BUFFER, UBO_GBUFFER_CAMERA);
 }
 
 void Frame::bindSceneData() const
@@ -401,18 +435,19 @@ void Frame::drawFullscreen() const
 
 void Frame::renderDirect(PassTimers& timers)
 {
+    Targets& t = targets();
     // direct.frag per pixel: two to four G-buffer texels (the targets the scene has), one target, and the
     // loop over the lights.
     const double punctual = gpu_.punctualLightCount(), area = areaLightsInDirect_ ? lights_.count() - punctual : 0.0;
     const PassCost lights = directLightsCost(*this, punctual, area);
     PassCost cost;
     cost.flops = 30 + lights.flops;
-    cost.fetches = 2 + (specular_ ? 1 : 0) + (emission_ ? 1 : 0) + lights.fetches;
-    cost.bytesRead = 8 + 8 + (specular_ ? 8 : 0) + (emission_ ? 8 : 0) + lights.bytesRead;
+    cost.fetches = 2 + (t.specular ? 1 : 0) + (t.emission ? 1 : 0) + lights.fetches;
+    cost.bytesRead = 8 + 8 + (t.specular ? 8 : 0) + (t.emission ? 8 : 0) + lights.bytesRead;
     cost.bytesWritten = 16;
-    auto t = timers.scope("direct", cost);
-    t.expectFragments(settings_.width, settings_.height);
-    PassState::fullscreen(directFbo_, settings_.width, settings_.height).apply();
+    auto timer = timers.scope("direct", cost);
+    timer.expectFragments(t.width, t.height);
+    PassState::fullscreen(t.directFbo, t.width, t.height).apply();
     bindGBuffer();
     bindSceneData();
     const bool still = sampler_.stillIndex() > 0 && directStillProgram_;
@@ -426,7 +461,7 @@ void Frame::renderDirect(PassTimers& timers)
 void Frame::clearIndirect()
 {
     const float zero[4] = {0, 0, 0, 0};
-    indirect_.clear(0, zero);
+    targets().indirect.clear(0, zero);
 }
 
 void Frame::composite(PassTimers& timers, bool withIndirect)
@@ -439,22 +474,22 @@ void Frame::composite(PassTimers& timers, bool withIndirect)
     cost.bytesRead = 32;
     cost.bytesWritten = 16;
     auto t = timers.scope("composite", cost);
-    t.expectFragments(settings_.width, settings_.height);
-    PassState::fullscreen(compositeFbo_, settings_.width, settings_.height).apply();
-    direct_.bind(UNIT_COMPOSITE_DIRECT);
-    indirect_.bind(UNIT_COMPOSITE_INDIRECT);
+    t.expectFragments(full_.width, full_.height);
+    PassState::fullscreen(compositeFbo_, full_.width, full_.height).apply();
+    full_.direct.bind(UNIT_COMPOSITE_DIRECT);
+    full_.indirect.bind(UNIT_COMPOSITE_INDIRECT);
     compositeProgram_.use();
     drawFullscreen();
 }
 
 std::vector<float> Frame::decode(int output) const
 {
-    Texture target = Texture::create2D("gbuffer.decoded", GL_RGBA32F, settings_.width, settings_.height);
+    Texture target = Texture::create2D("gbuffer.decoded", GL_RGBA32F, width(), height());
     Framebuffer fbo("gbuffer.decode.fbo");
     fbo.attach(GL_COLOR_ATTACHMENT0, target);
     fbo.checkComplete();
     Program decoder = Program::graphics("gbuffer.decode", "frame/fullscreen.vert", "frame/gbuffer_decode.frag");
-    PassState::fullscreen(fbo, settings_.width, settings_.height).apply();
+    PassState::fullscreen(fbo, width(), height()).apply();
     bindGBuffer();
     decoder.set("decodeNormals", output);
     decoder.use();
@@ -474,8 +509,8 @@ std::vector<float> Frame::readNormals() const
 
 core::Image Frame::readEmission() const
 {
-    if (emission_) return read(emission_);
-    return core::Image(settings_.width, settings_.height);
+    if (targets().emission) return read(targets().emission);
+    return core::Image(width(), height());
 }
 
 namespace {
@@ -501,7 +536,7 @@ core::Image Frame::read(const Texture& texture) const
 
 core::Image Frame::toImage(const std::vector<float>& rgba) const
 {
-    return rgbaToImage(rgba, settings_.width, settings_.height);
+    return rgbaToImage(rgba, width(), height());
 }
 
 } // namespace bounce::gl

@@ -24,6 +24,8 @@
 
 namespace bounce::gl {
 
+class JointUpsample;
+
 struct FrameSettings {
     int width = 512;
     int height = 512;
@@ -52,6 +54,7 @@ struct FrameVersion {
 class Frame {
 public:
     Frame(const core::Scene& scene, const FrameSettings& settings);
+    ~Frame();
 
     void setCamera(const core::Camera& camera);
     void setLights(const std::vector<core::Light>& lights); // moves punctual lights, re-renders shadows
@@ -85,6 +88,20 @@ public:
     // direct + indirect into result(). withIndirect false (a technique that claims only direct light): no
     // pass at all, result() is the direct texture itself.
     void composite(PassTimers& timers, bool withIndirect = true);
+    // Indirect light at 1/scale of the frame's resolution (the demo's frame budget while the view moves,
+    // `render --indirect-scale`): from beginIndirect(scale) to endIndirect() the frame is ceil(w/scale) x
+    // ceil(h/scale) to whatever a technique reads of it: width(), height(), bindGBuffer(), geometry(),
+    // diffuse(), depth(), direct(), indirect(), projection(), readPositions()... are the coarse targets',
+    // which beginIndirect renders from the same camera (the G-buffer; the direct light when `withDirect`,
+    // for a technique that reads it) and whose indirect light it clears. Shadow maps, lights, the GPU
+    // scene and the ray caster are the frame's own at every scale, so a technique keeps what it built
+    // (one instance at every scale, gl/renderer.h). endIndirect brings the coarse indirect light into the
+    // full frame's indirect() by joint bilateral upsampling (gl/frame/joint_upsample.h). Scale 1: both do
+    // nothing. Throws std::invalid_argument outside 1..16.
+    void beginIndirect(int scale, PassTimers& timers, bool withDirect);
+    void endIndirect(PassTimers& timers);
+    // The scale of the targets now in use: beginIndirect's inside the pair, 1 outside it.
+    int indirectScale() const { return coarseActive_ ? scale_ : 1; }
     // The frame index, the still index and the pixel jitter, and every sample stream the frame and the
     // techniques draw from (gl/frame/frame_sampler.h).
     const FrameSampler& sampler() const { return sampler_; }
@@ -115,8 +132,8 @@ public:
     bool directLightStill() const;
     std::vector<Define> directLightDefines(bool still) const;
     void setDirectLightUniforms(Program& program) const;
-    bool hasSpecularTarget() const { return bool(specular_); }
-    bool hasEmissionTarget() const { return bool(emission_); }
+    bool hasSpecularTarget() const { return bool(full_.specular); }
+    bool hasEmissionTarget() const { return bool(full_.emission); }
     // Binds materials (SSBO 0), lights (1), shadow views (2), area polygons (3), the scene's geometry
     // (vertices 4, indices 5, emissive triangles 6: glsl/common/scene.glsl with SCENE_GEOMETRY), shadow
     // depth (unit 5) and the base-colour textures (unit 6).
@@ -140,17 +157,21 @@ public:
     glm::mat4 view() const { return camera_.view(); }
     // The camera's projection, offset by the still frame's sub-pixel jitter (sampler().jitter()).
     glm::mat4 projection() const;
-    int width() const { return settings_.width; }
-    int height() const { return settings_.height; }
+    // The targets in use (beginIndirect): the frame's size, or the coarse size inside beginIndirect.
+    int width() const { return targets().width; }
+    int height() const { return targets().height; }
     const FrameVersion& version() const { return version_; }
 
     // RG32UI: eye depth bits (0: background) and the octahedral normal (glsl/common/gbuffer.glsl).
-    const Texture& geometry() const { return geometry_; }
-    const Texture& diffuse() const { return diffuse_; }
-    const Texture& depth() const { return depth_; }
-    const Texture& direct() const { return direct_; }
-    Texture& indirect() { return indirect_; }
-    const Texture& result() const { return accumulatedResult_ ? accumulated_ : compositeUsed_ ? composite_ : direct_; }
+    const Texture& geometry() const { return targets().geometry; }
+    const Texture& diffuse() const { return targets().diffuse; }
+    const Texture& depth() const { return targets().depth; }
+    const Texture& direct() const { return targets().direct; }
+    Texture& indirect() { return targets().indirect; }
+    const Texture& result() const
+    {
+        return accumulatedResult_ ? accumulated_ : compositeUsed_ ? composite_ : full_.direct;
+    }
 
     // Reads an RGBA32F texture back as an RGB image, row 0 at the top.
     core::Image read(const Texture& texture) const;
@@ -174,12 +195,24 @@ private:
     ShadowMaps shadows_;
     mutable std::unique_ptr<RayCaster> rayCaster_; // rayCaster(), built on first use
     mutable std::uint64_t rayCasterScene_ = 0;     // the version().scene it was built for
-    Texture geometry_, diffuse_, specular_, emission_, depth_, direct_, indirect_, composite_;
+    // What the frame renders per pixel, at its own size (full_) and at beginIndirect's (coarse_).
+    struct Targets {
+        int width = 0, height = 0;
+        Texture geometry, diffuse, specular, emission, depth, direct, indirect;
+        Buffer camera; // glsl/common/gbuffer.glsl's GBufferCamera for this size
+        Framebuffer gbufferFbo, directFbo;
+    };
+    Targets full_, coarse_;
+    bool coarseActive_ = false; // inside beginIndirect(scale > 1)
+    int scale_ = 1;
+    std::unique_ptr<JointUpsample> upsample_;
+    Targets& targets() { return coarseActive_ ? coarse_ : full_; }
+    const Targets& targets() const { return coarseActive_ ? coarse_ : full_; }
+    Texture composite_;
     Texture black_;               // 1x1, bound for the targets the scene does not need
     Texture accumulated_;         // still frames' mean (accumulate()), allocated at the first still frame
     Texture accumulatedIndirect_; // a progressive technique's indirect light, weighted over the still frames
-    Buffer gbufferCamera_;
-    Framebuffer gbufferFbo_, directFbo_, compositeFbo_;
+    Framebuffer compositeFbo_;
     VertexArray emptyVao_;
     SceneProgram gbufferProgram_;
     Program directProgram_, directStillProgram_, compositeProgram_, accumulateProgram_, accumulateDirectProgram_;
@@ -189,6 +222,7 @@ private:
     FrameSampler sampler_;
     FrameVersion version_;
     void allocateTargets();
+    void allocate(Targets& t, int width, int height, const std::string& suffix);
     void rebuildDirectPrograms();
     // Runs `change` on the GPU scene's lights or geometry, then fits the shadow maps' views to what it left,
     // and rebuilds the direct pass's programs where a kind of light (punctual, directional, area) came or went.

@@ -22,6 +22,15 @@
 // A second case per technique (UniformsMatchARebuild) changes each parameter declared
 // ParamUpdate::Uniform on a running technique and checks that the image equals that of the technique
 // made anew with the same value: a uniform the technique forgets to apply fails it.
+// A third (ScaleChangeLeavesNoTrace) renders frames at indirect scale 1, 4, 1 (the demo's frame budget,
+// Frame::beginIndirect) and checks that the last frame equals that of a run at scale 1 throughout: one
+// technique instance runs at every scale, so a buffer sized for one scale and kept for the next, or
+// screen-space state carried across a change of scale, fails it; a progressive technique accumulates
+// through the coarse frames (grb's atlases gather the same directions either way).
+// A fourth (SwitchShowsOnlyTheNewTechnique) switches to the technique from grb (progressive, carrying the
+// emitters' light, its still mean accumulating) at indirect scale 4, and finds in the next frame, and in the
+// moving frame after it, the images of the same switch from `direct` (no light of its own): nothing of the
+// old technique's light is left.
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -355,6 +364,84 @@ TEST_P(Conformance, UniformsMatchARebuild)
                     info.name.c_str(), d.name.c_str(), value, changeByParam, diff, scale);
         EXPECT_LE(diff, 1e-5 * std::max(scale, 1e-6)) << "setting " << d.name << " as a uniform differs from a rebuild";
     }
+}
+
+// The largest difference of two images' channels, relative to the larger image's largest channel.
+double relativeMaxDifference(const core::Image& a, const core::Image& b)
+{
+    double diff = 0.0, scale = 0.0;
+    for (int y = 0; y < a.height; ++y)
+        for (int x = 0; x < a.width; ++x)
+            for (int c = 0; c < 3; ++c) {
+                diff = std::max(diff, double(std::abs(a.at(x, y)[c] - b.at(x, y)[c])));
+                scale = std::max(scale, double(std::max(std::abs(a.at(x, y)[c]), std::abs(b.at(x, y)[c]))));
+            }
+    return diff / std::max(scale, 1e-30);
+}
+
+// Moving frames only (accumulate off): the still mean would restart at the change of scale.
+gl::ParamValues movingFrameValues()
+{
+    gl::ParamValues v(gl::frameParams());
+    v.setValue("shadow.size", 256);
+    v.setValue("accumulate", 0);
+    return v;
+}
+
+TEST_P(Conformance, ScaleChangeLeavesNoTrace)
+{
+    const gl::TechniqueInfo& info = gl::findTechnique(GetParam());
+    const core::Scene scene = core::makeCornell("cornell-spot");
+    constexpr int w = 40, h = 28; // scale 4: 10 x 7; scale 3: 14 x 10
+    const auto run = [&](const std::vector<int>& scales) {
+        gl::Renderer r(scene, info.name, movingFrameValues(), quickValues(info), w, h);
+        for (int s : scales) {
+            r.setIndirectScale(s);
+            r.renderFrame(false);
+        }
+        bounce::gl::checkGlError("frames at changing scales");
+        return r.image();
+    };
+    const core::Image straight = run({1, 1, 1, 1});
+    const core::Image changed = run({1, 4, 3, 1});
+    const double diff = relativeMaxDifference(straight, changed);
+    std::printf("[ scale    ] %s: after scales 1, 4, 3, 1 the image differs from 1, 1, 1, 1 by %.3g\n",
+                info.name.c_str(), diff);
+    // Float rounding only: the same frames' samples and the same state reach the last frame.
+    EXPECT_LE(diff, 1e-5) << "the frames at scales 4 and 3 left a trace in the next full-resolution frame";
+}
+
+TEST_P(Conformance, SwitchShowsOnlyTheNewTechnique)
+{
+    const gl::TechniqueInfo& info = gl::findTechnique(GetParam());
+    const core::Scene scene = core::makeCornell("cornell-area");
+    constexpr int w = 40, h = 28;
+    gl::ParamValues frameValues(gl::frameParams());
+    frameValues.setValue("shadow.size", 256);
+    // Three still frames of the first technique (its mean accumulating), the switch, a frame from the same
+    // view, then a moving one: both after the switch must hold the new technique's light only.
+    const auto run = [&](const std::string& first) {
+        gl::Renderer r(scene, first, frameValues, quickValues(gl::findTechnique(first)), w, h);
+        r.setIndirectScale(4);
+        for (int i = 0; i < 3; ++i) r.renderFrame(false);
+        r.setTechnique(info.name, quickValues(info));
+        r.renderFrame(false);
+        const core::Image sameView = r.image();
+        core::Camera camera = scene.camera;
+        camera.position.x += 0.01f;
+        r.frame().setCamera(camera);
+        r.renderFrame(false);
+        return std::pair{sameView, r.image()};
+    };
+    const auto [fromGrb, movedFromGrb] = run("grb");
+    const auto [fromDirect, movedFromDirect] = run("direct");
+    const double diff = relativeMaxDifference(fromGrb, fromDirect);
+    const double moved = relativeMaxDifference(movedFromGrb, movedFromDirect);
+    std::printf("[ switch   ] %s: switched to from grb and from direct, the images differ by %.3g (same view), "
+                "%.3g (moved)\n",
+                info.name.c_str(), diff, moved);
+    EXPECT_LE(diff, 1e-5) << "the image after the switch holds light of the technique before it";
+    EXPECT_LE(moved, 1e-5) << "the moving frame after the switch holds light of the technique before it";
 }
 
 INSTANTIATE_TEST_SUITE_P(Every, Conformance, ::testing::ValuesIn(techniqueNames()),

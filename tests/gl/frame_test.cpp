@@ -211,8 +211,8 @@ TEST_F(FrameTest, MovedVerticesRenderAsTheMovedScene)
         const core::Scene scene = core::makeCornell(name);
         const testing::MovedVertices moved = testing::scaledVertices(scene, scale);
         const core::Scene loaded = testing::withVertices(scene, moved);
-        // Direct light, and on cornell-spot reflective shadow maps on a coarse frame (Renderer::setIndirectScale),
-        // made after the move: the coarse frame moves as well.
+        // Direct light, and on cornell-spot reflective shadow maps at half resolution (Renderer::setIndirectScale,
+        // the frame's coarse targets first drawn after the move): the coarse G-buffer sees the moved geometry.
         const bool coarse = std::string(name) == "cornell-spot";
         const std::string technique = coarse ? "rsm" : "direct";
         const gl::ParamValues values(gl::findTechnique(technique).params);

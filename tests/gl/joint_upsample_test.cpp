@@ -10,7 +10,6 @@
 #include "core/cornell.h"
 #include "core/image.h"
 #include "core/metrics.h"
-#include "gl/frame/joint_upsample.h"
 #include "gl/renderer.h"
 #include "tests/gl/gl_test_fixture.h"
 
@@ -36,19 +35,17 @@ TEST_F(JointUpsampleTest, ConstantFieldComesBackExactly)
     full.width = 37;
     full.height = 23;
     full.shadowMapSize = 64;
-    gl::FrameSettings coarse = full;
-    coarse.width = 13;
-    coarse.height = 8;
-    gl::Frame fine(scene, full), rough(scene, coarse);
+    gl::Frame fine(scene, full);
     gl::PassTimers timers;
-    for (gl::Frame* f : {&fine, &rough}) {
-        f->beginFrame();
-        f->renderGBuffer(timers);
-    }
+    fine.beginFrame();
+    fine.renderGBuffer(timers);
+    fine.beginIndirect(3, timers, false);
+    EXPECT_EQ(fine.width(), 13);
+    EXPECT_EQ(fine.height(), 8);
     const float value[4] = {0.25f, 0.5f, 2.0f, 1.0f};
-    rough.indirect().clear(0, value);
-    gl::JointUpsample up;
-    up.run(rough, fine, timers);
+    fine.indirect().clear(0, value);
+    fine.endIndirect(timers);
+    EXPECT_EQ(fine.width(), 37);
     const core::Image out = fine.read(fine.indirect());
     const std::vector<float> pos = fine.readPositions();
     int lit = 0;
@@ -110,7 +107,7 @@ TEST_F(JointUpsampleTest, CoarseIndirectStaysCloseToFullResolution)
     r.renderFrame();
     EXPECT_EQ(core::relativeRmse(r.image(), fullImage), 0.0) << "scale 1 is the full-resolution technique";
 
-    // The coarse frame draws no direct light of its own (rsm reads none; the viewer sees the full frame's):
+    // The coarse targets get no direct light of their own (rsm reads none; the viewer sees the full frame's):
     // the frame's direct pass shades as many fragments with a coarse technique as without.
     const auto directFragments = [](gl::Renderer& x) {
         for (const gl::PassStat& p : x.timers().stats())
@@ -127,6 +124,7 @@ TEST_F(JointUpsampleTest, CoarseIndirectStaysCloseToFullResolution)
     }
     EXPECT_THROW(r.setIndirectScale(0), std::invalid_argument);
     EXPECT_THROW(r.setIndirectScale(17), std::invalid_argument);
+    EXPECT_THROW(r.frame().beginIndirect(17, r.timers(), false), std::invalid_argument);
 }
 
 } // namespace
