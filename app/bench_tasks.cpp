@@ -7,6 +7,7 @@
 #include <set>
 
 #include "app/commands.h"
+#include "core/hash.h"
 #include "core/light_paths.h"
 #include "gl/technique/technique.h"
 
@@ -22,14 +23,7 @@ std::string sizeText(int w, int h)
 // FNV-1a, 64 bits, as 16 hex digits: stable across machines and compilers (std::hash is neither).
 std::string hashText(const std::string& text)
 {
-    std::uint64_t h = 14695981039346656037ull;
-    for (unsigned char c : text) {
-        h ^= c;
-        h *= 1099511628211ull;
-    }
-    char buf[17];
-    std::snprintf(buf, sizeof buf, "%016llx", (unsigned long long)h);
-    return buf;
+    return core::Fnv1a().add(text).hex();
 }
 
 std::string joined(const std::vector<std::string>& items)

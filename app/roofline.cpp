@@ -6,6 +6,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "core/hash.h"
 #include "core/image.h"
 #include "ref/reference.h"
 
@@ -64,11 +65,9 @@ nlohmann::json passWorkJson(const gl::PassStat& p, const gl::Ceilings* ceilings)
 
 std::string ceilingsCachePath(const std::string& renderer)
 {
-    // FNV-1a of the renderer string: one file per driver, CPU and version as GL_RENDERER names them.
-    std::uint64_t h = 1469598103934665603ull;
-    for (unsigned char ch : renderer) h = (h ^ ch) * 1099511628211ull;
-    char name[64];
-    std::snprintf(name, sizeof name, "probe-%016llx.json", static_cast<unsigned long long>(h));
+    // FNV-1a of the renderer string: one file per driver, CPU and version as GL_RENDERER names them (the
+    // legacy basis, core/hash.h: the probe files already written keep their names).
+    const std::string name = "probe-" + core::Fnv1a(core::Fnv1a::kLegacyBasis).add(renderer).hex() + ".json";
     return (std::filesystem::path(ref::defaultCacheDir()) / name).string();
 }
 

@@ -7,6 +7,8 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "core/hash.h"
+
 namespace bounce::core {
 
 float Light::spotWeight(float cosAngle) const
@@ -76,25 +78,13 @@ bool Scene::hasAlphaMask() const
 }
 
 namespace {
-struct Fnv1a {
-    std::uint64_t h = 1469598103934665603ull;
-    void bytes(const void* p, std::size_t n)
-    {
-        const auto* c = static_cast<const unsigned char*>(p);
-        for (std::size_t i = 0; i < n; ++i) h = (h ^ c[i]) * 1099511628211ull;
-    }
-    template <class T>
-    void pod(const T& v)
-    {
-        bytes(&v, sizeof v);
-    }
-    template <class T>
-    void vec(const std::vector<T>& v)
-    {
-        pod(v.size());
-        bytes(v.data(), v.size() * sizeof(T));
-    }
-};
+// A vector's length, then its elements' bytes.
+template <class T>
+void addVector(Fnv1a& f, const std::vector<T>& v)
+{
+    f.addBytesOf(v.size());
+    f.add(v.data(), v.size() * sizeof(T));
+}
 
 bool finite(const glm::vec3& v)
 {
@@ -104,45 +94,45 @@ bool finite(const glm::vec3& v)
 
 std::uint64_t Scene::contentHash() const
 {
-    Fnv1a f;
-    f.pod(meshes.size());
+    Fnv1a f(Fnv1a::kLegacyBasis); // the cache keys on disk were made with it (core/hash.h)
+    f.addBytesOf(meshes.size());
     for (const Mesh& m : meshes) {
-        f.vec(m.positions);
-        f.vec(m.normals);
-        f.vec(m.uvs);
-        f.vec(m.indices);
-        f.pod(m.material);
+        addVector(f, m.positions);
+        addVector(f, m.normals);
+        addVector(f, m.uvs);
+        addVector(f, m.indices);
+        f.addBytesOf(m.material);
     }
-    f.pod(materials.size());
+    f.addBytesOf(materials.size());
     for (const Material& m : materials) {
-        f.pod(m.baseColor);
-        f.pod(m.baseColorTexture);
-        f.pod(m.metallic);
-        f.pod(m.roughness);
-        f.pod(m.specular);
-        f.pod(m.specularColor);
-        f.pod(m.emission);
-        f.pod(m.doubleSided);
-        f.pod(m.alphaMode);
-        f.pod(m.baseAlpha);
-        f.pod(m.alphaCutoff);
+        f.addBytesOf(m.baseColor);
+        f.addBytesOf(m.baseColorTexture);
+        f.addBytesOf(m.metallic);
+        f.addBytesOf(m.roughness);
+        f.addBytesOf(m.specular);
+        f.addBytesOf(m.specularColor);
+        f.addBytesOf(m.emission);
+        f.addBytesOf(m.doubleSided);
+        f.addBytesOf(m.alphaMode);
+        f.addBytesOf(m.baseAlpha);
+        f.addBytesOf(m.alphaCutoff);
     }
-    f.pod(textures.size());
+    f.addBytesOf(textures.size());
     for (const Texture& t : textures) {
-        f.pod(t.width);
-        f.pod(t.height);
-        f.vec(t.rgba8);
+        f.addBytesOf(t.width);
+        f.addBytesOf(t.height);
+        addVector(f, t.rgba8);
     }
-    f.pod(lights.size());
+    f.addBytesOf(lights.size());
     for (const Light& l : lights) {
-        f.pod(l.type);
-        f.pod(l.position);
-        f.pod(l.direction);
-        f.pod(l.intensity);
-        f.pod(l.innerConeRad);
-        f.pod(l.outerConeRad);
+        f.addBytesOf(l.type);
+        f.addBytesOf(l.position);
+        f.addBytesOf(l.direction);
+        f.addBytesOf(l.intensity);
+        f.addBytesOf(l.innerConeRad);
+        f.addBytesOf(l.outerConeRad);
     }
-    return f.h;
+    return f.value();
 }
 
 void Scene::setVertices(const std::vector<glm::vec3>& positions, const std::vector<glm::vec3>& normals)

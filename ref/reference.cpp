@@ -13,42 +13,34 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/hash.h"
+
 namespace bounce::ref {
 
 namespace {
 
-struct Fnv1a {
-    std::uint64_t h = 1469598103934665603ull;
-    void bytes(const void* p, std::size_t n)
-    {
-        const auto* c = static_cast<const unsigned char*>(p);
-        for (std::size_t i = 0; i < n; ++i) h = (h ^ c[i]) * 1099511628211ull;
-    }
-    template <class T>
-    void pod(const T& v)
-    {
-        bytes(&v, sizeof v);
-    }
-    void text(const std::string& s)
-    {
-        pod(s.size());
-        bytes(s.data(), s.size());
-    }
-    std::string hex() const
-    {
-        char out[17];
-        std::snprintf(out, sizeof out, "%016llx", static_cast<unsigned long long>(h));
-        return out;
-    }
-};
+using core::Fnv1a;
+
+// The keys and checksums of the entries on disk were made with the legacy basis (core/hash.h).
+Fnv1a cacheHash()
+{
+    return Fnv1a(Fnv1a::kLegacyBasis);
+}
+
+// A string's length, then its bytes.
+void addText(Fnv1a& f, std::string_view s)
+{
+    f.addBytesOf(s.size());
+    f.add(s);
+}
 
 // What an entry's sidecar vouches for: the EXR's bytes and the sidecar's own record (everything but the
 // checksum, in nlohmann's canonical dump: sorted keys, numbers that read back exactly).
 std::string entryChecksum(const std::string& exrBytes, const nlohmann::json& record)
 {
-    Fnv1a f;
-    f.text(exrBytes);
-    f.text(record.dump());
+    Fnv1a f = cacheHash();
+    addText(f, exrBytes);
+    addText(f, record.dump());
     return f.hex();
 }
 
@@ -140,21 +132,21 @@ std::string defaultCacheDir()
 std::string cacheKey(const core::Scene& scene, const core::Camera& camera, const RenderSettings& settings,
                      const std::string& codeVersion)
 {
-    Fnv1a f;
-    f.text(codeVersion);
-    f.pod(scene.contentHash());
-    f.pod(camera.position);
-    f.pod(camera.forward);
-    f.pod(camera.up);
-    f.pod(camera.yfovRad);
-    f.pod(settings.width);
-    f.pod(settings.height);
-    f.text(lightPathsName(settings.paths));
-    f.pod(settings.spp);
-    f.pod(settings.targetNoise);
-    f.pod(settings.targetNoise > 0.0 ? settings.minSpp : 0);
-    f.pod(settings.seed);
-    f.pod(settings.paths == LightPaths::Full ? settings.maxDepth : 0);
+    Fnv1a f = cacheHash();
+    addText(f, codeVersion);
+    f.addBytesOf(scene.contentHash());
+    f.addBytesOf(camera.position);
+    f.addBytesOf(camera.forward);
+    f.addBytesOf(camera.up);
+    f.addBytesOf(camera.yfovRad);
+    f.addBytesOf(settings.width);
+    f.addBytesOf(settings.height);
+    addText(f, lightPathsName(settings.paths));
+    f.addBytesOf(settings.spp);
+    f.addBytesOf(settings.targetNoise);
+    f.addBytesOf(settings.targetNoise > 0.0 ? settings.minSpp : 0);
+    f.addBytesOf(settings.seed);
+    f.addBytesOf(settings.paths == LightPaths::Full ? settings.maxDepth : 0);
     return lightPathsName(settings.paths) + "-" + std::to_string(settings.width) + "x" +
            std::to_string(settings.height) + "-" + f.hex();
 }
