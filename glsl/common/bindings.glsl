@@ -45,6 +45,12 @@
 #define UNIT_UPSAMPLE_COARSE_GEOMETRY 1 // the two frames' gGeometry (common/gbuffer.glsl)
 #define UNIT_UPSAMPLE_FULL_GEOMETRY 2
 #define UNIT_SHADOW_DEPTHS 32     // shadow.glsl (SHADOW_PCSS): the shadow maps' depths, no comparison
+// Temporal reuse (frame/temporal_reuse.frag, gl/frame/temporal_reuse.h) reads the G-buffer too, so its inputs
+// take units of their own past the technique's (21-31) and the shadow depths.
+#define UNIT_TEMPORAL_CURRENT 33          // the signal this frame computed
+#define UNIT_TEMPORAL_HISTORY 34          // the pass's previous output for the signal
+#define UNIT_TEMPORAL_HISTORY_LENGTH 35   // frames that history averages (R32F)
+#define UNIT_TEMPORAL_PREVIOUS_GEOMETRY 36 // a copy of the previous frame's gGeometry (common/gbuffer.glsl)
 
 // Uniform buffers (glBindBufferBase(GL_UNIFORM_BUFFER, slot)). Slot 0 and slots 2 and up belong to the
 // technique that binds them.

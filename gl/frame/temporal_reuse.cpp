@@ -1,0 +1,106 @@
+#include "gl/frame/temporal_reuse.h"
+
+#include <stdexcept>
+#include <string>
+
+#include "gl/frame/bindings.h"
+#include "gl/gl.h"
+#include "gl/resource/pass_state.h"
+
+namespace bounce::gl {
+
+namespace {
+
+void copyTexture(const Texture& from, const Texture& to)
+{
+    glCopyImageSubData(from.id(), GL_TEXTURE_2D, 0, 0, 0, 0, to.id(), GL_TEXTURE_2D, 0, 0, 0, 0, from.width(),
+                       from.height(), 1);
+}
+
+} // namespace
+
+TemporalReuse::TemporalReuse() : TemporalReuse(TemporalReuseSettings{})
+{}
+
+TemporalReuse::TemporalReuse(const TemporalReuseSettings& s)
+    : settings(s), program_(Program::graphics("temporal", "frame/fullscreen.vert", "frame/temporal_reuse.frag"))
+{}
+
+void TemporalReuse::reset()
+{
+    valid_ = false;
+}
+
+void TemporalReuse::allocate(int width, int height, std::size_t signals)
+{
+    histories_.clear();
+    histories_.resize(signals);
+    for (std::size_t i = 0; i < signals; ++i)
+        for (int k = 0; k < 2; ++k) {
+            const std::string name = "temporal.history" + std::to_string(i) + "." + std::to_string(k);
+            histories_[i].value[k] = Texture::create2D(name, GL_RGBA32F, width, height);
+            histories_[i].length[k] = Texture::create2D(name + ".length", GL_R32F, width, height);
+        }
+    previousGeometry_ = Texture::create2D("temporal.previous-geometry", GL_RG32UI, width, height);
+    width_ = width;
+    height_ = height;
+    valid_ = false;
+}
+
+void TemporalReuse::apply(const Frame& frame, const std::vector<Texture*>& signals, PassTimers& timers)
+{
+    const int w = frame.width(), h = frame.height();
+    for (const Texture* s : signals)
+        if (!s || s->width() != w || s->height() != h || s->internalFormat() != GL_RGBA32F)
+            throw std::invalid_argument("temporal reuse: a signal must be RGBA32F at the frame's " + std::to_string(w) +
+                                        "x" + std::to_string(h));
+    if (!(settings.alpha > 0.0f && settings.alpha <= 1.0f))
+        throw std::invalid_argument("temporal reuse: alpha must be in (0, 1]");
+    if (signals.empty()) return;
+    if (w != width_ || h != height_ || signals.size() != histories_.size()) allocate(w, h, signals.size());
+
+    // temporal_reuse.frag per pixel and signal: its G-buffer texel, the current value, four previous
+    // G-buffer, history and length texels, with the clamp the 3x3 current neighbourhood (its centre cached);
+    // writes the blend and the length. Per scope: the blend copied over each signal (read and write), the
+    // G-buffer copied for the next frame.
+    const double pixels = double(w) * double(h);
+    const bool clamp = settings.clamp;
+    PassCost cost;
+    cost.flops = 120 + (clamp ? 9 * 6 : 0);
+    cost.fetches = 2 + 4 * 3 + (clamp ? 8 : 0);
+    cost.bytesRead = 8 + 16 + 4 * (8 + 16 + 4) + (clamp ? 8 * 16 : 0);
+    cost.bytesWritten = 16 + 4;
+    cost.bytesFixed = pixels * (2 * 16 * (valid_ ? double(signals.size()) : 0.0) + 2 * 8);
+    auto scope = timers.scope("temporal", cost);
+
+    frame.bindGBuffer();
+    previousGeometry_.bind(UNIT_TEMPORAL_PREVIOUS_GEOMETRY);
+    program_.set("previousViewProjection", previousViewProjection_);
+    program_.set("hasHistory", valid_ ? 1 : 0);
+    program_.set("alpha", settings.alpha);
+    program_.set("clampHistory", clamp ? 1 : 0);
+    program_.set("depthTolerance", settings.depthTolerance);
+    program_.set("normalTolerance", settings.normalTolerance);
+    program_.use();
+    fbo_.setDrawBuffers({GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1});
+    for (std::size_t i = 0; i < signals.size(); ++i) {
+        History& history = histories_[i];
+        const int read = history.latest, write = 1 - history.latest;
+        scope.expectFragments(w, h);
+        fbo_.attach(GL_COLOR_ATTACHMENT0, history.value[write]);
+        fbo_.attach(GL_COLOR_ATTACHMENT1, history.length[write]);
+        PassState::fullscreen(fbo_, w, h).apply();
+        signals[i]->bind(UNIT_TEMPORAL_CURRENT);
+        history.value[read].bind(UNIT_TEMPORAL_HISTORY);
+        history.length[read].bind(UNIT_TEMPORAL_HISTORY_LENGTH);
+        frame.drawFullscreen();
+        // Without a history the blend is the signal itself: nothing to copy back.
+        if (valid_) copyTexture(history.value[write], *signals[i]);
+        history.latest = write;
+    }
+    copyTexture(frame.geometry(), previousGeometry_);
+    previousViewProjection_ = frame.projection() * frame.view();
+    valid_ = true;
+}
+
+} // namespace bounce::gl

@@ -1,0 +1,99 @@
+#version 450 core
+// Temporal reuse of one signal (gl/frame/temporal_reuse.h): this pixel's surface point, rebuilt from the
+// G-buffer, projected through the previous frame's camera; the previous output there (four texels,
+// bilinear weights, each kept only on this point's surface by the previous G-buffer) is clamped to the
+// current signal's 3x3 neighbourhood and blended with the current value by an exponential moving average
+// whose weight is 1/n over the first n frames of a history (Schied et al. 2017, "Spatiotemporal
+// Variance-Guided Filtering", sec. 4.1; its variance and a-trous filter are not here).
+#include "common/bindings.glsl"
+#include "common/gbuffer.glsl"
+
+layout(binding = UNIT_TEMPORAL_CURRENT) uniform sampler2D current;
+layout(binding = UNIT_TEMPORAL_HISTORY) uniform sampler2D history;
+layout(binding = UNIT_TEMPORAL_HISTORY_LENGTH) uniform sampler2D historyLength;
+// The previous frame's gGeometry: eye depth bits (0: no geometry) and the octahedral normal.
+layout(binding = UNIT_TEMPORAL_PREVIOUS_GEOMETRY) uniform usampler2D previousGeometry;
+
+uniform mat4 previousViewProjection; // world to the previous frame's clip space
+uniform int hasHistory;              // 0: the first frame after a reset or a resize
+uniform float alpha;                 // the new sample's weight once the history is 1/alpha frames long
+uniform int clampHistory;            // 1: the history is clamped to the current 3x3 neighbourhood
+uniform float depthTolerance;        // relative eye depth
+uniform float normalTolerance;       // 1 - cos
+
+layout(location = 0) out vec4 outSignal; // the blend, the next frame's history, copied back over the signal
+layout(location = 1) out float outLength; // frames the blend averages (0: no geometry)
+
+// A reprojected position this close to a texel centre (in pixels, per axis) takes that texel alone: the
+// position rebuilt from depth is off by float rounding (~1e-4 pixel at 256 pixels), and a still camera or a
+// whole-pixel move would otherwise blur the history by that fraction of its neighbours every frame.
+const float kSnapPixels = 1.0 / 64.0;
+// Valid taps holding less of the bilinear weight than this are no history (disocclusion), as in SVGF.
+const float kMinHistoryWeight = 0.01;
+
+bool isFinite(vec4 v) { return !any(isnan(v)) && !any(isinf(v)); }
+
+// The current signal's range over the 3x3 pixels around px (inside the viewport).
+void neighbourhood(ivec2 px, ivec2 size, out vec3 lo, out vec3 hi)
+{
+    lo = vec3(1e30);
+    hi = vec3(-1e30);
+    for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+            vec3 c = texelFetch(current, clamp(px + ivec2(dx, dy), ivec2(0), size - 1), 0).rgb;
+            lo = min(lo, c);
+            hi = max(hi, c);
+        }
+}
+
+void main()
+{
+    ivec2 px = ivec2(gl_FragCoord.xy);
+    ivec2 size = textureSize(current, 0);
+    vec4 now = texelFetch(current, px, 0);
+    outSignal = now;
+    GSurface s = gbufferSurface(px);
+    outLength = s.geometry ? 1.0 : 0.0;
+    if (!s.geometry || hasHistory == 0) return; // background passes the current value; no history yet
+
+    vec4 clip = previousViewProjection * vec4(s.position, 1.0);
+    if (clip.w <= 0.0) return; // behind the previous camera
+    float previousDepth = clip.w; // a perspective projection's w is the eye depth
+    // The previous frame's pixel coordinates, texel centres at integers.
+    vec2 q = (clip.xy / clip.w * 0.5 + 0.5) * vec2(size) - 0.5;
+    q = mix(q, round(q), lessThan(abs(q - round(q)), vec2(kSnapPixels)));
+    ivec2 base = ivec2(floor(q));
+    vec2 f = q - vec2(base);
+
+    vec3 sum = vec3(0.0);
+    float lengthSum = 0.0, weightSum = 0.0;
+    for (int i = 0; i < 4; ++i) {
+        ivec2 o = ivec2(i & 1, i >> 1);
+        float w = (o.x == 1 ? f.x : 1.0 - f.x) * (o.y == 1 ? f.y : 1.0 - f.y);
+        ivec2 t = base + o;
+        if (w <= 0.0 || any(lessThan(t, ivec2(0))) || any(greaterThanEqual(t, size))) continue; // off screen
+        uvec2 g = texelFetch(previousGeometry, t, 0).xy;
+        if (g.x == 0u) continue; // the previous frame saw background there
+        if (abs(uintBitsToFloat(g.x) - previousDepth) > depthTolerance * previousDepth) continue;
+        if (dot(unpackUnitVector(g.y), s.normal) < 1.0 - normalTolerance) continue;
+        vec4 h = texelFetch(history, t, 0);
+        float n = texelFetch(historyLength, t, 0).r;
+        if (!isFinite(h) || !(n >= 1.0)) continue; // a NaN or infinity in the history is dropped, not spread
+        sum += w * h.rgb;
+        lengthSum += w * n;
+        weightSum += w;
+    }
+    if (weightSum < kMinHistoryWeight) return; // disoccluded: the history restarts here
+
+    vec3 previous = sum / weightSum;
+    if (clampHistory != 0) {
+        vec3 lo, hi;
+        neighbourhood(px, size, lo, hi);
+        previous = clamp(previous, lo, hi);
+    }
+    float n = min(lengthSum / weightSum + 1.0, 1.0 / alpha);
+    float weight = max(alpha, 1.0 / n);
+    // previous + (now - previous) w rather than mix(): equal inputs give that value exactly.
+    outSignal = vec4(previous + (now.rgb - previous) * weight, now.a);
+    outLength = n;
+}
