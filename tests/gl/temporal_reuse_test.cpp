@@ -1,0 +1,475 @@
+// Temporal reuse (gl/frame/temporal_reuse.h, issue 58's "Reprojection" tests): closed cases on a plane seen
+// head-on, where a camera moved parallel to it by whole pixels shifts the image by exactly those pixels, so
+// that what each pixel's history must be is known: the signal of the pixel k to the side in the previous
+// frame, or none where that point was off screen, hidden or on another surface.
+//
+// Exact comparisons (tolerance 0) are stated as such: the pass snaps a reprojected position within 1/64
+// pixel of a texel centre to that texel (the position rebuilt from depth is off by float rounding only), so
+// a still camera or a whole-pixel move copies texels, and the blend h + (c - h) w of the frame after a
+// restart (w = 1/2) halves a history exactly when the current value is 0.
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "core/cornell.h"
+#include "core/scene.h"
+#include "gl/frame/frame.h"
+#include "gl/frame/temporal_reuse.h"
+#include "gl/gl.h"
+#include "tests/gl/closed_box.h"
+#include "tests/gl/gl_test_fixture.h"
+
+namespace bounce {
+namespace {
+
+class TemporalReuseTest : public GlTest {};
+
+constexpr float kHalfHeightTan = 0.5f; // tan of half the vertical field of view
+constexpr float kPlaneDistance = 2.0f; // m, camera to the plane z = 0
+constexpr float kPlaneRight = 1.0f;    // the plane's right edge (x, m): background beyond it
+
+// One pixel's width on the plane for a viewport `height` pixels high (square pixels).
+float pixelOnPlane(int height)
+{
+    return 2.0f * kPlaneDistance * kHalfHeightTan / float(height);
+}
+
+// A plane z = 0 facing +z from x = -5 to kPlaneRight, y = -5..5, its shading normal `normal` (the face's, +z,
+// unless a test tilts it); with `occluder`, a small quad facing the camera at z = 1 in front of it.
+core::Scene planeScene(bool occluder, glm::vec3 normal = {0.0f, 0.0f, 1.0f})
+{
+    core::Scene s;
+    s.name = "temporal-plane";
+    core::Material m;
+    m.name = "grey";
+    m.baseColor = glm::vec3(0.5f);
+    m.metallic = 0.0f;
+    m.specular = 0.0f;
+    s.materials.push_back(m);
+    core::Mesh plane;
+    plane.name = "plane";
+    testing::addQuad(plane, {-5, -5, 0}, {kPlaneRight, -5, 0}, {kPlaneRight, 5, 0}, {-5, 5, 0});
+    for (glm::vec3& n : plane.normals) n = glm::normalize(normal);
+    s.meshes.push_back(plane);
+    if (occluder) {
+        core::Mesh box;
+        box.name = "occluder";
+        // 0.25 m x 0.5 m at 1 m from the camera: columns 8..15 and rows 8..23 of a 64x32 view, its edges on
+        // pixel boundaries, so that no pixel centre sits on one.
+        testing::addQuad(box, {-0.75f, -0.25f, 1}, {-0.5f, -0.25f, 1}, {-0.5f, 0.25f, 1}, {-0.75f, 0.25f, 1});
+        s.meshes.push_back(box);
+    }
+    s.camera = core::Camera{};
+    return s;
+}
+
+// Looking down -z at the plane from kPlaneDistance, moved by `x` metres along it.
+core::Camera planeCamera(float x)
+{
+    core::Camera c;
+    c.position = {x, 0.0f, kPlaneDistance};
+    c.forward = {0.0f, 0.0f, -1.0f};
+    c.up = {0.0f, 1.0f, 0.0f};
+    c.yfovRad = 2.0f * std::atan(kHalfHeightTan);
+    c.znear = 0.1f;
+    c.zfar = 10.0f;
+    return c;
+}
+
+gl::FrameSettings smallFrame(int width, int height)
+{
+    gl::FrameSettings s;
+    s.width = width;
+    s.height = height;
+    s.shadowMapSize = 64;
+    return s;
+}
+
+// The frame's G-buffer from `camera` (a moving frame: pixel centres, no jitter).
+void renderGeometry(gl::Frame& frame, const core::Camera& camera, gl::PassTimers& timers)
+{
+    frame.setCamera(camera);
+    frame.beginFrame();
+    frame.renderGBuffer(timers);
+    timers.endFrame();
+}
+
+gl::Texture makeSignal(int width, int height)
+{
+    return gl::Texture::create2D("test.signal", GL_RGBA32F, width, height);
+}
+
+// Four floats per pixel, GL rows (row 0 at the bottom), as readFloats and readPositions give them.
+void upload(gl::Texture& t, const std::vector<float>& rgba)
+{
+    glTextureSubImage2D(t.id(), 0, 0, 0, t.width(), t.height(), GL_RGBA, GL_FLOAT, rgba.data());
+}
+
+std::size_t at(int x, int y, int width)
+{
+    return (std::size_t(y) * std::size_t(width) + std::size_t(x)) * 4;
+}
+
+// A smooth function of the world position, different at every pixel of the plane: what a signal computed
+// from the surface (light) looks like to the pass. Background: `background`.
+std::vector<float> worldSignal(const std::vector<float>& positions, float background)
+{
+    std::vector<float> s(positions.size());
+    for (std::size_t i = 0; i < positions.size(); i += 4) {
+        const bool geometry = positions[i + 3] != 0.0f;
+        const float x = positions[i], y = positions[i + 1], z = positions[i + 2];
+        s[i + 0] = geometry ? 10.0f + x : background;
+        s[i + 1] = geometry ? 10.0f + y + 0.25f * x : background;
+        s[i + 2] = geometry ? 10.0f + z - 0.5f * y : background;
+        s[i + 3] = 1.0f;
+    }
+    return s;
+}
+
+// Per pixel: the geometry's value, or `background` where the frame has none.
+std::vector<float> constantSignal(const std::vector<float>& positions, float value, float background)
+{
+    std::vector<float> s(positions.size());
+    for (std::size_t i = 0; i < positions.size(); i += 4) {
+        const float v = positions[i + 3] != 0.0f ? value : background;
+        s[i] = s[i + 1] = s[i + 2] = v;
+        s[i + 3] = 1.0f;
+    }
+    return s;
+}
+
+gl::TemporalReuseSettings noClamp()
+{
+    gl::TemporalReuseSettings s;
+    s.clamp = false;
+    return s;
+}
+
+// 1. A still camera and a signal that does not change: every frame's output is the signal itself, exactly
+// (the history is the pixel's own texel, in its own neighbourhood, and h + (c - h) w is h when c = h), on a
+// scene with walls at many depths and normals and at a size that is no power of two.
+TEST_F(TemporalReuseTest, StillCameraConstantSignalComesBackExactly)
+{
+    const core::Scene scene = core::makeCornell("cornell-spot");
+    gl::Frame frame(scene, smallFrame(37, 23));
+    gl::PassTimers timers;
+    gl::TemporalReuse reuse;
+    renderGeometry(frame, scene.camera, timers);
+    // A pattern with edges at every pixel, so that a tap of a neighbour anywhere shows.
+    std::vector<float> signal(std::size_t(37 * 23 * 4));
+    for (std::size_t i = 0; i < signal.size(); ++i) signal[i] = float((i * 7919) % 101) * 0.125f;
+    gl::Texture t = makeSignal(37, 23);
+    for (int f = 0; f < 5; ++f) {
+        renderGeometry(frame, scene.camera, timers);
+        upload(t, signal);
+        reuse.apply(frame, {&t}, timers);
+        EXPECT_TRUE(reuse.hasHistory());
+        const std::vector<float> out = t.readFloats(0, 4);
+        int differ = 0;
+        for (std::size_t i = 0; i < out.size(); ++i) differ += out[i] != signal[i];
+        EXPECT_EQ(differ, 0) << "frame " << f << ": values that are not the signal's own";
+    }
+}
+
+struct Shift {
+    int width, height, pixels; // viewport and the camera's move, in pixels on the plane
+};
+
+// 2, 3 and 5. The camera moves left by k pixels over the plane: frame 2's pixel (x, y) sees the point
+// frame 1's pixel (x - k, y) saw. Frame 1's signal is a function of the world position, frame 2's is 0 on
+// the plane (7 on the background, right of the plane's edge), the clamp off: each pixel's output is half
+// its history (n = 2), so twice the output must be frame 1's signal k pixels to the left, exactly. The k
+// columns on the left that enter the view take no history: their output is the current value (0), as is
+// every background pixel's (7). At 64x32 and at 37x23 (no power of two, pixels of 2/23 m that no float
+// holds exactly, and the plane's edge on a pixel boundary in both).
+void expectWholePixelMoveReprojectsExactly(const Shift& shift)
+{
+    const int w = shift.width, h = shift.height, k = shift.pixels;
+    const core::Scene scene = planeScene(false);
+    gl::Frame frame(scene, smallFrame(w, h));
+    gl::PassTimers timers;
+    gl::TemporalReuse reuse(noClamp());
+    gl::Texture t = makeSignal(w, h);
+
+    renderGeometry(frame, planeCamera(0.0f), timers);
+    const std::vector<float> first = worldSignal(frame.readPositions(), 7.0f);
+    upload(t, first);
+    reuse.apply(frame, {&t}, timers);
+
+    renderGeometry(frame, planeCamera(-float(k) * pixelOnPlane(h)), timers);
+    const std::vector<float> positions = frame.readPositions();
+    const std::vector<float> current = constantSignal(positions, 0.0f, 7.0f);
+    upload(t, current);
+    reuse.apply(frame, {&t}, timers);
+    const std::vector<float> out = t.readFloats(0, 4);
+
+    int reprojected = 0, entered = 0, background = 0;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const std::size_t i = at(x, y, w);
+            if (positions[i + 3] == 0.0f) {
+                ++background;
+                for (int c = 0; c < 3; ++c) EXPECT_EQ(out[i + c], 7.0f) << "background " << x << "," << y;
+            } else if (x < k) {
+                ++entered;
+                for (int c = 0; c < 3; ++c) EXPECT_EQ(out[i + c], 0.0f) << "entered at the border " << x << "," << y;
+            } else {
+                ++reprojected;
+                const std::size_t from = at(x - k, y, w);
+                for (int c = 0; c < 3; ++c)
+                    EXPECT_EQ(2.0f * out[i + c], first[from + c])
+                        << "pixel " << x << "," << y << " channel " << c << ": history from " << x - k << "," << y;
+            }
+        }
+    EXPECT_GT(reprojected, w * h / 2);
+    EXPECT_EQ(entered, k * h);
+    EXPECT_GT(background, 0);
+}
+
+TEST_F(TemporalReuseTest, WholePixelMoveReprojectsExactly)
+{
+    for (const Shift& shift : {Shift{64, 32, 3}, Shift{37, 23, 2}, Shift{37, 23, 1}}) {
+        SCOPED_TRACE(std::to_string(shift.width) + "x" + std::to_string(shift.height) + " by " +
+                     std::to_string(shift.pixels));
+        expectWholePixelMoveReprojectsExactly(shift);
+    }
+}
+
+// 3. An occluder in front of the plane goes away (frame 2 renders the scene without it, same camera): the
+// pixels it covered now see the plane, which the previous G-buffer has at another depth (1 m against 2 m),
+// and take no history (output: the current value, 1); every other plane pixel blends its history (5) with
+// it: 5 + (1 - 5) / 2 = 3.
+TEST_F(TemporalReuseTest, DisoccludedPixelsTakeNoHistory)
+{
+    const core::Scene with = planeScene(true), without = planeScene(false);
+    gl::Frame before(with, smallFrame(64, 32)), after(without, smallFrame(64, 32));
+    gl::PassTimers timers;
+    gl::TemporalReuse reuse(noClamp());
+    gl::Texture t = makeSignal(64, 32);
+
+    renderGeometry(before, planeCamera(0.0f), timers);
+    const std::vector<float> was = before.readPositions();
+    upload(t, constantSignal(was, 5.0f, 0.0f));
+    reuse.apply(before, {&t}, timers);
+
+    renderGeometry(after, planeCamera(0.0f), timers);
+    const std::vector<float> positions = after.readPositions();
+    upload(t, constantSignal(positions, 1.0f, 0.0f));
+    reuse.apply(after, {&t}, timers);
+    const std::vector<float> out = t.readFloats(0, 4);
+
+    int disoccluded = 0, kept = 0;
+    for (int y = 0; y < 32; ++y)
+        for (int x = 0; x < 64; ++x) {
+            const std::size_t i = at(x, y, 64);
+            if (positions[i + 3] == 0.0f) continue;
+            const bool hidden = was[i + 2] > 0.5f; // frame 1 saw the occluder (z = 1) here
+            (hidden ? disoccluded : kept) += 1;
+            EXPECT_EQ(out[i], hidden ? 1.0f : 3.0f) << x << "," << y << (hidden ? " (disoccluded)" : "");
+        }
+    EXPECT_EQ(disoccluded, 8 * 16) << "the occluder's pixels";
+    EXPECT_GT(kept, 1000);
+}
+
+// 3. The same point under a shading normal turned by more than the tolerance is another surface: no
+// history; turned by less, the history is kept. normalTolerance 0.1 (1 - cos): 0.2 rejects, 0.05 keeps.
+TEST_F(TemporalReuseTest, NormalChangeBeyondToleranceTakesNoHistory)
+{
+    const core::Scene flat = planeScene(false);
+    for (float cosine : {0.8f, 0.95f}) {
+        SCOPED_TRACE(cosine);
+        const core::Scene turned = planeScene(false, {0.0f, std::sqrt(1.0f - cosine * cosine), cosine});
+        gl::Frame before(flat, smallFrame(64, 32)), after(turned, smallFrame(64, 32));
+        gl::PassTimers timers;
+        gl::TemporalReuse reuse(noClamp());
+        gl::Texture t = makeSignal(64, 32);
+        renderGeometry(before, planeCamera(0.0f), timers);
+        upload(t, constantSignal(before.readPositions(), 5.0f, 0.0f));
+        reuse.apply(before, {&t}, timers);
+        renderGeometry(after, planeCamera(0.0f), timers);
+        const std::vector<float> positions = after.readPositions();
+        upload(t, constantSignal(positions, 1.0f, 0.0f));
+        reuse.apply(after, {&t}, timers);
+        const std::vector<float> out = t.readFloats(0, 4);
+        const float expected = cosine < 0.9f ? 1.0f : 3.0f;
+        int plane = 0, wrong = 0;
+        for (std::size_t i = 0; i < out.size(); i += 4)
+            if (positions[i + 3] != 0.0f) {
+                ++plane;
+                wrong += out[i] != expected;
+            }
+        EXPECT_GT(plane, 1000);
+        EXPECT_EQ(wrong, 0) << "plane pixels whose output is not " << expected;
+    }
+}
+
+// 4. The clamp: a still camera, a history of 100 everywhere, then a current signal that ramps from 1 to
+// about 1.6 across the plane. With the clamp the history is pulled to the top of each pixel's 3x3
+// neighbourhood of the current signal (the right neighbour's value, the pixel's own at the last column),
+// so the output is the mean of the two, within the neighbourhood's range; without it, it is (100 + c) / 2.
+TEST_F(TemporalReuseTest, ClampPullsAFarHistoryIntoTheNeighbourhood)
+{
+    const core::Scene scene = planeScene(false);
+    for (bool clamp : {true, false}) {
+        SCOPED_TRACE(clamp ? "clamp" : "no clamp");
+        gl::Frame frame(scene, smallFrame(64, 32));
+        gl::PassTimers timers;
+        gl::TemporalReuseSettings settings;
+        settings.clamp = clamp;
+        gl::TemporalReuse reuse(settings);
+        gl::Texture t = makeSignal(64, 32);
+        renderGeometry(frame, planeCamera(0.0f), timers);
+        const std::vector<float> positions = frame.readPositions();
+        upload(t, constantSignal(positions, 100.0f, 0.0f));
+        reuse.apply(frame, {&t}, timers);
+        renderGeometry(frame, planeCamera(0.0f), timers);
+        std::vector<float> ramp(positions.size());
+        for (int y = 0; y < 32; ++y)
+            for (int x = 0; x < 64; ++x)
+                for (int c = 0; c < 4; ++c) ramp[at(x, y, 64) + c] = c == 3 ? 1.0f : 1.0f + 0.01f * float(x);
+        upload(t, ramp);
+        reuse.apply(frame, {&t}, timers);
+        const std::vector<float> out = t.readFloats(0, 4);
+        int checked = 0;
+        for (int y = 0; y < 32; ++y)
+            for (int x = 0; x < 64; ++x) {
+                const std::size_t i = at(x, y, 64);
+                if (positions[i + 3] == 0.0f) continue;
+                ++checked;
+                const float c = ramp[i], top = ramp[at(std::min(x + 1, 63), y, 64)];
+                // One rounding of h + (c - h) / 2 off the exact mean: 1 ulp of values about 1.3 or 50.
+                if (clamp)
+                    EXPECT_NEAR(out[i], 0.5f * (c + top), 1e-6f) << x << "," << y;
+                else
+                    EXPECT_NEAR(out[i], 0.5f * (c + 100.0f), 1e-5f) << x << "," << y;
+            }
+        EXPECT_GT(checked, 1000);
+    }
+}
+
+// 5. NaN and infinity in the history never spread: frame 1's signal holds a NaN and an infinity at two plane
+// pixels (the pass passes them through: no history yet); the camera then moves by 1.5 pixels, so that every
+// pixel's history is two taps and both bad texels lie in two pixels' footprints. Every output is finite:
+// a bad tap is dropped and the other tap taken alone. Clamp on and off: the clamp must not be what hides
+// them.
+TEST_F(TemporalReuseTest, NanInHistoryNeverSpreads)
+{
+    const core::Scene scene = planeScene(false);
+    for (bool clamp : {true, false}) {
+        SCOPED_TRACE(clamp ? "clamp" : "no clamp");
+        gl::Frame frame(scene, smallFrame(64, 32));
+        gl::PassTimers timers;
+        gl::TemporalReuseSettings settings;
+        settings.clamp = clamp;
+        gl::TemporalReuse reuse(settings);
+        gl::Texture t = makeSignal(64, 32);
+        renderGeometry(frame, planeCamera(0.0f), timers);
+        std::vector<float> first = worldSignal(frame.readPositions(), 0.0f);
+        for (int c = 0; c < 3; ++c) {
+            first[at(20, 10, 64) + c] = std::numeric_limits<float>::quiet_NaN();
+            first[at(30, 20, 64) + c] = std::numeric_limits<float>::infinity();
+        }
+        upload(t, first);
+        reuse.apply(frame, {&t}, timers);
+        renderGeometry(frame, planeCamera(1.5f * pixelOnPlane(32)), timers);
+        const std::vector<float> positions = frame.readPositions();
+        upload(t, worldSignal(positions, 0.0f));
+        reuse.apply(frame, {&t}, timers);
+        const std::vector<float> out = t.readFloats(0, 4);
+        int bad = 0;
+        for (float v : out) bad += !std::isfinite(v);
+        EXPECT_EQ(bad, 0) << "values that are not finite";
+        // Frame 2's pixel (18 or 19, 10) reads frame 1's (20, 10) as one of its two taps: the other tap
+        // alone is its history, worldSignal at frame 1's (21, 10) or (19, 10) (no clamp: exactly that).
+        if (!clamp) {
+            const float current = worldSignal(positions, 0.0f)[at(19, 10, 64)];
+            const float history = first[at(21, 10, 64)];
+            EXPECT_FLOAT_EQ(out[at(19, 10, 64)], 0.5f * (current + history));
+        }
+    }
+}
+
+// Reset, a resize and a change in the number of signals drop the history: the next output is the current
+// value, even where the history is far from it.
+TEST_F(TemporalReuseTest, ResetAndResizeDropTheHistory)
+{
+    const core::Scene scene = planeScene(false);
+    gl::PassTimers timers;
+    gl::TemporalReuse reuse(noClamp());
+    gl::Frame frame(scene, smallFrame(64, 32));
+    gl::Texture t = makeSignal(64, 32), u = makeSignal(64, 32);
+    const auto run = [&](gl::Frame& f, gl::Texture& s, float value, const std::vector<gl::Texture*>& signals) {
+        renderGeometry(f, planeCamera(0.0f), timers);
+        upload(s, constantSignal(f.readPositions(), value, 0.0f));
+        if (signals.size() > 1) upload(*signals[1], constantSignal(f.readPositions(), value, 0.0f));
+        reuse.apply(f, signals, timers);
+        return s.readFloats(0, 4);
+    };
+    const auto maxAbs = [](const std::vector<float>& v) {
+        float m = 0.0f;
+        for (float x : v) m = std::max(m, std::abs(x));
+        return m;
+    };
+    EXPECT_FALSE(reuse.hasHistory());
+    run(frame, t, 100.0f, {&t});
+    EXPECT_TRUE(reuse.hasHistory());
+    EXPECT_EQ(maxAbs(run(frame, t, 2.0f, {&t})), 51.0f) << "kept: (100 + 2) / 2";
+    // Each drop is checked over two frames: the first passes the signal through, the second shows whether
+    // the history it left was the signal (2) or a blend with the old one.
+    run(frame, t, 100.0f, {&t});
+    reuse.reset();
+    EXPECT_FALSE(reuse.hasHistory());
+    EXPECT_EQ(maxAbs(run(frame, t, 2.0f, {&t})), 2.0f) << "after reset()";
+    EXPECT_EQ(maxAbs(run(frame, t, 2.0f, {&t})), 2.0f) << "the frame after reset()";
+    run(frame, t, 100.0f, {&t});
+    EXPECT_EQ(maxAbs(run(frame, t, 2.0f, {&t, &u})), 2.0f) << "a second signal";
+    EXPECT_EQ(maxAbs(run(frame, t, 2.0f, {&t, &u})), 2.0f) << "the frame after a second signal";
+    run(frame, t, 100.0f, {&t, &u});
+    gl::Frame larger(scene, smallFrame(37, 23));
+    gl::Texture v = makeSignal(37, 23);
+    EXPECT_EQ(maxAbs(run(larger, v, 2.0f, {&v})), 2.0f) << "after a resize";
+    EXPECT_EQ(maxAbs(run(larger, v, 2.0f, {&v})), 2.0f) << "the frame after a resize";
+    EXPECT_THROW(reuse.apply(frame, {&v}, timers), std::invalid_argument) << "a signal of another size";
+}
+
+// The pass is timed as one "temporal" scope with a PassCost, and runs the fragments it declares (one
+// full-screen draw per signal; tests/gl/invocations_test.cpp explains the bound): two signals at 37x23,
+// with and then without a history. A third draw or a viewport of the wrong size falls outside.
+TEST_F(TemporalReuseTest, PassRunsTheFragmentsItDeclares)
+{
+    const core::Scene scene = planeScene(false);
+    gl::Frame frame(scene, smallFrame(37, 23));
+    gl::TemporalReuse reuse;
+    gl::Texture a = makeSignal(37, 23), b = makeSignal(37, 23);
+    for (int f = 0; f < 2; ++f) {
+        gl::PassTimers timers;
+        frame.setCamera(planeCamera(0.0f));
+        frame.beginFrame();
+        frame.renderGBuffer(timers);
+        upload(a, constantSignal(frame.readPositions(), 1.0f, 0.0f));
+        upload(b, constantSignal(frame.readPositions(), 2.0f, 0.0f));
+        reuse.apply(frame, {&a, &b}, timers);
+        timers.endFrame();
+        int found = 0;
+        for (const gl::PassStat& p : timers.stats()) {
+            if (p.pass != "temporal") continue;
+            ++found;
+            EXPECT_TRUE(p.work.costDeclared);
+            ASSERT_TRUE(p.work.expectedFragmentInvocations);
+            EXPECT_EQ(*p.work.expectedFragmentInvocations, 2.0 * 37 * 23);
+            if (p.work.fragmentInvocations > 0.0) { // 0 where the driver counts none
+                EXPECT_GE(p.work.fragmentInvocations, *p.work.expectedFragmentInvocations);
+                EXPECT_LE(p.work.fragmentInvocations, p.work.expectedFragmentInvocationsAtMost);
+            }
+        }
+        EXPECT_EQ(found, 1) << "frame " << f;
+    }
+}
+
+} // namespace
+} // namespace bounce
