@@ -52,6 +52,7 @@ void Renderer::make(const TechniqueInfo& info, const ParamValues& techniqueValue
     techniqueWidth_ = frame_->width();
     techniqueHeight_ = frame_->height();
     timers_.clear();
+    temporal_.reset();
     stillReady_ = false;
 }
 
@@ -86,6 +87,10 @@ void Renderer::renderFrame(bool keepTimings)
         std::find(info_->reads.begin(), info_->reads.end(), GBufferChannel::Direct) != info_->reads.end();
     frame_->beginIndirect(indirectScale_, timers_, readsDirect);
     technique_->render(*frame_, timers_);
+    if (temporalReuse()) {
+        temporal_.settings.alpha = frame_->settings().temporalAlpha;
+        temporal_.apply(*frame_, {&frame_->indirect()}, timers_);
+    }
     frame_->endIndirect(timers_);
     // A technique that claims only direct light adds nothing: no composite pass, the result is the direct light.
     frame_->composite(timers_, info_->lightPaths != core::LightPaths::Direct);

@@ -8,6 +8,7 @@
 
 #include "core/scene.h"
 #include "gl/frame/frame.h"
+#include "gl/frame/temporal_reuse.h"
 #include "gl/technique/technique.h"
 
 namespace bounce::gl {
@@ -59,6 +60,14 @@ public:
     int indirectWidth() const { return (frame_->width() + indirectScale_ - 1) / indirectScale_; }
     int indirectHeight() const { return (frame_->height() + indirectScale_ - 1) / indirectScale_; }
 
+    // Temporal reuse (frame parameter `temporal`, off unless set; on in the demo): the indirect light of a
+    // technique that declares TechniqueInfo::temporalReuse is blended, at the resolution it is computed at
+    // (before the upsampling of setIndirectScale), with its own history reprojected through the previous
+    // camera (gl/frame/temporal_reuse.h), and moving frames draw new samples each frame
+    // (FrameSampler::hashSeed). A technique switch, a change of scale or of size drops the history; a change
+    // of lights or geometry does not (the reprojection's tests and the clamp absorb it, with a lag).
+    bool temporalReuse() const { return frame_->settings().temporal && info_->temporalReuse; }
+
     Frame& frame() { return *frame_; }
     bool moveVertices(const std::vector<glm::vec3>& positions, const std::vector<glm::vec3>& normals)
     {
@@ -84,6 +93,7 @@ private:
     std::unique_ptr<Technique> technique_;
     ParamValues frameValues_, techniqueValues_;
     PassTimers timers_;
+    TemporalReuse temporal_; // frame parameter `temporal`, for a technique that declares temporalReuse
     int techniqueWidth_ = 0, techniqueHeight_ = 0;
     int indirectScale_ = 1;
     bool stillReady_ = false; // the last frame's version below is comparable (no technique change since)

@@ -102,6 +102,7 @@ Frame::Frame(const core::Scene& scene, const FrameSettings& settings)
       accumulateDirectProgram_(Program::compute("accumulate.direct", "frame/accumulate.comp", {{"ADD_INDIRECT", "1"}}))
 {
     shadows_.setPcf(settings.pcfLinear);
+    sampler_.setFreshMovingSeeds(settings.temporal);
     allocateTargets();
 }
 

@@ -36,6 +36,8 @@ struct FrameSettings {
     bool pcfLinear = true;        // hardware 2x2 bilinear comparison
     bool accumulate = true;       // still frames jitter the pixel centre and are averaged (gl/renderer.h)
     bool areaPcss = false;        // moving frames: area lights' penumbrae estimated by PCSS (else hard, centroid)
+    bool temporal = false;        // temporal reuse of the technique's indirect light (gl/renderer.h)
+    float temporalAlpha = 0.2f;   //   its weight of the new frame (TemporalReuseSettings::alpha)
     int textureSize = 512;        // base-colour textures are resampled to this size
     // Profiling only (bench/sponza-gbuffer.json): the G-buffer pass with a fragment shader that writes
     // constants, to tell fragment work from vertex work and triangle setup. The images are wrong.

@@ -58,16 +58,21 @@ public:
     glm::vec2 jitter() const { return jitter_; }
     // A seed of a shader's hashed random numbers (glsl/common/random.glsl) for this frame: `base` in a moving
     // frame (still frame 0), so that its image stays what it was; base mixed with the still index after, so
-    // that each still frame draws new numbers and the still frames' mean converges.
+    // that each still frame draws new numbers and the still frames' mean converges. With fresh moving seeds
+    // (temporal reuse on: gl/renderer.h), a moving frame mixes in the frame index instead, so that the reuse
+    // averages new samples rather than one frame's again.
     std::uint32_t hashSeed(std::uint32_t base) const
     {
-        return stillIndex_ == 0 ? base : base ^ (std::uint32_t(stillIndex_) * 0x9E3779B9u);
+        if (stillIndex_ > 0) return base ^ (std::uint32_t(stillIndex_) * 0x9E3779B9u);
+        return freshMovingSeeds_ ? base ^ (std::uint32_t(frameIndex_) * 0x85EBCA6Bu + 0x27D4EB2Fu) : base;
     }
+    void setFreshMovingSeeds(bool on) { freshMovingSeeds_ = on; }
 
 private:
     std::uint64_t frameIndex_ = 0;
     int stillIndex_ = 0;
     bool started_ = false;
+    bool freshMovingSeeds_ = false;
     glm::vec2 jitter_{0.0f};
 };
 

@@ -60,6 +60,8 @@ const std::vector<PassDecl>& framePasses()
         {"direct", "emission and direct light with shadow maps", ""},
         {"composite", "direct + the technique's indirect light", "the technique adds indirect light"},
         {"accumulate", "the mean of the still frames (jittered pixel centres)", "the view was still last frame"},
+        {"temporal", "the technique's indirect light blended with its reprojected history (gl/frame/temporal_reuse.h)",
+         "frame parameter temporal on and the technique declares temporalReuse"},
     };
     return p;
 }
@@ -86,6 +88,12 @@ const std::vector<ParamDecl>& frameParams()
         {"accumulate", ParamType::Bool, 1, 0, 1,
          "while the view is still, sample each frame at another point inside the pixel and show the mean of "
          "the frames (converges to box-filtered pixels; the area lights' shadows to soft ones)"},
+        {"temporal", ParamType::Bool, 0, 0, 1,
+         "temporal reuse: a technique's indirect light (those that declare it) blended with its history "
+         "reprojected through the previous camera, rejected where depth or normal disagree, clamped to the "
+         "current neighbourhood (gl/frame/temporal_reuse.h); on in the demo, off elsewhere"},
+        {"temporal.alpha", ParamType::Float, 0.2, 0.01, 1,
+         "temporal reuse's weight of the new frame once the history is 1/alpha frames long (1: no reuse)"},
         choiceParam("gbuffer.fragment", {"material", "constant"}, 0,
                     "profiling: constant writes the G-buffer without reading materials or textures (wrong images)"),
     };
@@ -104,6 +112,8 @@ FrameSettings frameSettingsFrom(const ParamValues& v, int width, int height)
     s.pcfLinear = v.getBool("shadow.linear");
     s.textureSize = v.getInt("textures.size");
     s.accumulate = v.getBool("accumulate");
+    s.temporal = v.getBool("temporal");
+    s.temporalAlpha = float(v.get("temporal.alpha"));
     s.areaPcss = v.getChoice(frameParams(), "shadow.area") == "pcss";
     s.gbufferConstantFragment = v.getChoice(frameParams(), "gbuffer.fragment") == "constant";
     return s;

@@ -73,6 +73,10 @@ struct TechniqueInfo {
     // Accumulates over frames (ray-bundle directions, progressive point projection): `--frames N` is N
     // accumulation steps, and it starts over when Frame::version() changes.
     bool progressive = false;
+    // Its indirect light goes through the frame's temporal reuse when the frame parameter `temporal` is on
+    // (gl/renderer.h): a technique that draws its samples anew each frame. A progressive one averages its
+    // own steps and does not; nor does one without indirect light.
+    bool temporalReuse = false;
     // "key=value" settings that make the technique cheap while still running every pass its defaults run
     // (fewer photons, directions, rays, smaller buffers): the conformance and determinism tests render
     // with them, so that each new technique costs the suite seconds, not minutes, on a CPU rasteriser.

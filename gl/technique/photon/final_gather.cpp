@@ -186,7 +186,9 @@ void GlossyGather::run(Frame& frame, const RayCaster& caster, const PhotonTree& 
     program.set("viewport", glm::ivec2(frame.width(), frame.height()));
     program.set("cameraPosition", frame.camera().position);
     program.set("rayCount", unsigned(rays_));
-    program.set("seed", std::uint32_t(frame.sampler().stillIndex()));
+    // The still index in still frames; in a moving frame 0, or a new seed each frame under temporal reuse.
+    const FrameSampler& sampler = frame.sampler();
+    program.set("seed", sampler.stillIndex() > 0 ? std::uint32_t(sampler.stillIndex()) : sampler.hashSeed(0));
     program.set("rayEpsilon", 1e-5f * sceneSize);
     frame.indirect().bindImage(0, GL_READ_WRITE);
     for (int j = 0; j < rays_; ++j) {

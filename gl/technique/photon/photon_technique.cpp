@@ -154,6 +154,7 @@ TechniqueInfo photonTechniqueInfo()
     info.name = "photon";
     info.paper = "Wang, Wang, Zhou, Pan & Bao 2009";
     info.lightPaths = core::LightPaths::Full;
+    info.temporalReuse = true; // photons and final-gather rays drawn anew each moving frame under `temporal`
     info.summary = "photon mapping on the GPU: final gather at k-means shading clusters from an illumination cut of "
                    "the photon tree, interpolated to every pixel";
     info.passes = {
