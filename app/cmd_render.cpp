@@ -6,6 +6,7 @@
 #include "app/commands.h"
 #include "app/options.h"
 #include "app/render_job.h"
+#include "app/render_sequence.h"
 #include "core/image.h"
 #include "core/metrics.h"
 
@@ -16,7 +17,9 @@ const char* kUsage =
     "usage: bounce render [--scene NAME|PATH] [--technique NAME] [--size WxH] [--out FILE.exr|FILE.png]\n"
     "                     [--set key=value]... [--frames N] [--warmup N] [--json FILE]\n"
     "                     [--backend egl|osmesa|glfw] [--exposure STOPS] [--reference FILE.exr]\n"
-    "                     [--camera POS:TARGET[:FOV]] [--light TYPE:key=value;...]...\n"
+    "                     [--camera POS:TARGET[:FOV]] [--light TYPE:key=value;...]... [--indirect-scale N]\n"
+    "       bounce render --path FILE.json [--scene S] [--technique T] [--size WxH] [--out DIR]\n"
+    "                     [--every K] [--indirect-scale N] [--set key=value]... [--backend B]\n"
     "\n"
     "Renders the scene with the technique and writes FILE.exr (linear radiance), FILE.png (tone mapped,\n"
     "sRGB) and FILE.json (backend, GL renderer, parameters, per-pass GPU ms: median over the timed\n"
@@ -45,7 +48,7 @@ const char* kUsage =
 
 int cmdRender(const Args& args)
 {
-    const std::string usage = std::string(kUsage) + kSceneOptionsHelp;
+    const std::string usage = std::string(kUsage) + kSequenceOptionsHelp + kSceneOptionsHelp;
     const Options o(args,
                     {{"scene"},
                      {"technique"},
@@ -59,13 +62,18 @@ int cmdRender(const Args& args)
                      {"exposure"},
                      {"reference"},
                      {"camera"},
-                     {"light", true, true}},
+                     {"light", true, true},
+                     {"path"},
+                     {"every"},
+                     {"indirect-scale"}},
                     usage);
     if (o.helpRequested()) {
         std::fputs(usage.c_str(), stdout);
         return 0;
     }
     if (!o.positional().empty()) throw UsageError("unexpected argument '" + o.positional()[0] + "'\n\n" + usage);
+    if (o.has("path")) return renderSequence(o);
+    if (o.has("every")) throw UsageError("--every needs --path (it thins a sequence's frames)");
 
     // Everything the user gave is checked before anything is created or written.
     int width = 512, height = 512;
@@ -73,6 +81,7 @@ int cmdRender(const Args& args)
     const int frames = o.getInt("frames", 10, 1, 100000);
     const int warmup = o.getInt("warmup", 2, 0, 100000);
     const float exposure = float(o.getDouble("exposure", 0.0, -64.0, 64.0));
+    const int indirectScale = o.getInt("indirect-scale", 1, 1, 16);
     const std::filesystem::path out = o.get("out", "out/render.exr");
     const std::string ext = out.extension().string();
     if (ext != ".exr" && ext != ".png") throw UsageError("--out must end in .exr or .png, not '" + out.string() + "'");
@@ -127,6 +136,7 @@ int cmdRender(const Args& args)
         throw UsageError(techniqueName + ": " + e.what());
     }
     gl::Renderer& renderer = *made;
+    if (indirectScale != 1) renderer.setIndirectScale(indirectScale);
     for (int i = 0; i < warmup; ++i) renderer.renderFrame(false);
     // A progressive technique's timed frames are its accumulation steps from a fresh start.
     const bool progressive = renderer.technique().progressive;
@@ -145,6 +155,7 @@ int cmdRender(const Args& args)
 
     nlohmann::json record = runRecord(context->info(), sceneArg, renderer);
     record["outputs"] = {{"exr", exr.string()}, {"png", png.string()}};
+    record["indirectScale"] = indirectScale;
     if (progressive) record["progress"] = progress;
     if (!reference.rgb.empty()) {
         record["reference"] = o.get("reference");
