@@ -44,8 +44,8 @@ const std::string kUsage =
         "than the budget, indirect light is computed at 1/2, 1/4 or 1/8 of the resolution and upsampled\n"
         "(joint bilateral); once still for a quarter of a second it is full resolution again, and\n"
         "progressive techniques accumulate. The same technique keeps its state at every scale.\n"
-        "Temporal reuse (frame parameter temporal, on here; --set temporal=0 turns it off): a technique that\n"
-        "draws new samples each frame (photon) blends them with its reprojected history.\n") +
+        "--set temporal=1: a technique that draws new samples each frame (photon) blends them with its\n"
+        "reprojected history (off by default: measured neutral on error so far, gl/frame/README.md).\n") +
     kSceneOptionsHelp;
 
 } // namespace
@@ -79,7 +79,6 @@ int cmdDemo(const Args& args)
     }
     settings.technique = info->name;
     settings.frameValues = gl::ParamValues(gl::frameParams());
-    settings.frameValues.setValue("temporal", 1); // the demo moves: temporal reuse on unless --set temporal=0
     settings.techniqueValues = gl::ParamValues(info->params);
     applySets(o.all("set"), *info, settings.frameValues, settings.techniqueValues);
     settings.script = parseDemoScript(o.get("script"), settings.technique);

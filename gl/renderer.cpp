@@ -89,6 +89,7 @@ void Renderer::renderFrame(bool keepTimings)
     technique_->render(*frame_, timers_);
     if (temporalReuse()) {
         temporal_.settings.alpha = frame_->settings().temporalAlpha;
+        temporal_.settings.clamp = frame_->settings().temporalClamp;
         temporal_.apply(*frame_, {&frame_->indirect()}, timers_);
     }
     frame_->endIndirect(timers_);

@@ -60,7 +60,7 @@ public:
     int indirectWidth() const { return (frame_->width() + indirectScale_ - 1) / indirectScale_; }
     int indirectHeight() const { return (frame_->height() + indirectScale_ - 1) / indirectScale_; }
 
-    // Temporal reuse (frame parameter `temporal`, off unless set; on in the demo): the indirect light of a
+    // Temporal reuse (frame parameter `temporal`, off unless set): the indirect light of a
     // technique that declares TechniqueInfo::temporalReuse is blended, at the resolution it is computed at
     // (before the upsampling of setIndirectScale), with its own history reprojected through the previous
     // camera (gl/frame/temporal_reuse.h), and moving frames draw new samples each frame

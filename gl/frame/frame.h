@@ -38,6 +38,7 @@ struct FrameSettings {
     bool areaPcss = false;        // moving frames: area lights' penumbrae estimated by PCSS (else hard, centroid)
     bool temporal = false;        // temporal reuse of the technique's indirect light (gl/renderer.h)
     float temporalAlpha = 0.2f;   //   its weight of the new frame (TemporalReuseSettings::alpha)
+    bool temporalClamp = true;    //   its neighbourhood clamp (TemporalReuseSettings::clamp)
     int textureSize = 512;        // base-colour textures are resampled to this size
     // Profiling only (bench/sponza-gbuffer.json): the G-buffer pass with a fragment shader that writes
     // constants, to tell fragment work from vertex work and triangle setup. The images are wrong.

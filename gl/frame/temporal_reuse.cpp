@@ -76,6 +76,7 @@ void TemporalReuse::apply(const Frame& frame, const std::vector<Texture*>& signa
     frame.bindGBuffer();
     previousGeometry_.bind(UNIT_TEMPORAL_PREVIOUS_GEOMETRY);
     program_.set("previousViewProjection", previousViewProjection_);
+    program_.set("currentJitter", frame.sampler().jitter());
     program_.set("hasHistory", valid_ ? 1 : 0);
     program_.set("alpha", settings.alpha);
     program_.set("clampHistory", clamp ? 1 : 0);
@@ -99,7 +100,11 @@ void TemporalReuse::apply(const Frame& frame, const std::vector<Texture*>& signa
         history.latest = write;
     }
     copyTexture(frame.geometry(), previousGeometry_);
-    previousViewProjection_ = frame.projection() * frame.view();
+    // Without the frame's sub-pixel jitter (FrameSampler::jitter): the history is kept at pixel centres,
+    // and the pass takes the current jitter off the reprojected point, so that a still camera whose frames
+    // jitter reads each history texel where it was written (a jittered matrix would resample the history
+    // bilinearly every frame and blur it, the emitters' edges over their surroundings most of all).
+    previousViewProjection_ = frame.camera().projection(float(w) / float(h)) * frame.view();
     valid_ = true;
 }
 

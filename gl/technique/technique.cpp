@@ -91,9 +91,13 @@ const std::vector<ParamDecl>& frameParams()
         {"temporal", ParamType::Bool, 0, 0, 1,
          "temporal reuse: a technique's indirect light (those that declare it) blended with its history "
          "reprojected through the previous camera, rejected where depth or normal disagree, clamped to the "
-         "current neighbourhood (gl/frame/temporal_reuse.h); on in the demo, off elsewhere"},
+         "current neighbourhood (gl/frame/temporal_reuse.h)"},
         {"temporal.alpha", ParamType::Float, 0.2, 0.01, 1,
          "temporal reuse's weight of the new frame once the history is 1/alpha frames long (1: no reuse)"},
+        {"temporal.clamp", ParamType::Bool, 1, 0, 1,
+         "clamp the history to the current frame's 3x3 neighbourhood (against ghosting after a light or "
+         "object moves; off: such changes fade over about 1/alpha frames, and noise that flips whole regions "
+         "at once averages out, which one frame's neighbourhood clamps away)"},
         choiceParam("gbuffer.fragment", {"material", "constant"}, 0,
                     "profiling: constant writes the G-buffer without reading materials or textures (wrong images)"),
     };
@@ -114,6 +118,7 @@ FrameSettings frameSettingsFrom(const ParamValues& v, int width, int height)
     s.accumulate = v.getBool("accumulate");
     s.temporal = v.getBool("temporal");
     s.temporalAlpha = float(v.get("temporal.alpha"));
+    s.temporalClamp = v.getBool("temporal.clamp");
     s.areaPcss = v.getChoice(frameParams(), "shadow.area") == "pcss";
     s.gbufferConstantFragment = v.getChoice(frameParams(), "gbuffer.fragment") == "constant";
     return s;

@@ -14,7 +14,8 @@ layout(binding = UNIT_TEMPORAL_HISTORY_LENGTH) uniform sampler2D historyLength;
 // The previous frame's gGeometry: eye depth bits (0: no geometry) and the octahedral normal.
 layout(binding = UNIT_TEMPORAL_PREVIOUS_GEOMETRY) uniform usampler2D previousGeometry;
 
-uniform mat4 previousViewProjection; // world to the previous frame's clip space
+uniform mat4 previousViewProjection; // world to the previous frame's clip space, without its jitter
+uniform vec2 currentJitter;          // this frame's sample offset from the pixel centre (pixels)
 uniform int hasHistory;              // 0: the first frame after a reset or a resize
 uniform float alpha;                 // the new sample's weight once the history is 1/alpha frames long
 uniform int clampHistory;            // 1: the history is clamped to the current 3x3 neighbourhood
@@ -60,7 +61,8 @@ void main()
     if (clip.w <= 0.0) return; // behind the previous camera
     float previousDepth = clip.w; // a perspective projection's w is the eye depth
     // The previous frame's pixel coordinates, texel centres at integers.
-    vec2 q = (clip.xy / clip.w * 0.5 + 0.5) * vec2(size) - 0.5;
+    // This pixel's G-buffer point lies at its centre plus the jitter: without it, the centre's own point.
+    vec2 q = (clip.xy / clip.w * 0.5 + 0.5) * vec2(size) - 0.5 - currentJitter;
     q = mix(q, round(q), lessThan(abs(q - round(q)), vec2(kSnapPixels)));
     ivec2 base = ivec2(floor(q));
     vec2 f = q - vec2(base);
