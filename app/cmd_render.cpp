@@ -128,15 +128,9 @@ int cmdRender(const Args& args)
     std::printf("GL renderer: %s (%s, %s)\n", context->info().renderer.c_str(), context->info().platform.c_str(),
                 context->info().version.c_str());
 
-    // A technique refuses a combination of parameters it cannot honour when it is made (std::invalid_argument).
-    std::unique_ptr<gl::Renderer> made;
-    try {
-        made = std::make_unique<gl::Renderer>(scene, techniqueName, frameValues, techniqueValues, width, height);
-    } catch (const std::invalid_argument& e) {
-        throw UsageError(techniqueName + ": " + e.what());
-    }
+    const std::unique_ptr<gl::Renderer> made =
+        makeRendererForCli(scene, techniqueName, frameValues, techniqueValues, width, height, indirectScale);
     gl::Renderer& renderer = *made;
-    if (indirectScale != 1) renderer.setIndirectScale(indirectScale);
     for (int i = 0; i < warmup; ++i) renderer.renderFrame(false);
     // A progressive technique's timed frames are its accumulation steps from a fresh start.
     const bool progressive = renderer.technique().progressive;

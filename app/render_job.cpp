@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <ctime>
+#include <stdexcept>
 
 #include "app/commands.h"
 #include "app/roofline.h"
@@ -70,6 +71,21 @@ void applySets(const std::vector<std::string>& sets, const gl::TechniqueInfo& te
             throw UsageError(std::string(e.what()) + (isFrame ? "" : " (technique '" + technique.name + "')"));
         }
     }
+}
+
+std::unique_ptr<gl::Renderer> makeRendererForCli(const core::Scene& scene, const std::string& technique,
+                                                 const gl::ParamValues& frameValues,
+                                                 const gl::ParamValues& techniqueValues, int width, int height,
+                                                 int indirectScale)
+{
+    std::unique_ptr<gl::Renderer> renderer;
+    try {
+        renderer = std::make_unique<gl::Renderer>(scene, technique, frameValues, techniqueValues, width, height);
+    } catch (const std::invalid_argument& e) {
+        throw UsageError(technique + ": " + e.what());
+    }
+    if (indirectScale != 1) renderer->setIndirectScale(indirectScale);
+    return renderer;
 }
 
 std::unique_ptr<gl::Context> createContextForCli(const std::string& backend, bool window)

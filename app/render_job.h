@@ -2,6 +2,7 @@
 // values (bad input -> UsageError), and the JSON record of a run (DESIGN.md, "Speed against error").
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -31,6 +32,13 @@ void applySets(const std::vector<std::string>& sets, const gl::TechniqueInfo& te
 
 // Creates the context for --backend; a missing 4.5 core context is a UsageError (exit 2).
 std::unique_ptr<gl::Context> createContextForCli(const std::string& backend, bool window = false);
+
+// The renderer of `render` (a still image or a sequence): a technique that refuses its parameters
+// (std::invalid_argument when it is made) is a UsageError (exit 2); the indirect scale set (1..16).
+std::unique_ptr<gl::Renderer> makeRendererForCli(const core::Scene& scene, const std::string& technique,
+                                                 const gl::ParamValues& frameValues,
+                                                 const gl::ParamValues& techniqueValues, int width, int height,
+                                                 int indirectScale);
 
 // The run's record: backend, renderer, size, technique, parameters, per-pass GPU ms, counters, bytes.
 nlohmann::json runRecord(const gl::ContextInfo& context, const std::string& scene, gl::Renderer& renderer);

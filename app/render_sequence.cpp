@@ -128,14 +128,9 @@ int renderSequence(const Options& o)
     auto context = createContextForCli(o.get("backend", "egl"), o.get("backend") == "glfw");
     std::printf("GL renderer: %s (%s, %s)\n", context->info().renderer.c_str(), context->info().platform.c_str(),
                 context->info().version.c_str());
-    std::unique_ptr<gl::Renderer> made;
-    try {
-        made = std::make_unique<gl::Renderer>(scene, techniqueName, frameValues, techniqueValues, width, height);
-    } catch (const std::invalid_argument& e) {
-        throw UsageError(techniqueName + ": " + e.what());
-    }
+    const std::unique_ptr<gl::Renderer> made =
+        makeRendererForCli(scene, techniqueName, frameValues, techniqueValues, width, height, indirectScale);
     gl::Renderer& renderer = *made;
-    if (indirectScale != 1) renderer.setIndirectScale(indirectScale);
 
     nlohmann::json frames = nlohmann::json::array(), written = nlohmann::json::array();
     std::size_t nonFinite = 0;

@@ -861,7 +861,7 @@ TEST(Cli, ListJsonIsTheWholeRegistry)
         }
     }
     EXPECT_TRUE(sawRsm);
-    EXPECT_EQ(j["frame"]["passes"].size(), 5u); // shadow, gbuffer, direct, composite, accumulate
+    EXPECT_EQ(j["frame"]["passes"].size(), 6u); // shadow, gbuffer, direct, composite, accumulate, temporal
 }
 
 // --reference puts the error against a reference in the record; one whose size does not divide the

@@ -437,6 +437,47 @@ TEST_F(TemporalReuseTest, ResetAndResizeDropTheHistory)
     EXPECT_THROW(reuse.apply(frame, {&v}, timers), std::invalid_argument) << "a signal of another size";
 }
 
+// 7. A still view whose frames jitter (still frames: Frame::beginFrame(true), FrameSampler::jitter): the
+// history is kept at pixel centres, so a signal that is the same at each pixel every frame (a checkerboard
+// of pixels: what a signal with detail at the pixel's scale looks like) comes back exactly, frame after
+// frame. Reprojected through the previous frame's jittered matrix, each frame would read the history a
+// jitter's difference away, blend neighbours of the checkerboard and blur it.
+TEST_F(TemporalReuseTest, JitteredStillViewKeepsItsHistory)
+{
+    const core::Scene scene = planeScene(false);
+    constexpr int w = 64, h = 32;
+    gl::Frame frame(scene, smallFrame(w, h));
+    gl::PassTimers timers;
+    gl::TemporalReuse reuse(noClamp());
+    gl::Texture t = makeSignal(w, h);
+    frame.setCamera(planeCamera(0.0f));
+    for (int f = 0; f < 6; ++f) {
+        frame.beginFrame(f > 0); // frame 0 moving, then still frames 1..5 with their jitter
+        frame.renderGBuffer(timers);
+        const std::vector<float> positions = frame.readPositions();
+        std::vector<float> checker = constantSignal(positions, 1.0f, 0.0f);
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x)
+                if ((x + y) % 2 == 1 && positions[at(x, y, w) + 3] != 0.0f)
+                    for (int c = 0; c < 3; ++c) checker[at(x, y, w) + std::size_t(c)] = 3.0f;
+        upload(t, checker);
+        reuse.apply(frame, {&t}, timers);
+        timers.endFrame();
+        if (f < 2) continue;
+        ASSERT_NE(frame.sampler().jitter(), glm::vec2(0.0f));
+        const std::vector<float> out = t.readFloats(0, 4);
+        int wrong = 0, plane = 0;
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) {
+                if (positions[at(x, y, w) + 3] == 0.0f) continue;
+                ++plane;
+                wrong += out[at(x, y, w)] != checker[at(x, y, w)];
+            }
+        EXPECT_GT(plane, 1000);
+        EXPECT_EQ(wrong, 0) << "plane pixels of still frame " << f << " whose output is not the checkerboard";
+    }
+}
+
 // The pass is timed as one "temporal" scope with a PassCost, and runs the fragments it declares (one
 // full-screen draw per signal; tests/gl/invocations_test.cpp explains the bound): two signals at 37x23,
 // with and then without a history. A third draw or a viewport of the wrong size falls outside.
