@@ -1,6 +1,7 @@
 // bounce demo: a window with Dear ImGui (app/demo.h). This file parses and checks the options, the
 // script included, before any window or GL call, so that bad input exits with status 2 at once.
 #include <cstdio>
+#include <utility>
 
 #include "app/commands.h"
 #include "app/demo.h"
@@ -71,16 +72,10 @@ int cmdDemo(const Args& args)
     int width = 1024, height = 768;
     if (o.has("size")) parseSize(o.get("size"), width, height);
     DemoSettings settings;
-    const gl::TechniqueInfo* info = nullptr;
-    try {
-        info = &gl::findTechnique(o.get("technique", "direct"));
-    } catch (const std::invalid_argument& e) {
-        throw UsageError(e.what());
-    }
-    settings.technique = info->name;
-    settings.frameValues = gl::ParamValues(gl::frameParams());
-    settings.techniqueValues = gl::ParamValues(info->params);
-    applySets(o.all("set"), *info, settings.frameValues, settings.techniqueValues);
+    CliTechnique chosen = techniqueForCli(o.get("technique", "direct"), o.all("set"));
+    settings.technique = chosen.info->name;
+    settings.frameValues = std::move(chosen.frameValues);
+    settings.techniqueValues = std::move(chosen.techniqueValues);
     settings.script = parseDemoScript(o.get("script"), settings.technique);
     if (o.has("frame-log")) {
         try {

@@ -87,14 +87,9 @@ int cmdRender(const Args& args)
     if (ext != ".exr" && ext != ".png") throw UsageError("--out must end in .exr or .png, not '" + out.string() + "'");
     const std::string sceneArg = o.get("scene", "cornell-spot");
     const std::string techniqueName = o.get("technique", "direct");
-    const gl::TechniqueInfo* info = nullptr;
-    try {
-        info = &gl::findTechnique(techniqueName);
-    } catch (const std::invalid_argument& e) {
-        throw UsageError(e.what());
-    }
-    gl::ParamValues frameValues(gl::frameParams()), techniqueValues(info->params);
-    applySets(o.all("set"), *info, frameValues, techniqueValues);
+    CliTechnique chosen = techniqueForCli(techniqueName, o.all("set"));
+    gl::ParamValues& frameValues = chosen.frameValues;
+    gl::ParamValues& techniqueValues = chosen.techniqueValues;
     // Where the files go, checked before any work: a run that cannot write its results does not start.
     std::filesystem::path exr = out, png = out, json = o.get("json", "");
     exr.replace_extension(".exr");

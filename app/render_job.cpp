@@ -73,6 +73,20 @@ void applySets(const std::vector<std::string>& sets, const gl::TechniqueInfo& te
     }
 }
 
+CliTechnique techniqueForCli(const std::string& name, const std::vector<std::string>& sets)
+{
+    CliTechnique t;
+    try {
+        t.info = &gl::findTechnique(name);
+    } catch (const std::invalid_argument& e) {
+        throw UsageError(e.what());
+    }
+    t.frameValues = gl::ParamValues(gl::frameParams());
+    t.techniqueValues = gl::ParamValues(t.info->params);
+    applySets(sets, *t.info, t.frameValues, t.techniqueValues);
+    return t;
+}
+
 std::unique_ptr<gl::Renderer> makeRendererForCli(const core::Scene& scene, const std::string& technique,
                                                  const gl::ParamValues& frameValues,
                                                  const gl::ParamValues& techniqueValues, int width, int height,

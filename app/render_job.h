@@ -30,6 +30,14 @@ void applySceneOptions(core::Scene& scene, const std::string& camera, const std:
 void applySets(const std::vector<std::string>& sets, const gl::TechniqueInfo& technique, gl::ParamValues& frameValues,
                gl::ParamValues& techniqueValues);
 
+// --technique NAME and its --set values: the registry's entry, and the frame's and the technique's
+// parameters at their defaults with the sets applied. An unknown technique or a bad set is a UsageError.
+struct CliTechnique {
+    const gl::TechniqueInfo* info = nullptr;
+    gl::ParamValues frameValues, techniqueValues;
+};
+CliTechnique techniqueForCli(const std::string& name, const std::vector<std::string>& sets);
+
 // Creates the context for --backend; a missing 4.5 core context is a UsageError (exit 2).
 std::unique_ptr<gl::Context> createContextForCli(const std::string& backend, bool window = false);
 

@@ -103,14 +103,9 @@ int renderSequence(const Options& o)
     }
     const std::string sceneArg = o.get("scene", "cornell-spot");
     const std::string techniqueName = o.get("technique", "direct");
-    const gl::TechniqueInfo* info = nullptr;
-    try {
-        info = &gl::findTechnique(techniqueName);
-    } catch (const std::invalid_argument& e) {
-        throw UsageError(e.what());
-    }
-    gl::ParamValues frameValues(gl::frameParams()), techniqueValues(info->params);
-    applySets(o.all("set"), *info, frameValues, techniqueValues);
+    CliTechnique chosen = techniqueForCli(techniqueName, o.all("set"));
+    gl::ParamValues& frameValues = chosen.frameValues;
+    gl::ParamValues& techniqueValues = chosen.techniqueValues;
     core::Scene scene = loadSceneForCli(sceneArg);
     scene.camera.zfar = farPlaneForPath(scene, path);
     const core::Camera base = scene.camera;
