@@ -123,12 +123,33 @@ void checkParameters(const gl::TechniqueInfo& info, const std::vector<std::strin
         }
 }
 
+// A camera-path run: the file (read relative to the current folder, as `bounce render --path` reads it),
+// how often frames are measured, the indirect scale and the still frames to compare with. The keys of
+// still runs mean nothing along a path and are refused with it.
+void pathRun(const json& run, const std::string& key, BenchSetting& s)
+{
+    for (const char* k : {"warmup", "frames", "curve", "temporalFrames", "against"})
+        if (run.contains(k))
+            refuse(key + "." + k, "cannot be given with \"path\": a camera path renders one frame per step");
+    s.pathFile = text(run["path"], key + ".path");
+    try {
+        s.path = core::loadCameraPath(s.pathFile);
+        std::ifstream in(s.pathFile);
+        s.pathText = json::parse(in).dump();
+    } catch (const std::exception& e) {
+        refuse(key + ".path", e.what());
+    }
+    if (run.contains("every")) s.every = integer(run["every"], key + ".every", 1, 100000);
+    if (run.contains("indirectScale")) s.indirectScale = integer(run["indirectScale"], key + ".indirectScale", 1, 16);
+    if (run.contains("stillFrames")) s.stillFrames = integer(run["stillFrames"], key + ".stillFrames", 0, 100000);
+}
+
 // A run's "set" and the cartesian product of its "sweep" lists, one setting per combination.
 std::vector<BenchSetting> expandRun(const json& run, const std::string& key)
 {
     allowOnly(run, key,
               {"technique", "set", "sweep", "against", "temporalFrames", "size", "scenes", "warmup", "frames", "curve",
-               "full", "comment"});
+               "full", "comment", "path", "every", "indirectScale", "stillFrames"});
     if (!run.contains("technique")) refuse(key + ".technique", "missing: every run names its technique");
     const gl::TechniqueInfo& info = technique(run["technique"], key + ".technique");
     BenchSetting base;
@@ -183,6 +204,9 @@ std::vector<BenchSetting> expandRun(const json& run, const std::string& key)
         if (!run["full"].is_boolean()) refuse(key + ".full", "must be true or false, not " + typeText(run["full"]));
         base.fullOnly = run["full"].get<bool>();
     }
+    if (run.contains("path")) pathRun(run, key, base);
+    for (const char* k : {"every", "indirectScale", "stillFrames"})
+        if (run.contains(k) && !run.contains("path")) refuse(key + "." + k, "is a key of a camera-path run (\"path\")");
     std::vector<BenchSetting> out;
     for (const auto& c : combos) {
         out.push_back(base);

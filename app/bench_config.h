@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "app/bench_reference.h"
+#include "core/camera_path.h"
 #include "core/scene.h"
 
 namespace bounce::app {
@@ -29,6 +30,18 @@ struct BenchSetting {
     bool curve = false;
     // Run only by `bounce bench --full` (run key "full": true).
     bool fullOnly = false;
+    // Optional: a camera path (run key "path", e.g. bench/paths/cornell-orbit.json) rendered one frame per
+    // step with no still frames, as `bounce render --path` does, instead of warm-up and still frames:
+    // every frame timed, frames iK and iK+1 (K = "every") compared with path-tracer references of their
+    // own camera and lights, and the flicker measured from those pairs (app/bench_run.cpp, pathRow).
+    std::string pathFile;  // as the config names it; empty: a still run
+    std::string pathText;  // the parsed file, dumped: what the task's id covers
+    core::CameraPath path; // loaded when pathFile is set
+    int every = 10;        // measured frames: iK and iK+1
+    int indirectScale = 1; // the indirect light at 1/N of the resolution, as the demo's budget while moving
+    int stillFrames = 0;   // > 0: at frames iK, also this many still frames at that camera, for the ratio
+
+    bool isPath() const { return !pathFile.empty(); }
 
     bool runsOn(const std::string& scene) const;
 };

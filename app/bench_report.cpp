@@ -46,7 +46,10 @@ std::string rendererOf(const BenchRow& r)
 void markParetoFronts(std::vector<BenchRow>& rows)
 {
     const auto mark = [&](const char* key, double BenchRow::*error) {
-        const auto on = [&](const BenchRow& r) { return std::isfinite(r.*error) && std::isfinite(imageMs(r.record)); };
+        // A camera-path row's error is of moving frames, not of an image: it is on no front.
+        const auto on = [&](const BenchRow& r) {
+            return std::isfinite(r.*error) && std::isfinite(imageMs(r.record)) && !r.record.contains("sequence");
+        };
         for (BenchRow& a : rows) {
             bool front = on(a);
             for (const BenchRow& b : rows) {
@@ -69,7 +72,9 @@ std::string csvText(const BenchConfig& config, const std::vector<BenchRow>& rows
     csv << "scene,technique,params,size,light_paths,total_ms,rel_rmse_own,rel_rmse_full,rmse_own,ssim_own,baseline,"
            "rel_rmse_baseline,flicker,nonfinite_values,passes";
     for (const std::string& p : config.compareTo) csv << ",rel_rmse_" << p;
-    csv << ",rel_rmse_direct_light,image_ms,pareto_own,pareto_full,renderer\n";
+    // camera_path: the run's path file (bench "path"), empty for a still run; such a row's errors are the
+    // means over its measured moving frames, and its flicker the pairs' (see report.md's camera paths).
+    csv << ",rel_rmse_direct_light,image_ms,pareto_own,pareto_full,renderer,camera_path\n";
     for (const BenchRow& r : rows) {
         csv << csvField(r.scene) << "," << r.technique << "," << csvField(r.settings) << "," << r.size << ","
             << r.lightPaths << "," << r.totalMs << "," << r.relRmseOwn << "," << r.relRmseFull << "," << r.rmseOwn
@@ -78,7 +83,8 @@ std::string csvText(const BenchConfig& config, const std::vector<BenchRow>& rows
         for (double v : r.relRmseCompareTo) csv << "," << v;
         const nlohmann::json& front = r.record.value("pareto", nlohmann::json::object());
         csv << "," << r.relRmseDirectLight << "," << imageMs(r.record) << "," << int(front.value("own", false)) << ","
-            << int(front.value("full", false)) << "," << csvField(rendererOf(r)) << "\n";
+            << int(front.value("full", false)) << "," << csvField(rendererOf(r)) << ","
+            << csvField(r.record.contains("sequence") ? r.record["sequence"]["path"].get<std::string>() : "") << "\n";
     }
     return csv.str();
 }
@@ -202,6 +208,35 @@ void paretoTable(std::ostringstream& md, const std::vector<const nlohmann::json*
     }
 }
 
+// The camera-path runs of a scene (bench "path"): per run its mean frame, its error over the measured
+// frames (mean, over the path's second half, worst), the flicker and, with "stillFrames", the ratio of
+// the moving frames' error to the still images'.
+void pathTable(std::ostringstream& md, const std::vector<const nlohmann::json*>& recs)
+{
+    md << "\n### camera paths\n\nOne frame per step, no still frames; frames iK and iK+1 against path-tracer "
+          "references of their own camera (the technique's light paths); flicker: the RMS of the change of the "
+          "error image from frame iK to iK+1 over the references' mean.\n\n| technique | parameters | size | "
+          "path | indirect scale | frames | ms per frame | rel. RMSE mean | second half | worst | flicker | "
+          "moving / still |\n|---|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+    for (const nlohmann::json* r : recs) {
+        const nlohmann::json& q = (*r)["sequence"];
+        std::string ratio = "-";
+        char buf[1024];
+        if (q.contains("meanStillRatio")) {
+            std::snprintf(buf, sizeof buf, "%.2f (worst %.2f, %d still frames)", q["meanStillRatio"].get<double>(),
+                          q["worstStillRatio"].get<double>(), q["stillFrames"].get<int>());
+            ratio = buf;
+        }
+        std::snprintf(buf, sizeof buf, "| %s | %s | %s | %s | %d | %d | %.3f | %.4f | %.4f | %.4f | %.4f | %s |\n",
+                      (*r)["technique"].get<std::string>().c_str(), (*r)["settings"].get<std::string>().c_str(),
+                      (*r)["size"].get<std::string>().c_str(), q["path"].get<std::string>().c_str(),
+                      q["indirectScale"].get<int>(), q["frameCount"].get<int>(), q["meanMs"].get<double>(),
+                      q["meanRelativeRmse"].get<double>(), q["secondHalfMeanRelativeRmse"].get<double>(),
+                      q["worstRelativeRmse"].get<double>(), q["flicker"].get<double>(), ratio.c_str());
+        md << buf;
+    }
+}
+
 // The ray-casting table: Embree's and the GPU's rays per second on the same rays.
 std::string raysMarkdown(const std::vector<SceneRays>& rays)
 {
@@ -238,9 +273,9 @@ std::string markdownText(const BenchConfig& config, const std::vector<BenchRow>&
             md << "**Failed: " << r.technique << " (" << r.settings << ") on " << r.scene << " wrote "
                << r.nonFiniteValues << " NaN/Inf values; its error figures are infinite.**\n\n";
     for (const auto& sceneName : config.sceneNames) {
-        std::vector<const nlohmann::json*> recs;
+        std::vector<const nlohmann::json*> recs, paths;
         for (const BenchRow& r : rows)
-            if (r.scene == sceneName) recs.push_back(&r.record);
+            if (r.scene == sceneName) (r.record.contains("sequence") ? paths : recs).push_back(&r.record);
         md << "## " << sceneName
            << "\n\n| technique | parameters | size | light paths | ms | rel. RMSE (own) | rel. RMSE (full) |";
         for (const std::string& p : config.compareTo) md << " rel. RMSE (" << p << ") |";
@@ -254,9 +289,11 @@ std::string markdownText(const BenchConfig& config, const std::vector<BenchRow>&
         passTable(md, recs);
         counterTable(md, recs);
         paretoTable(md, recs);
+        if (!paths.empty()) pathTable(md, paths);
         md << "\n";
     }
-    md << "![speed against error](speed_error.png)\n";
+    if (std::any_of(rows.begin(), rows.end(), [](const BenchRow& r) { return !r.record.contains("sequence"); }))
+        md << "![speed against error](speed_error.png)\n";
     return md.str();
 }
 
@@ -328,9 +365,15 @@ namespace bounce::app {
 
 int finishBenchReport(const std::filesystem::path& out, const std::vector<BenchRow>& rows)
 {
-    int rc = plotSpeedError(out);
+    // Camera-path rows are not on the speed plot (their error is of moving frames): a config of paths alone
+    // has none.
+    const bool still =
+        std::any_of(rows.begin(), rows.end(), [](const BenchRow& r) { return !r.record.contains("sequence"); });
+    int rc = still ? plotSpeedError(out) : 0;
     std::printf("wrote %s/{results.csv,results.json,report.md,report.html%s}\n", out.string().c_str(),
-                rc == 0 ? ",speed_error.png" : "; not speed_error.png: the plot script failed");
+                !still    ? ""
+                : rc == 0 ? ",speed_error.png"
+                          : "; not speed_error.png: the plot script failed");
     if (std::any_of(rows.begin(), rows.end(), [](const BenchRow& r) { return r.record.contains("curve"); })) {
         rc |= plotConvergence(out);
         std::printf("wrote %s/convergence.png: the curves' error against time and steps, beside the path tracer\n",

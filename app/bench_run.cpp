@@ -11,6 +11,7 @@
 #include "app/bench_images.h"
 #include "app/commands.h"
 #include "app/render_job.h"
+#include "app/render_sequence.h"
 #include "core/image.h"
 #include "core/metrics.h"
 #include "core/progress.h"
@@ -309,6 +310,169 @@ BenchRow runSetting(const BenchConfig& config, const BenchSetting& s, const std:
     return row;
 }
 
+// The `bounce render --path` command that renders the same frames as a camera-path run.
+std::string pathCommand(const BenchConfig& config, const BenchSetting& s, const std::string& sceneName)
+{
+    std::string cmd = "bounce render --scene " + sceneName + " --technique " + s.technique + " --path " + s.pathFile +
+                      " --size " + std::to_string(config.widthOf(s)) + "x" + std::to_string(config.heightOf(s)) +
+                      " --every " + std::to_string(s.every) + " --indirect-scale " + std::to_string(s.indirectScale);
+    for (const std::string& set : s.sets) cmd += " --set " + set;
+    return cmd + " --out " + s.technique + "-path";
+}
+
+// A frame of a camera-path run as compared: the render box-downsampled to the reference's size, its
+// reference, and which of their pixels see an emitter.
+struct ComparedFrame {
+    int frame = -1;
+    core::Image image, reference;
+    std::vector<bool> emitters;
+};
+
+// The emitters of either frame left out of both: the flicker of a pair is taken over the same pixels.
+double pairFlicker(const ComparedFrame& a, const ComparedFrame& b)
+{
+    std::vector<bool> mask = a.emitters;
+    for (std::size_t i = 0; i < mask.size(); ++i) mask[i] = mask[i] || b.emitters[i];
+    return core::errorFlicker(core::blanked(a.image, mask), core::blanked(a.reference, mask),
+                              core::blanked(b.image, mask), core::blanked(b.reference, mask));
+}
+
+// A camera-path run (issue 58, "Sequences"): the path rendered one frame per step with no still frames,
+// as `bounce render --path` renders it, each frame timed. Frames iK and iK+1 (K = "every") are compared
+// with path-tracer references of the technique's own light paths at their own camera and lights (cached
+// like every reference), and each pair (iK, iK+1) gives a flicker (core::errorFlicker: the change of the
+// error image, so that a stable bias is not called flicker). With "stillFrames" N, frame iK is also
+// rendered still, N frames at its camera from a fresh renderer at full resolution, for the ratio of the
+// moving frame's error to the still image's. The row's error is the mean over the measured frames.
+BenchRow pathRow(const BenchConfig& config, const BenchSetting& s, const std::string& sceneName,
+                 const core::Scene& scene, const gl::ContextInfo& context, const std::filesystem::path& out,
+                 std::size_t index)
+{
+    const int w = config.widthOf(s), h = config.heightOf(s);
+    const int rw = config.reference.width > 0 ? config.reference.width : w;
+    const int rh = config.reference.height > 0 ? config.reference.height : h;
+    const gl::TechniqueInfo& info = gl::findTechnique(s.technique);
+    gl::ParamValues f(gl::frameParams()), t(info.params);
+    applySets(s.sets, info, f, t);
+    const core::CameraPath& path = s.path;
+    const SceneOnPath onPath = sceneOnPath(scene, path, s.pathFile);
+    const std::unique_ptr<gl::Renderer> made =
+        makeRendererForCli(onPath.scene, s.technique, f, t, w, h, s.indirectScale);
+    gl::Renderer& r = *made;
+    const std::string paths = core::lightPathsName(info.lightPaths);
+    const auto measured = [&](int frame) { return frame % s.every == 0 || (frame >= 1 && (frame - 1) % s.every == 0); };
+
+    char stem[256];
+    std::snprintf(stem, sizeof stem, "%03zu-%s-%s", index, sceneName.c_str(), s.technique.c_str());
+    nlohmann::json frames = nlohmann::json::array();
+    ComparedFrame previous;
+    std::vector<double> errors, secondHalf, flickers, ratios;
+    double sumMs = 0.0;
+    std::size_t nonFinite = 0;
+    core::Progress progress("path " + s.technique, double(path.frames), "frames");
+    for (int fi = 0; fi < path.frames; ++fi) {
+        if (fi > 0) stepAlongPath(r, onPath, path, fi);
+        r.renderFrame(true);
+        double ms = 0.0;
+        for (const gl::PassStat& p : r.timers().lastFrame()) ms += p.medianMs;
+        sumMs += ms;
+        nlohmann::json record = {{"index", fi}, {"ms", ms}};
+        if (measured(fi)) {
+            const core::Scene at = onPath.at(path, fi);
+            ComparedFrame c;
+            c.frame = fi;
+            c.reference =
+                referenceImage(at, sceneName + " frame " + std::to_string(fi), paths, rw, rh, config.reference);
+            const core::Image image = r.image();
+            nonFinite += nonFiniteValues(image);
+            c.emitters = emitterMask(r.frame().readEmission(), rw, rh);
+            c.image = core::boxDownsample(image, rw, rh);
+            const double e =
+                core::relativeRmse(core::blanked(c.image, c.emitters), core::blanked(c.reference, c.emitters));
+            record["relativeRmse"] = e;
+            errors.push_back(e);
+            if (2 * fi >= path.frames) secondHalf.push_back(e);
+            if (fi > 0 && (fi - 1) % s.every == 0 && previous.frame == fi - 1) {
+                record["flicker"] = pairFlicker(previous, c);
+                flickers.push_back(record["flicker"].get<double>());
+            }
+            if (s.stillFrames > 0 && fi % s.every == 0) {
+                gl::Renderer still(at, s.technique, f, t, w, h);
+                for (int k = 0; k < s.stillFrames; ++k) still.renderFrame(true);
+                const std::vector<bool> m = emitterMask(still.frame().readEmission(), rw, rh);
+                const double stillError = core::relativeRmse(
+                    core::blanked(core::boxDownsample(still.image(), rw, rh), m), core::blanked(c.reference, m));
+                record["stillRelativeRmse"] = stillError;
+                ratios.push_back(e / stillError);
+            }
+            if (!out.empty()) {
+                char frameStem[300];
+                std::snprintf(frameStem, sizeof frameStem, "%s-f%04d", stem, fi);
+                record["image"] = writeReportImage(out, frameStem, image);
+                std::snprintf(frameStem, sizeof frameStem, "%s-f%04d-ref-%s", stem, fi, paths.c_str());
+                record["reference"] = writeReportImage(out, frameStem, c.reference);
+            }
+            previous = std::move(c);
+        }
+        frames.push_back(record);
+        progress.add(1.0);
+    }
+    progress.finish();
+
+    const auto mean = [](const std::vector<double>& v) {
+        double sum = 0.0;
+        for (double x : v) sum += x;
+        return v.empty() ? double(NAN) : sum / double(v.size());
+    };
+    BenchRow row;
+    row.scene = sceneName;
+    row.technique = s.technique;
+    row.settings = settingsText(s.sets);
+    row.size = std::to_string(w) + "x" + std::to_string(h);
+    row.lightPaths = paths;
+    row.rmseOwn = row.ssimOwn = row.relRmseFull = row.relRmseBaseline = row.relRmseDirectLight = NAN;
+    row.relRmseCompareTo.assign(config.compareTo.size(), NAN);
+    row.record = runRecord(context, sceneName, r);
+    row.record["settings"] = row.settings;
+    row.record["size"] = row.size;
+    row.passes = passesText(row.record["passes"]);
+    // The mean frame over the whole path (runRecord's figure is the median of the last frame's passes).
+    row.totalMs = row.record["totalMs"] = sumMs / double(path.frames);
+    row.record["imageMs"] = row.totalMs;
+    row.record["imageFrames"] = 1;
+    row.relRmseOwn = mean(errors);
+    row.flicker = mean(flickers);
+    row.record["error"][paths] = {{"relativeRmse", row.relRmseOwn}};
+    nlohmann::json sequence = {
+        {"path", s.pathFile},
+        {"frameCount", path.frames},
+        {"every", s.every},
+        {"indirectScale", s.indirectScale},
+        {"stillFrames", s.stillFrames},
+        {"meanRelativeRmse", row.relRmseOwn},
+        {"secondHalfMeanRelativeRmse", mean(secondHalf)},
+        {"worstRelativeRmse", errors.empty() ? double(NAN) : *std::max_element(errors.begin(), errors.end())},
+        {"flicker", row.flicker},
+        {"meanMs", row.totalMs},
+        {"frames", frames}};
+    if (!ratios.empty()) {
+        sequence["meanStillRatio"] = mean(ratios);
+        sequence["worstStillRatio"] = *std::max_element(ratios.begin(), ratios.end());
+    }
+    row.record["sequence"] = sequence;
+    row.record["command"] = pathCommand(config, s, sceneName);
+    // The report's table and viewer open a run on its last measured frame beside that frame's reference.
+    for (auto it = frames.rbegin(); it != frames.rend(); ++it)
+        if (it->contains("image")) {
+            row.record["image"] = (*it)["image"];
+            row.record["references"][paths] = (*it)["reference"];
+            break;
+        }
+    row.record["nonFiniteValues"] = row.nonFiniteValues = nonFinite;
+    if (row.nonFiniteValues > 0) markNonFinite(row);
+    return row;
+}
+
 // The path tracer's own time against error: `full` at `spp` samples per pixel, rendered afresh (never
 // cached: the time is the figure), against the scene's reference.
 BenchRow pathTracerRow(const BenchConfig& config, const std::string& sceneName, const core::Scene& scene, int spp,
@@ -389,8 +553,10 @@ std::vector<BenchRow> runBenchmark(const BenchConfig& config, const gl::ContextI
         }
         for (const BenchSetting& s : config.settings) {
             if (!s.runsOn(config.sceneNames[si])) continue;
-            rows.push_back(
-                runSetting(config, s, config.sceneNames[si], config.scenes[si], context, cache, out, rows.size()));
+            rows.push_back(s.isPath()
+                               ? pathRow(config, s, config.sceneNames[si], config.scenes[si], context, out, rows.size())
+                               : runSetting(config, s, config.sceneNames[si], config.scenes[si], context, cache, out,
+                                            rows.size()));
             recordMachine(context, rows.back());
             progress.add(1.0);
             if (afterRow) afterRow(rows);
@@ -406,10 +572,13 @@ BenchRow runTaskRow(const BenchConfig& config, const BenchTask& task, const gl::
     SceneCache cache;
     const std::string& sceneName = config.sceneNames[task.scene];
     const core::Scene& scene = config.scenes[task.scene];
-    BenchRow row =
-        task.kind == BenchTask::Kind::PathTracer
-            ? pathTracerRow(config, sceneName, scene, task.spp, cache, out, task.row)
-            : runSetting(config, config.settings[task.setting], sceneName, scene, context, cache, out, task.row);
+    BenchRow row;
+    if (task.kind == BenchTask::Kind::PathTracer)
+        row = pathTracerRow(config, sceneName, scene, task.spp, cache, out, task.row);
+    else if (config.settings[task.setting].isPath())
+        row = pathRow(config, config.settings[task.setting], sceneName, scene, context, out, task.row);
+    else
+        row = runSetting(config, config.settings[task.setting], sceneName, scene, context, cache, out, task.row);
     recordMachine(context, row);
     return row;
 }

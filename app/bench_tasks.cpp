@@ -51,6 +51,10 @@ std::string taskKey(const BenchConfig& config, const BenchTask& t)
                "|baseline=" + s.baseline + " " + joined(s.baselineSets) +
                "|temporal=" + std::to_string(s.temporalFrames) + "|curve=" + std::to_string(s.curve) +
                "|compareTo=" + joined(config.compareTo);
+        if (s.isPath())
+            key += "|path=" + s.pathText + " every=" + std::to_string(s.every) +
+                   " indirectScale=" + std::to_string(s.indirectScale) +
+                   " stillFrames=" + std::to_string(s.stillFrames);
     }
     return key;
 }
@@ -107,10 +111,14 @@ std::vector<BenchTask> benchTasks(const BenchConfig& config)
             if (!s.runsOn(scene)) continue;
             const int rw = ref.width > 0 ? ref.width : config.widthOf(s);
             const int rh = ref.height > 0 ? ref.height : config.heightOf(s);
-            reference(si, core::lightPathsName(gl::findTechnique(s.technique).lightPaths), rw, rh);
-            reference(si, "full", rw, rh);
-            for (const std::string& p : config.compareTo) reference(si, p, rw, rh);
-            reference(si, "direct", rw, rh);
+            // A camera-path run reads references of its frames' cameras, which it computes (or finds in
+            // the cache) itself: one per measured frame, not the scene's still references.
+            if (!s.isPath()) {
+                reference(si, core::lightPathsName(gl::findTechnique(s.technique).lightPaths), rw, rh);
+                reference(si, "full", rw, rh);
+                for (const std::string& p : config.compareTo) reference(si, p, rw, rh);
+                reference(si, "direct", rw, rh);
+            }
             BenchTask t;
             t.kind = BenchTask::Kind::Render;
             t.scene = si;
@@ -141,8 +149,13 @@ std::string taskLine(const BenchTask& t, const BenchConfig& config)
     std::string params = t.params;
     if (t.kind == BenchTask::Kind::Render) {
         const BenchSetting& s = config.settings[t.setting];
-        params += " size=" + std::to_string(t.width) + "x" + std::to_string(t.height) +
-                  " warmup=" + std::to_string(config.warmupOf(s)) + " frames=" + std::to_string(config.framesOf(s));
+        params += " size=" + std::to_string(t.width) + "x" + std::to_string(t.height);
+        if (s.isPath())
+            params += " path=" + s.pathFile + " every=" + std::to_string(s.every) +
+                      " indirectScale=" + std::to_string(s.indirectScale) +
+                      " stillFrames=" + std::to_string(s.stillFrames);
+        else
+            params += " warmup=" + std::to_string(config.warmupOf(s)) + " frames=" + std::to_string(config.framesOf(s));
     }
     return std::to_string(t.index) + "\t" + t.id + "\t" + kindName(t.kind) + "\t" + config.sceneNames[t.scene] + "\t" +
            t.technique + "\t" + params;

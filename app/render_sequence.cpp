@@ -59,18 +59,6 @@ void refuseStillOptions(const Options& o)
         if (o.has(r.option)) throw UsageError(std::string("--") + r.option + " cannot be given with --path: " + r.why);
 }
 
-// The far plane beyond the whole scene from every position on the path (a setup sets it from its own
-// camera only).
-float farPlaneForPath(const core::Scene& scene, const core::CameraPath& path)
-{
-    const core::Bounds b = scene.bounds();
-    const float diagonal = glm::length(b.extent());
-    float zfar = scene.camera.zfar;
-    for (int f = 0; f < path.frames; ++f)
-        zfar = std::max(zfar, glm::length(path.at(f).position - b.centre()) + diagonal);
-    return zfar;
-}
-
 std::string frameFileName(int frame)
 {
     char name[32];
@@ -79,6 +67,36 @@ std::string frameFileName(int frame)
 }
 
 } // namespace
+
+SceneOnPath sceneOnPath(core::Scene scene, const core::CameraPath& path, const std::string& pathFile)
+{
+    const core::Bounds b = scene.bounds();
+    const float diagonal = glm::length(b.extent());
+    for (int f = 0; f < path.frames; ++f)
+        scene.camera.zfar = std::max(scene.camera.zfar, glm::length(path.at(f).position - b.centre()) + diagonal);
+    SceneOnPath s;
+    s.base = scene.camera;
+    scene.camera = path.camera(0, s.base);
+    scene.cameraSource = "path " + pathFile;
+    if (const std::vector<core::Light>* lights = path.lightsAt(0)) scene.lights = *lights;
+    s.scene = std::move(scene);
+    return s;
+}
+
+core::Scene SceneOnPath::at(const core::CameraPath& path, int frame) const
+{
+    core::Scene s = scene;
+    s.camera = path.camera(frame, base);
+    // Before the first "lights" entry lightsAt is null and frame 0's lights (the scene's own) hold.
+    if (const std::vector<core::Light>* lights = path.lightsAt(frame)) s.lights = *lights;
+    return s;
+}
+
+void stepAlongPath(gl::Renderer& renderer, const SceneOnPath& onPath, const core::CameraPath& path, int frame)
+{
+    renderer.frame().setCamera(path.camera(frame, onPath.base));
+    if (path.lightsChangeAt(frame)) renderer.frame().setLights(*path.lightsAt(frame));
+}
 
 int renderSequence(const Options& o)
 {
@@ -106,12 +124,8 @@ int renderSequence(const Options& o)
     CliTechnique chosen = techniqueForCli(techniqueName, o.all("set"));
     gl::ParamValues& frameValues = chosen.frameValues;
     gl::ParamValues& techniqueValues = chosen.techniqueValues;
-    core::Scene scene = loadSceneForCli(sceneArg);
-    scene.camera.zfar = farPlaneForPath(scene, path);
-    const core::Camera base = scene.camera;
-    scene.camera = path.camera(0, base);
-    scene.cameraSource = "path " + pathFile;
-    if (const std::vector<core::Light>* lights = path.lightsAt(0)) scene.lights = *lights;
+    SceneOnPath onPath = sceneOnPath(loadSceneForCli(sceneArg), path, pathFile);
+    core::Scene& scene = onPath.scene;
     applySceneOptions(scene, "", {});
     const fs::path recordFile = out / "sequence.json";
     try {
@@ -132,10 +146,7 @@ int renderSequence(const Options& o)
     {
         core::Progress progress("render --path", double(path.frames), "frames");
         for (int f = 0; f < path.frames; ++f) {
-            if (f > 0) {
-                renderer.frame().setCamera(path.camera(f, base));
-                if (path.lightsChangeAt(f)) renderer.frame().setLights(*path.lightsAt(f));
-            }
+            if (f > 0) stepAlongPath(renderer, onPath, path, f);
             renderer.renderFrame(true);
             double ms = 0.0;
             for (const gl::PassStat& p : renderer.timers().lastFrame()) ms += p.medianMs;

@@ -25,7 +25,8 @@ def main(argv):
     if len(argv) < 3 or argv[1] in ("-h", "--help"):
         print(__doc__)
         return 0 if len(argv) > 1 and argv[1] in ("-h", "--help") else 2
-    rows = list(csv.DictReader(open(argv[1], newline="")))
+    # Camera-path rows (a "camera_path" file) measure moving frames, not an image: not on these axes.
+    rows = [r for r in csv.DictReader(open(argv[1], newline="")) if not r.get("camera_path")]
     title = argv[argv.index("--title") + 1] if "--title" in argv else "speed against error"
     panels = [("rel_rmse_own", "relative RMSE vs own light paths", "pareto_own"),
               ("rel_rmse_full", "relative RMSE vs full", "pareto_full")]

@@ -208,6 +208,25 @@ double relativeRmse(const Image& a, const Image& reference)
     return pointwise(a, reference, kRelativeMseEpsilon).relativeRmse;
 }
 
+double errorFlicker(const Image& a, const Image& refA, const Image& b, const Image& refB)
+{
+    checkSizes(a, refA);
+    checkSizes(b, refB);
+    checkSizes(a, b);
+    double sumSq = 0.0, sumRef = 0.0;
+    for (std::size_t i = 0; i < a.rgb.size(); ++i) {
+        const double change = (double(a.rgb[i]) - refA.rgb[i]) - (double(b.rgb[i]) - refB.rgb[i]);
+        if (!std::isfinite(change) || !std::isfinite(double(refA.rgb[i]) + refB.rgb[i]))
+            return std::numeric_limits<double>::infinity();
+        sumSq += change * change;
+        sumRef += 0.5 * (double(refA.rgb[i]) + refB.rgb[i]);
+    }
+    const double n = double(a.rgb.size());
+    if (sumSq == 0.0) return 0.0;
+    if (sumRef <= 0.0) return std::numeric_limits<double>::infinity();
+    return std::sqrt(sumSq / n) / (sumRef / n);
+}
+
 double relativeMse(const Image& a, const Image& reference, double epsilon)
 {
     checkSizes(a, reference);

@@ -68,6 +68,12 @@ double meanAbsoluteError(const Image& a, const Image& reference);
 double maxError(const Image& a, const Image& reference);
 double ssim(const Image& a, const Image& reference);
 
+// The flicker between two frames of a sequence, each with its own reference (bench camera-path runs):
+// the RMS of the change of the error image, (a - refA) - (b - refB), over the mean of both references.
+// A bias that stays from one frame to the next cancels; noise and error that change do not. 0 when
+// everything is 0, +inf for a non-finite value or for black references under a non-zero change.
+double errorFlicker(const Image& a, const Image& refA, const Image& b, const Image& refB);
+
 // The box-filtered average of `image` over blocks of (image.width / width) x (image.height / height)
 // pixels: what a renderer with width x height box-filtered pixels sees. Throws std::invalid_argument
 // unless width and height divide the image's size. Comparing at a coarser size lets a reference of the

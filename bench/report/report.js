@@ -110,7 +110,8 @@
   // Speed against error: one circle per run of the scene (path-tracer rows included), the path
   // tracer's rows joined by a line, the Pareto front dashed.
   function drawSpeedPlot(scene) {
-    const runs = records.filter((r) => r.scene === scene);
+    // Camera-path runs measure moving frames, not an image's time and error: they have their own plot.
+    const runs = records.filter((r) => r.scene === scene && !r.sequence);
     const box = document.getElementById('plot');
     box.replaceChildren();
     const plot = logAxes(runs.map(imageMs), runs.map(fullError),
@@ -367,6 +368,12 @@
     for (const r of records.filter((x) => x.scene === scene && x.references))
       for (const id of Object.values(r.references)) refs.add(id);
     for (const id of refs) list.push([id, 'reference ' + id.replace(/^images\/ref-/, '')]);
+    // A camera-path run's measured frames and their references (its player shows them); the last is the
+    // run's own image and reference, listed above.
+    for (const r of records.filter((x) => x.scene === scene && x.sequence))
+      for (const f of r.sequence.frames.filter((x) => x.image && x.image !== r.image))
+        list.push([f.image, `#${r.index} ${label(r)} frame ${f.index}`],
+          [f.reference, `#${r.index} reference of frame ${f.index}`]);
     return list;
   }
 
@@ -435,6 +442,117 @@
         bytes.map(([k, v]) => [k, (num(v) / 1048576).toFixed(3)])));
   }
 
+  // ---------------------------------------------------------------------------------------------
+  // A camera-path run (bench "path"): its error and frame time over the sequence, and a player that
+  // shows its measured frames in the viewer beside their references (flip, split, error map as for any
+  // image).
+
+  const player = { run: null, at: 0, timer: null };
+
+  // Linear axes over frame numbers and a value; returns {svg, x(v), y(v)}.
+  function linearAxes(frames, ys, yLabel) {
+    const W = 560, H = 200, L = 60, R = 16, T = 12, B = 36;
+    const finite = ys.filter(Number.isFinite);
+    const y1 = finite.length ? Math.max(...finite) * 1.1 || 1 : 1;
+    const x = (v) => L + v / Math.max(frames - 1, 1) * (W - L - R);
+    const y = (v) => H - B - v / y1 * (H - T - B);
+    const svg = el('svg:svg', { width: W, height: H, viewBox: `0 0 ${W} ${H}`, class: 'sequence-plot' });
+    const axis = el('svg:g', { class: 'axis' });
+    for (let i = 0; i <= 4; ++i) {
+      const v = y1 * i / 4;
+      axis.append(el('svg:line', { class: 'grid', x1: L, x2: W - R, y1: y(v), y2: y(v) }));
+      axis.append(el('svg:text', { x: L - 4, y: y(v) + 4, 'text-anchor': 'end' }, tickText(v)));
+    }
+    for (let i = 0; i <= 4; ++i) {
+      const f = Math.round((frames - 1) * i / 4);
+      axis.append(el('svg:text', { x: x(f), y: H - B + 14, 'text-anchor': 'middle' }, String(f)));
+    }
+    axis.append(el('svg:path', { d: `M${L},${T}V${H - B}H${W - R}`, fill: 'none' }));
+    axis.append(el('svg:text', { x: (L + W - R) / 2, y: H - 4, 'text-anchor': 'middle' }, 'frame'));
+    axis.append(el('svg:text', { x: 14, y: (T + H - B) / 2, 'text-anchor': 'middle',
+      transform: `rotate(-90 14 ${(T + H - B) / 2})` }, yLabel));
+    svg.append(axis);
+    return { svg, x, y };
+  }
+
+  function sequencePlot(frames, count, key, yLabel, colour) {
+    const pts = frames.filter((f) => Number.isFinite(num(f[key])));
+    const plot = linearAxes(count, pts.map((f) => num(f[key])), yLabel);
+    plot.svg.append(el('svg:polyline', { class: 'series', style: `fill:none;stroke:${colour};stroke-width:1.5`,
+      points: pts.map((f) => `${plot.x(f.index)},${plot.y(num(f[key]))}`).join(' ') }));
+    for (const f of pts) {
+      const c = el('svg:circle', { r: 2.5, cx: plot.x(f.index), cy: plot.y(num(f[key])), fill: colour });
+      c.append(el('svg:title', {}, `frame ${f.index}: ${fmt(num(f[key]))}`));
+      plot.svg.append(c);
+    }
+    return plot;
+  }
+
+  // Shows measured frame number `i` (of the run's frames with an image) in the viewer.
+  function showSequenceFrame(i) {
+    const shown = player.run.sequence.frames.filter((f) => f.image);
+    if (!shown.length) return Promise.resolve();
+    player.at = (i + shown.length) % shown.length;
+    const f = shown[player.at];
+    document.getElementById('sequence-slider').value = player.at;
+    document.getElementById('sequence-frame').textContent = `frame ${f.index} of ${player.run.sequence.frameCount}: ` +
+      `relative RMSE ${fmt(num(f.relativeRmse))}` + (f.flicker !== undefined ? `, flicker ${fmt(num(f.flicker))}` : '') +
+      (f.stillRelativeRmse !== undefined ? `, still ${fmt(num(f.stillRelativeRmse))}` : '') + `, ${fmt(num(f.ms))} ms`;
+    for (const c of document.querySelectorAll('#sequence line.now')) {
+      c.setAttribute('x1', c.dataset.x0 * 1 + f.index * c.dataset.dx);
+      c.setAttribute('x2', c.getAttribute('x1'));
+    }
+    return showImages(f.image, f.reference);
+  }
+
+  function stopPlaying() {
+    if (player.timer) clearInterval(player.timer);
+    player.timer = null;
+    const b = document.getElementById('sequence-play');
+    if (b) b.textContent = 'play';
+  }
+
+  function sequenceDetails(r, box) {
+    stopPlaying();
+    player.run = r;
+    const q = r.sequence, frames = q.frames || [];
+    const shown = frames.filter((f) => f.image);
+    const part = el('div', { id: 'sequence' });
+    part.append(el('h4', {}, `Camera path ${q.path}: ${q.frameCount} frames, indirect light at 1/${q.indirectScale}`));
+    part.append(el('p', {}, `relative RMSE (${r.lightPaths}) over frames iK and iK+1, K = ${q.every}: mean ` +
+      `${fmt(num(q.meanRelativeRmse))}, second half ${fmt(num(q.secondHalfMeanRelativeRmse))}, worst ` +
+      `${fmt(num(q.worstRelativeRmse))}; flicker ${fmt(num(q.flicker))}` +
+      (q.meanStillRatio !== undefined ? `; moving / still (${q.stillFrames} still frames) ${fmt(num(q.meanStillRatio))}` : '') +
+      `; ${fmt(num(q.meanMs))} ms per frame`));
+    const error = sequencePlot(frames, q.frameCount, 'relativeRmse', 'relative RMSE', PALETTE[0]);
+    const ms = sequencePlot(frames, q.frameCount, 'ms', 'GPU ms', PALETTE[1]);
+    for (const p of [error, ms]) {
+      const now = el('svg:line', { class: 'now', y1: 12, y2: 164, stroke: '#d62728',
+        'data-x0': p.x(0), 'data-dx': p.x(1) - p.x(0) });
+      p.svg.append(now);
+      part.append(p.svg);
+    }
+    const controls = el('div', { class: 'controls' });
+    const back = el('button', { id: 'sequence-back', title: 'previous measured frame' }, 'step back');
+    const play = el('button', { id: 'sequence-play' }, 'play');
+    const next = el('button', { id: 'sequence-next', title: 'next measured frame' }, 'step');
+    const slider = el('input', { id: 'sequence-slider', type: 'range', min: 0, max: Math.max(shown.length - 1, 0),
+      step: 1, value: 0 });
+    back.addEventListener('click', () => { stopPlaying(); showSequenceFrame(player.at - 1); });
+    next.addEventListener('click', () => { stopPlaying(); showSequenceFrame(player.at + 1); });
+    slider.addEventListener('input', () => { stopPlaying(); showSequenceFrame(Number(slider.value)); });
+    play.addEventListener('click', () => {
+      if (player.timer) { stopPlaying(); return; }
+      play.textContent = 'pause';
+      player.timer = setInterval(() => showSequenceFrame(player.at + 1), 500);
+    });
+    controls.append(back, play, next, slider, el('span', { id: 'sequence-frame' }));
+    part.append(el('p', { class: 'hint' }, 'The measured frames in the viewer above: A the frame, B its path-tracer ' +
+      'reference (its own camera and lights).'), controls);
+    box.append(part);
+    return showSequenceFrame(Math.max(shown.length - 1, 0));
+  }
+
   function selectRun(r) {
     view.run = r;
     for (const c of document.querySelectorAll('circle.run'))
@@ -442,6 +560,8 @@
     for (const row of document.querySelectorAll('tr.run-row'))
       row.classList.toggle('selected', Number(row.dataset.index) === r.index);
     runDetails(r);
+    if (r.sequence) return sequenceDetails(r, document.getElementById('run-details'));
+    stopPlaying();
     const refs = r.references || {};
     const ref = refs.full || Object.values(refs)[0];
     if (r.image) return showImages(r.image, ref || r.image);
@@ -460,7 +580,8 @@
       const own = r.error && r.error[r.lightPaths] ? num(r.error[r.lightPaths].relativeRmse) : NaN;
       const tr = el('tr', { class: 'run-row', 'data-index': r.index });
       for (const [v, cls] of [[r.index], [r.technique, 'text'], [r.settings, 'text'], [r.size], [r.lightPaths],
-        [fmt(num(r.totalMs))], [r.imageFrames || 1], [fmt(imageMs(r))], [fmt(own)], [fmt(fullError(r))]])
+        [fmt(num(r.totalMs))], [r.sequence ? `path of ${r.sequence.frameCount}` : r.imageFrames || 1],
+        [r.sequence ? '-' : fmt(imageMs(r))], [fmt(own)], [r.sequence ? '-' : fmt(fullError(r))]])
         tr.append(el('td', cls ? { class: cls } : {}, String(v)));
       tr.addEventListener('click', () => selectRun(r));
       t.append(tr);

@@ -111,6 +111,33 @@ TEST(BenchShard, TaskListIsTheSameEveryTimeWithAnIdPerTask)
     EXPECT_EQ(differ, 1) << a.output << c.output;
 }
 
+// A camera-path run is a task like any render (issue 61: "every kind of bench run is a task"): one line,
+// no still references of its own (it reads those of its frames' cameras), and an id that covers what the
+// path file says, not its name, and the measured frames.
+TEST(BenchShard, CameraPathRunIsOneTaskWhoseIdCoversThePath)
+{
+    const fs::path d = outDir("list-path");
+    const auto list = [&](const std::string& path, int every) {
+        std::ofstream(d / "c.json") << R"({"size": "16x16", "scenes": ["cornell-spot"], "runs": [
+            {"technique": "direct", "path": ")"
+                                    << (d / path).string() << R"(", "every": )" << every << "}]}";
+        const Result r = run("bench --config " + (d / "c.json").string() + " --list-tasks");
+        EXPECT_EQ(r.status, 0) << r.output;
+        return taskLines(r.output);
+    };
+    const std::string key = R"({"frame": 0, "camera": "0.278,0.273,-0.8:0.278,0.273,0.2795:39.3"})";
+    std::ofstream(d / "a.json") << R"({"frames": 4, "keys": [)" + key + "]}";
+    std::ofstream(d / "same.json") << R"({"keys": [)" + key + R"(], "frames": 4})";
+    std::ofstream(d / "longer.json") << R"({"frames": 5, "keys": [)" + key + "]}";
+    const auto a = list("a.json", 2);
+    ASSERT_EQ(a.size(), 1u) << "no reference tasks for a camera-path run";
+    EXPECT_EQ(a[0][2], "render");
+    EXPECT_NE(a[0][5].find("every=2"), std::string::npos) << a[0][5];
+    EXPECT_EQ(list("same.json", 2)[0][1], a[0][1]) << "the same path under another name and key order";
+    EXPECT_NE(list("longer.json", 2)[0][1], a[0][1]) << "another path";
+    EXPECT_NE(list("a.json", 3)[0][1], a[0][1]) << "other measured frames";
+}
+
 TEST(BenchShard, BadShardSpecExitsTwoAndWritesNothing)
 {
     const fs::path d = outDir("bad");

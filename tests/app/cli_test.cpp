@@ -424,16 +424,22 @@ double relativeRmseOf(const bounce::core::Image& a, const bounce::core::Image& r
 // The same run's report.html is then opened in headless Chromium (tests/app/report_browser.mjs: no
 // console error or failed request, one plot point per row, flipping changes the pixels, the error map of
 // an image against itself is zero, the viewer's tone mapping is the PNG writer's); a viewport that is not
-// a power of two (24x20) beside the 16x16 ones.
+// a power of two (24x20) beside the 16x16 ones. A camera-path run's player is checked there too (steps,
+// play and pause show its frames beside their references).
 TEST(Cli, BenchPlotsCurvesAndWritesAReportThatABrowserOpens)
 {
     const fs::path d = outDir("bench-curve");
     const fs::path config = d / "curve.json";
+    std::ofstream(d / "path.json") << R"({"frames": 3, "keys": [
+        {"frame": 0, "camera": "0.278,0.273,-0.8:0.278,0.273,0.2795:39.3"},
+        {"frame": 2, "camera": "0.3,0.273,-0.8:0.278,0.273,0.2795:39.3"}]})";
     std::ofstream(config) << R"({"size": "16x16", "warmup": 0, "frames": 3, "reference": {"spp": 64},
                                 "scenes": ["cornell-spot"], "pathTracerSpp": [4, 16],
                                 "runs": [{"technique": "grb", "curve": true,
                                           "set": {"directionsPerFrame": 2, "kbufferSize": 32, "atlasTexels": 1024}},
-                                         {"technique": "direct", "size": "24x20", "frames": 1}]})";
+                                         {"technique": "direct", "size": "24x20", "frames": 1},
+                                         {"technique": "direct", "path": ")"
+                          << (d / "path.json").string() << R"(", "every": 2}]})";
     const CommandRun r = run("bench --backend " + testBackend() + " --config " + config.string() + " --out " +
                              (d / "out").string() + " --cache " + (d / "cache").string());
     ASSERT_EQ(r.status, 0) << r.output;
@@ -461,7 +467,9 @@ TEST(Cli, BenchPlotsCurvesAndWritesAReportThatABrowserOpens)
         const std::string image = rec.value("image", "");
         EXPECT_TRUE(fs::exists(d / "out" / (image + ".exr"))) << "row image " << image;
         const nlohmann::json references = rec.value("references", nlohmann::json::object());
-        EXPECT_TRUE(references.contains("full")) << image;
+        // A camera-path row's reference is its last measured frame's, of its own light paths.
+        EXPECT_TRUE(references.contains(rec.contains("sequence") ? rec.at("lightPaths").get<std::string>() : "full"))
+            << image;
         for (const auto& [paths, id] : references.items())
             EXPECT_TRUE(fs::exists(d / "out" / (id.get<std::string>() + ".js"))) << paths << " reference " << id;
     }
@@ -617,6 +625,14 @@ TEST(Cli, BenchConfigIsCheckedBeforeAnythingRuns)
         {"{" + direct + R"(, "size": "64x48", "reference": {"size": "16x16"}})", "reference.size", "aspect ratio"},
         {"{" + direct + R"(, "compareTo": ["twobounce"]})", "compareTo[0]", "twobounce"},
         {"{" + direct + R"(, "rays": 1.5})", "rays", "whole number"},
+        // Camera-path runs: the file read and checked, the still run's keys refused with it.
+        {R"({"runs": [{"technique": "direct", "path": "/nonexistent/walk.json"}]})", "runs[0].path", "walk.json"},
+        {R"({"runs": [{"technique": "direct", "path": "walk.json", "frames": 3}]})", "runs[0].frames",
+         "cannot be given with \"path\""},
+        {R"({"runs": [{"technique": "direct", "every": 3}]})", "runs[0].every", "camera-path run"},
+        {R"({"runs": [{"technique": "direct", "indirectScale": 0, "path": ")" + std::string(BOUNCE_SOURCE_ROOT) +
+             R"(/bench/paths/cornell-orbit.json"}]})",
+         "runs[0].indirectScale", "[1, 16]"},
     };
     int i = 0;
     for (const auto& c : cases) {

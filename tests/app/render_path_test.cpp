@@ -217,3 +217,89 @@ TEST(RenderPath, RefusesBadPathsAndStillOptionsWritingNothing)
 }
 
 } // namespace
+
+namespace {
+
+double relativeRmseOf(const bounce::core::Image& a, const bounce::core::Image& r)
+{
+    double se = 0.0, sum = 0.0;
+    for (std::size_t i = 0; i < a.rgb.size(); ++i) {
+        se += (double(a.rgb[i]) - r.rgb[i]) * (double(a.rgb[i]) - r.rgb[i]);
+        sum += r.rgb[i];
+    }
+    return std::sqrt(se / double(a.rgb.size())) / (sum / double(a.rgb.size()));
+}
+
+// The flicker as the issue defines it: the RMS of the change of the error image over the references' mean.
+double flickerOf(const bounce::core::Image& a, const bounce::core::Image& ra, const bounce::core::Image& b,
+                 const bounce::core::Image& rb)
+{
+    double se = 0.0, sum = 0.0;
+    for (std::size_t i = 0; i < a.rgb.size(); ++i) {
+        const double change = (double(b.rgb[i]) - rb.rgb[i]) - (double(a.rgb[i]) - ra.rgb[i]);
+        se += change * change;
+        sum += 0.5 * (double(ra.rgb[i]) + rb.rgb[i]);
+    }
+    return std::sqrt(se / double(a.rgb.size())) / (sum / double(a.rgb.size()));
+}
+
+} // namespace
+
+// `bounce bench` with a "path" run (issue 58, "Sequences"), its figures computed again here by other
+// commands: each measured frame (iK and iK+1, K = 2, so all 4 here) is the frame `bounce render --path`
+// writes, compared with `bounce reference` at that frame's camera; the row's error is their mean; the
+// flicker is that of the pairs (0, 1) and (2, 3) only, from the formula above. cornell-spot shows no
+// emitter, so no pixel is masked. A key at every frame gives cameras the command line can name exactly.
+TEST(RenderPath, BenchPathRunMeasuresEachFrameAgainstItsOwnReference)
+{
+    const fs::path d = outDir("bench");
+    const std::vector<std::string> cameras = {
+        "0.278,0.273,-0.8:0.278,0.273,0.2795:39.3", "0.288,0.273,-0.8:0.278,0.273,0.2795:39.3",
+        "0.298,0.28,-0.8:0.278,0.273,0.2795:39.3", "0.308,0.29,-0.79:0.278,0.273,0.2795:39.3"};
+    std::string keys;
+    for (std::size_t f = 0; f < cameras.size(); ++f)
+        keys += std::string(f ? ", " : "") + R"({"frame": )" + std::to_string(f) + R"(, "camera": ")" + cameras[f] +
+                R"("})";
+    const fs::path path = writePath(d, "path.json", R"({"frames": 4, "keys": [)" + keys + "]}");
+    std::ofstream(d / "config.json") << R"({"size": "16x16", "reference": {"spp": 64}, "scenes": ["cornell-spot"],
+        "runs": [{"technique": "direct", "path": ")"
+                                     << path.string() << R"(", "every": 2}]})";
+    const std::string cache = (d / "cache").string();
+    const CommandRun bench =
+        bounce::testing::runBounce("bench --backend " + testBackend() + " --config " + (d / "config.json").string() +
+                                   " --out " + (d / "out").string() + " --cache " + cache);
+    ASSERT_EQ(bench.status, 0) << bench.output;
+    std::ifstream in(d / "out" / "results.json");
+    const nlohmann::json rec = nlohmann::json::parse(in).at(0);
+    const nlohmann::json& q = rec.at("sequence");
+    ASSERT_EQ(q.at("frames").size(), 4u);
+
+    const CommandRun frames =
+        bounce::testing::runBounce("render --scene cornell-spot --technique direct --size 16x16 --backend " +
+                                       testBackend() + " --path " + path.string() + " --out " + (d / "frames").string(),
+                                   "BOUNCE_PROGRESS=0 ");
+    ASSERT_EQ(frames.status, 0) << frames.output;
+    std::vector<bounce::core::Image> image, reference;
+    double sum = 0.0;
+    for (std::size_t f = 0; f < cameras.size(); ++f) {
+        char name[32];
+        std::snprintf(name, sizeof name, "frame-%04zu.exr", f);
+        image.push_back(bounce::core::readImage((d / "frames" / name).string()));
+        const fs::path ref = d / ("ref-" + std::to_string(f) + ".exr");
+        const CommandRun r = bounce::testing::runBounce("reference --scene cornell-spot --camera " + cameras[f] +
+                                                        " --paths direct --size 16x16 --spp 64 --cache-dir " + cache +
+                                                        " --out " + ref.string());
+        ASSERT_EQ(r.status, 0) << r.output;
+        reference.push_back(bounce::core::readImage(ref.string()));
+        const double e = relativeRmseOf(image[f], reference[f]);
+        sum += e;
+        const nlohmann::json& fr = q["frames"][f];
+        EXPECT_NEAR(fr.at("relativeRmse").get<double>(), e, 1e-4 * e) << "frame " << f;
+        EXPECT_EQ(fr.contains("flicker"), f % 2 == 1) << "frame " << f << ": the pairs are (0, 1) and (2, 3)";
+    }
+    EXPECT_NEAR(q.at("meanRelativeRmse").get<double>(), sum / 4.0, 1e-4 * sum / 4.0);
+    const double flicker = 0.5 * (flickerOf(image[0], reference[0], image[1], reference[1]) +
+                                  flickerOf(image[2], reference[2], image[3], reference[3]));
+    EXPECT_NEAR(q.at("flicker").get<double>(), flicker, 1e-4 * flicker);
+    std::printf("[ measured ] direct along 4 frames: mean relative RMSE %.4g, flicker %.4g\n", sum / 4.0, flicker);
+}

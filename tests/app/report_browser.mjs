@@ -10,7 +10,10 @@
 // - each scene's speed-against-error plot holds one point per row of that scene in results.json;
 // - flipping (key f) changes the displayed pixels, and flipping back restores them;
 // - the error map of an image against itself is the colour map's zero (viridis' first colour) everywhere,
-//   and that of a render against its reference is not.
+//   and that of a render against its reference is not;
+// - a camera-path run (its record's "sequence") plots its error and frame time, and its player shows the
+//   measured frames beside their references: a step shows the next frame's image and reference, a step
+//   back the one before, and play advances on its own until paused.
 import fs from 'node:fs';
 import path from 'node:path';
 import { pathToFileURL } from 'node:url';
@@ -75,12 +78,51 @@ async function checkPage() {
     await page.locator('#scenes button', { hasText: scene }).first().click();
     await loaded();
     const points = await page.locator('#plot circle.run').count();
-    const rows = results.filter((r) => r.scene === scene).length;
+    // Camera-path runs are not on the speed plot: their error is of moving frames, not of an image.
+    const rows = results.filter((r) => r.scene === scene && !r.sequence).length;
     check(points === rows, `${scene}: the plot holds ${points} points for ${rows} rows`);
     for (const r of results.filter((x) => x.scene === scene))
-      for (const id of [r.image, ...Object.values(r.references || {})])
+      for (const id of [r.image, ...Object.values(r.references || {}),
+        ...(r.sequence ? r.sequence.frames.flatMap((f) => f.image ? [f.image, f.reference] : []) : [])])
         for (const ext of ['.exr', '.png', '.js'])
           check(id && fs.existsSync(path.join(dir, id + ext)), `${scene}: ${id}${ext} is missing`);
+  }
+
+  // The camera-path runs' plots and players.
+  async function checkSequences() {
+    for (const r of results.filter((x) => x.sequence)) {
+      const index = results.indexOf(r);
+      await page.locator('#scenes button', { hasText: r.scene }).first().click();
+      await loaded();
+      await page.locator(`#run-table tr.run-row[data-index="${index}"]`).click();
+      await loaded();
+      const shown = r.sequence.frames.filter((f) => f.image);
+      const plots = await page.locator('#sequence svg.sequence-plot').count();
+      check(plots === 2, `sequence #${index}: ${plots} plots instead of error and frame time`);
+      const points = await page.locator('#sequence svg.sequence-plot').first().locator('circle').count();
+      check(points === shown.length, `sequence #${index}: the error plot holds ${points} points for ${shown.length} frames`);
+      const at = async () => [await page.inputValue('#image-a'), await page.inputValue('#image-b')];
+      const expect = (f) => [f.image, f.reference];
+      const last = shown[shown.length - 1];
+      check(JSON.stringify(await at()) === JSON.stringify(expect(last)), `sequence #${index} opens on ${await at()}, not its last frame`);
+      await page.click('#sequence-next');
+      await loaded();
+      check(JSON.stringify(await at()) === JSON.stringify(expect(shown[0])), `sequence #${index}: a step from the last frame shows ${await at()}`);
+      await page.click('#sequence-next');
+      await loaded();
+      check(JSON.stringify(await at()) === JSON.stringify(expect(shown[1 % shown.length])), `sequence #${index}: a step shows ${await at()}`);
+      await page.click('#sequence-back');
+      await loaded();
+      check(JSON.stringify(await at()) === JSON.stringify(expect(shown[0])), `sequence #${index}: a step back shows ${await at()}`);
+      await page.click('#sequence-play');
+      await page.waitForFunction((first) => document.getElementById('image-a').value !== first, shown[0].image,
+        { timeout: 5000 }).catch(() => failures.push(`sequence #${index}: play did not advance`));
+      await page.click('#sequence-play');
+      await loaded();
+      const paused = await at();
+      await page.waitForTimeout(1200);
+      check(JSON.stringify(await at()) === JSON.stringify(paused), `sequence #${index}: pause did not stop the player`);
+    }
   }
 
   // Links: every href and src on the page (EXRs and PNGs of the images, the stylesheet, the scripts)
@@ -133,6 +175,8 @@ async function checkPage() {
   const self = await pixels();
   const bad = self.filter((v, i) => !isZero(self, i)).length;
   check(self.length > 0 && bad === 0, `the error map of ${imageA} against itself is not zero at ${bad} channel values`);
+
+  await checkSequences();
 
   if (screenshot) {
     // The README's picture: a scene afresh (its first render beside the full reference), split, the best

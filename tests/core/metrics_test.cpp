@@ -63,6 +63,31 @@ TEST(Metrics, ConstantOffsetClosedForm)
     EXPECT_NEAR(m.ssim, (12.0 + c1) / (13.0 + c1), 1e-9);
 }
 
+// The flicker of a camera-path run's pair of frames (bench "path"): a bias that stays from one frame to the
+// next is not flicker, a change of the error is, in closed form; a NaN reads as infinite.
+TEST(Metrics, ErrorFlickerIgnoresAStableBiasAndMeasuresAChangingOne)
+{
+    const Image ra = pattern(20, 10);
+    Image rb = ra, a = ra, b = ra;
+    for (std::size_t i = 0; i < ra.rgb.size(); ++i) {
+        rb.rgb[i] = ra.rgb[i] * 0.5f; // the next frame sees something else
+        a.rgb[i] = ra.rgb[i] + 0.25f; // the same bias of +0.25 in both frames
+        b.rgb[i] = rb.rgb[i] + 0.25f;
+    }
+    EXPECT_GT(relativeRmse(a, ra), 0.2);
+    EXPECT_NEAR(errorFlicker(a, ra, b, rb), 0.0, 1e-7);
+    // Errors of +0.25 then -0.25: a change of 0.5 everywhere over the references' mean.
+    for (std::size_t i = 0; i < rb.rgb.size(); ++i) b.rgb[i] = rb.rgb[i] - 0.25f;
+    double mean = 0.0;
+    for (std::size_t i = 0; i < ra.rgb.size(); ++i) mean += 0.5 * (double(ra.rgb[i]) + rb.rgb[i]);
+    mean /= double(ra.rgb.size());
+    EXPECT_NEAR(errorFlicker(a, ra, b, rb), 0.5 / mean, 1e-6);
+    EXPECT_EQ(errorFlicker(ra, ra, rb, rb), 0.0);
+    b.rgb[7] = std::numeric_limits<float>::quiet_NaN();
+    EXPECT_EQ(errorFlicker(a, ra, b, rb), std::numeric_limits<double>::infinity());
+    EXPECT_THROW(errorFlicker(a, ra, pattern(10, 10), rb), MetricsError);
+}
+
 TEST(Metrics, OneDifferingValue)
 {
     const int w = 40, h = 40;
