@@ -80,7 +80,6 @@ void Renderer::renderFrame(bool keepTimings)
     frame_->renderShadowMaps(timers_);
     frame_->renderGBuffer(timers_);
     frame_->renderDirect(timers_);
-    frame_->clearIndirect();
     // At a coarser scale the frame draws its own direct light at that scale only for a technique that
     // reads it: the viewer sees the full-resolution direct light.
     const bool readsDirect =

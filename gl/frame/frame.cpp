@@ -161,7 +161,10 @@ void Frame::beginIndirect(int scale, PassTimers& timers, bool withDirect)
 {
     if (scale < 1 || scale > 16) throw std::invalid_argument("indirect scale must be in 1..16");
     scale_ = scale;
-    if (scale == 1) return;
+    if (scale == 1) {
+        clearIndirect();
+        return;
+    }
     const int w = (settings_.width + scale - 1) / scale, h = (settings_.height + scale - 1) / scale;
     if (coarse_.width != w || coarse_.height != h) allocate(coarse_, w, h, ".coarse");
     coarseActive_ = true;

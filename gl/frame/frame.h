@@ -99,8 +99,9 @@ public:
     // for a technique that reads it) and whose indirect light it clears. Shadow maps, lights, the GPU
     // scene and the ray caster are the frame's own at every scale, so a technique keeps what it built
     // (one instance at every scale, gl/renderer.h). endIndirect brings the coarse indirect light into the
-    // full frame's indirect() by joint bilateral upsampling (gl/frame/joint_upsample.h). Scale 1: both do
-    // nothing. Throws std::invalid_argument outside 1..16.
+    // full frame's indirect() by joint bilateral upsampling (gl/frame/joint_upsample.h), which writes every
+    // pixel of it: the full frame's indirect light is cleared only at scale 1, where beginIndirect clears it
+    // and endIndirect does nothing. Throws std::invalid_argument outside 1..16.
     void beginIndirect(int scale, PassTimers& timers, bool withDirect);
     void endIndirect(PassTimers& timers);
     // The scale of the targets now in use: beginIndirect's inside the pair, 1 outside it.
