@@ -88,12 +88,18 @@ public:
 
 private:
     void make(const TechniqueInfo& info, const ParamValues& techniqueValues);
+    void reuseDirectLight();
     std::unique_ptr<Frame> frame_;
     const TechniqueInfo* info_ = nullptr;
     std::unique_ptr<Technique> technique_;
     ParamValues frameValues_, techniqueValues_;
     PassTimers timers_;
     TemporalReuse temporal_; // frame parameter `temporal`, for a technique that declares temporalReuse
+    // Frame parameters `temporal` and `temporal.direct`: the frame's direct light in moving frames, for every
+    // technique, sampled anew each frame (FrameSampler::sampleIndex); its history is dropped when the lights
+    // change (their version below).
+    TemporalReuse temporalDirect_;
+    std::uint64_t temporalDirectLights_ = 0;
     int techniqueWidth_ = 0, techniqueHeight_ = 0;
     int indirectScale_ = 1;
     bool stillReady_ = false; // the last frame's version below is comparable (no technique change since)

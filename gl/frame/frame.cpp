@@ -103,6 +103,7 @@ Frame::Frame(const core::Scene& scene, const FrameSettings& settings)
 {
     shadows_.setPcf(settings.pcfLinear);
     sampler_.setFreshMovingSeeds(settings.temporal);
+    sampler_.setMovingSamples(settings.temporal && settings.temporalDirect);
     allocateTargets();
 }
 
@@ -323,7 +324,7 @@ PassCost shadowCost(const GpuScene& scene, const ShadowMaps& shadows)
 void Frame::renderShadowMaps(PassTimers& timers)
 {
     shadows_.fitTo(camera_, settings_.width, settings_.height);
-    shadows_.setStill(sampler_.stillIndex());
+    shadows_.setStill(sampler_.sampleIndex());
     auto t = timers.scope("shadow", shadowCost(gpu_, shadows_));
     shadows_.render(gpu_);
 }
@@ -393,7 +394,7 @@ std::vector<Define> Frame::gbufferDefines() const
 
 bool Frame::directLightStill() const
 {
-    return sampler_.stillIndex() > 0 && stillFormDiffers(gpu_, settings_, true);
+    return sampler_.sampleIndex() > 0 && stillFormDiffers(gpu_, settings_, true);
 }
 
 std::vector<Define> Frame::directLightDefines(bool still) const
@@ -406,10 +407,10 @@ void Frame::setDirectLightUniforms(Program& program) const
     program.set("punctualLightCount", gpu_.punctualLightCount());
     program.set("lightCount", lights_.count());
     shadows_.setPcfUniforms(program, settings_.pcfRadius);
-    if (sampler_.stillIndex() > 0) {
+    if (sampler_.sampleIndex() > 0) {
         // The glossy lobe's points, independent of the jitter and the sample point.
         program.set("areaRotation",
-                    FrameSampler::sample2(SampleStream::AreaGlossyRotation, std::uint64_t(sampler_.stillIndex())));
+                    FrameSampler::sample2(SampleStream::AreaGlossyRotation, std::uint64_t(sampler_.sampleIndex())));
     }
 }
 
@@ -454,7 +455,7 @@ void Frame::renderDirect(PassTimers& timers)
     PassState::fullscreen(t.directFbo, t.width, t.height).apply();
     bindGBuffer();
     bindSceneData();
-    const bool still = sampler_.stillIndex() > 0 && directStillProgram_;
+    const bool still = sampler_.sampleIndex() > 0 && directStillProgram_;
     Program& program = still ? directStillProgram_ : directProgram_;
     program.set("cameraPosition", camera_.position);
     setDirectLightUniforms(program);

@@ -39,6 +39,7 @@ struct FrameSettings {
     bool temporal = false;        // temporal reuse of the technique's indirect light (gl/renderer.h)
     float temporalAlpha = 0.2f;   //   its weight of the new frame (TemporalReuseSettings::alpha)
     bool temporalClamp = true;    //   its neighbourhood clamp (TemporalReuseSettings::clamp)
+    bool temporalDirect = false;  //   with it, the direct light's reuse in moving frames (gl/renderer.h)
     int textureSize = 512;        // base-colour textures are resampled to this size
     // Profiling only (bench/sponza-gbuffer.json): the G-buffer pass with a fragment shader that writes
     // constants, to tell fragment work from vertex work and triangle setup. The images are wrong.
@@ -171,6 +172,7 @@ public:
     const Texture& diffuse() const { return targets().diffuse; }
     const Texture& depth() const { return targets().depth; }
     const Texture& direct() const { return targets().direct; }
+    Texture& direct() { return targets().direct; } // temporal reuse writes it (gl/renderer.h)
     Texture& indirect() { return targets().indirect; }
     const Texture& result() const
     {

@@ -54,7 +54,13 @@ public:
     void advance(bool still);
     std::uint64_t frameIndex() const { return frameIndex_; }
     int stillIndex() const { return stillIndex_; }
-    // The still frame's offset from the pixel's centre, each component in [-0.5, 0.5) (0 in frame 0).
+    // The index of the frame's own samples: its point in the pixel, the shadow maps' shift, the emitters'
+    // points. A still frame's is its still index; a moving frame's is 0 (the pixel's centre and the direct
+    // light's moving form: one frame that stands alone), or, with moving samples (the temporal reuse of the
+    // direct light, gl/renderer.h), a new index every frame (frameIndex + 1), so that the reuse averages
+    // new samples as temporal antialiasing does, rather than one sample again and again.
+    int sampleIndex() const { return sampleIndex_; }
+    // The frame's offset from the pixel's centre, each component in [-0.5, 0.5) (0 at sample index 0).
     glm::vec2 jitter() const { return jitter_; }
     // A seed of a shader's hashed random numbers (glsl/common/random.glsl) for this frame: `base` in a moving
     // frame (still frame 0), so that its image stays what it was; base mixed with the still index after, so
@@ -67,12 +73,15 @@ public:
         return freshMovingSeeds_ ? base ^ (std::uint32_t(frameIndex_) * 0x85EBCA6Bu + 0x27D4EB2Fu) : base;
     }
     void setFreshMovingSeeds(bool on) { freshMovingSeeds_ = on; }
+    void setMovingSamples(bool on) { movingSamples_ = on; }
 
 private:
     std::uint64_t frameIndex_ = 0;
     int stillIndex_ = 0;
+    int sampleIndex_ = 0;
     bool started_ = false;
     bool freshMovingSeeds_ = false;
+    bool movingSamples_ = false;
     glm::vec2 jitter_{0.0f};
 };
 

@@ -6,7 +6,7 @@ namespace bounce::gl {
 
 PassCost shadowLookupCost(const Frame& frame)
 {
-    const int r = frame.sampler().stillIndex() > 0 ? 0 : frame.settings().pcfRadius;
+    const int r = frame.sampler().sampleIndex() > 0 ? 0 : frame.settings().pcfRadius;
     const double texels = 4.0 * (r + 1) * (r + 1);
     PassCost c;
     c.flops = 75 + 3.5 * texels;

@@ -59,16 +59,19 @@ void TemporalReuse::apply(const Frame& frame, const std::vector<Texture*>& signa
     if (signals.empty()) return;
     if (w != width_ || h != height_ || signals.size() != histories_.size()) allocate(w, h, signals.size());
 
-    // temporal_reuse.frag per pixel and signal: its G-buffer texel, the current value, four previous
-    // G-buffer, history and length texels, with the clamp the 3x3 current neighbourhood (its centre cached);
+    // temporal_reuse.frag per pixel and signal: its G-buffer texel and its eight neighbours', the current
+    // value, four previous G-buffer, history and length texels, with the clamp the 3x3 current neighbourhood
+    // (its centre cached);
     // writes the blend and the length. Per scope: the blend copied over each signal (read and write), the
     // G-buffer copied for the next frame.
     const double pixels = double(w) * double(h);
     const bool clamp = settings.clamp;
     PassCost cost;
-    cost.flops = 120 + (clamp ? 9 * 6 : 0);
-    cost.fetches = 2 + 4 * 3 + (clamp ? 8 : 0);
-    cost.bytesRead = 8 + 16 + 4 * (8 + 16 + 4) + (clamp ? 8 * 16 : 0);
+    // The neighbourhood test: eight more G-buffer texels, nine points projected (about 30 flops each) and
+    // each tap's depth and normal against nine (about 12 flops each).
+    cost.flops = 120 + 9 * 30 + 4 * 9 * 12 + (clamp ? 9 * 6 : 0);
+    cost.fetches = 2 + 8 + 4 * 3 + (clamp ? 8 : 0);
+    cost.bytesRead = 8 + 16 + 8 * 8 + 4 * (8 + 16 + 4) + (clamp ? 8 * 16 : 0);
     cost.bytesWritten = 16 + 4;
     cost.bytesFixed = pixels * (2 * 16 * (valid_ ? double(signals.size()) : 0.0) + 2 * 8);
     auto scope = timers.scope("temporal", cost);

@@ -3,8 +3,10 @@
 // indirect light) is blended with its history, the pass's own output of the previous frame, reprojected
 // through the previous frame's camera. Each pixel rebuilds its surface point from the G-buffer, projects it
 // with the previous view-projection and takes the previous output there from the four nearest texels, each
-// kept only where the previous G-buffer saw the same surface (eye depth within `depthTolerance`, relative,
-// normals within `normalTolerance`, 1 - cos) and held a finite value. Where none is kept (disocclusion, the
+// kept only where the previous G-buffer saw a surface this pixel or one of its 3x3 neighbours sees now (its
+// normal within `normalTolerance`, 1 - cos, of theirs, its eye depth within the span of theirs widened by
+// `depthTolerance`, relative: jittered samples of a pixel that straddles two surfaces land on either) and
+// held a finite value. Where none is kept (disocclusion, the
 // border, background then) the pixel takes the current value and its history restarts. The history, clamped
 // to the current signal's 3x3 neighbourhood (min/max, against ghosting; `clamp`), is blended with weight
 // max(alpha, 1/n) on the new value, n the frames the history holds, so that the first frames after a

@@ -60,8 +60,10 @@ const std::vector<PassDecl>& framePasses()
         {"direct", "emission and direct light with shadow maps", ""},
         {"composite", "direct + the technique's indirect light", "the technique adds indirect light"},
         {"accumulate", "the mean of the still frames (jittered pixel centres)", "the view was still last frame"},
-        {"temporal", "the technique's indirect light blended with its reprojected history (gl/frame/temporal_reuse.h)",
-         "frame parameter temporal on and the technique declares temporalReuse"},
+        {"temporal",
+         "the indirect light of a technique that declares temporalReuse, and with temporal.direct the frame's "
+         "direct light in moving frames, blended with their reprojected histories (gl/frame/temporal_reuse.h)",
+         "frame parameter temporal on"},
     };
     return p;
 }
@@ -89,15 +91,21 @@ const std::vector<ParamDecl>& frameParams()
          "while the view is still, sample each frame at another point inside the pixel and show the mean of "
          "the frames (converges to box-filtered pixels; the area lights' shadows to soft ones)"},
         {"temporal", ParamType::Bool, 0, 0, 1,
-         "temporal reuse: a technique's indirect light (those that declare it) blended with its history "
-         "reprojected through the previous camera, rejected where depth or normal disagree, clamped to the "
-         "current neighbourhood (gl/frame/temporal_reuse.h)"},
+         "temporal reuse: a technique's indirect light (those that declare it; and the frame's direct light "
+         "with temporal.direct) blended with its history reprojected through the previous camera, rejected "
+         "where depth or normal disagree with every pixel around, clamped to the current neighbourhood "
+         "(gl/frame/temporal_reuse.h)"},
         {"temporal.alpha", ParamType::Float, 0.2, 0.01, 1,
          "temporal reuse's weight of the new frame once the history is 1/alpha frames long (1: no reuse)"},
         {"temporal.clamp", ParamType::Bool, 1, 0, 1,
          "clamp the history to the current frame's 3x3 neighbourhood (against ghosting after a light or "
          "object moves; off: such changes fade over about 1/alpha frames, and noise that flips whole regions "
          "at once averages out, which one frame's neighbourhood clamps away)"},
+        {"temporal.direct", ParamType::Bool, 0, 0, 1,
+         "with temporal on, the frame's direct light too: moving frames sampled as still frames are (a new "
+         "point in the pixel, shadow-map shift and point on each emitter every frame) and blended with their "
+         "reprojected history, unclamped (the emitters' point is one for the whole frame, so one frame's "
+         "neighbourhood holds one point's shadow); a light change drops that history"},
         choiceParam("gbuffer.fragment", {"material", "constant"}, 0,
                     "profiling: constant writes the G-buffer without reading materials or textures (wrong images)"),
     };
@@ -119,6 +127,7 @@ FrameSettings frameSettingsFrom(const ParamValues& v, int width, int height)
     s.temporal = v.getBool("temporal");
     s.temporalAlpha = float(v.get("temporal.alpha"));
     s.temporalClamp = v.getBool("temporal.clamp");
+    s.temporalDirect = v.getBool("temporal.direct");
     s.areaPcss = v.getChoice(frameParams(), "shadow.area") == "pcss";
     s.gbufferConstantFragment = v.getChoice(frameParams(), "gbuffer.fragment") == "constant";
     return s;

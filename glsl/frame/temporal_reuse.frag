@@ -47,6 +47,32 @@ void neighbourhood(ivec2 px, ivec2 size, out vec3 lo, out vec3 hi)
         }
 }
 
+// What a previous texel must match to be this pixel's history: a surface of this pixel or of one of its
+// 3x3 neighbours, each as the previous camera sees it (eye depth) with its normal: the texel's normal within
+// the tolerance of theirs, its eye depth within the span of their depths (widened by the tolerance). The neighbours count
+// because the frames jitter (FrameSampler::sampleIndex): where a pixel's footprint straddles two surfaces
+// (a silhouette, a corner), one frame's sample lands on one and the next frame's on the other, and both
+// belong to the pixel's box-filtered value; testing against its own sample alone restarted the history at
+// every such pixel each time the sample changed surface, and those pixels never averaged. A surface that
+// no pixel around sees any more (a disocclusion) still takes no history.
+struct Neighbour {
+    float depth; // eye depth in the previous camera (0: no geometry)
+    vec3 normal;
+};
+
+Neighbour neighbourAt(ivec2 px, ivec2 size)
+{
+    Neighbour n = Neighbour(0.0, vec3(0.0));
+    if (any(lessThan(px, ivec2(0))) || any(greaterThanEqual(px, size))) return n;
+    uvec2 g = texelFetch(gGeometry, px, 0).xy;
+    if (g.x == 0u) return n;
+    vec4 clip = previousViewProjection * vec4(gbufferPositionAt(px, uintBitsToFloat(g.x)), 1.0);
+    if (clip.w <= 0.0) return n;
+    n.depth = clip.w;
+    n.normal = unpackUnitVector(g.y);
+    return n;
+}
+
 void main()
 {
     ivec2 px = ivec2(gl_FragCoord.xy);
@@ -59,13 +85,15 @@ void main()
 
     vec4 clip = previousViewProjection * vec4(s.position, 1.0);
     if (clip.w <= 0.0) return; // behind the previous camera
-    float previousDepth = clip.w; // a perspective projection's w is the eye depth
     // The previous frame's pixel coordinates, texel centres at integers.
     // This pixel's G-buffer point lies at its centre plus the jitter: without it, the centre's own point.
     vec2 q = (clip.xy / clip.w * 0.5 + 0.5) * vec2(size) - 0.5 - currentJitter;
     q = mix(q, round(q), lessThan(abs(q - round(q)), vec2(kSnapPixels)));
     ivec2 base = ivec2(floor(q));
     vec2 f = q - vec2(base);
+
+    Neighbour around[9];
+    for (int i = 0; i < 9; ++i) around[i] = neighbourAt(px + ivec2(i % 3 - 1, i / 3 - 1), size);
 
     vec3 sum = vec3(0.0);
     float lengthSum = 0.0, weightSum = 0.0;
@@ -76,8 +104,17 @@ void main()
         if (w <= 0.0 || any(lessThan(t, ivec2(0))) || any(greaterThanEqual(t, size))) continue; // off screen
         uvec2 g = texelFetch(previousGeometry, t, 0).xy;
         if (g.x == 0u) continue; // the previous frame saw background there
-        if (abs(uintBitsToFloat(g.x) - previousDepth) > depthTolerance * previousDepth) continue;
-        if (dot(unpackUnitVector(g.y), s.normal) < 1.0 - normalTolerance) continue;
+        float tapDepth = uintBitsToFloat(g.x);
+        vec3 tapNormal = unpackUnitVector(g.y);
+        // The depths of the neighbours with the tap's normal span what a sample anywhere in this pixel sees
+        // of their surfaces (at a grazing angle one pixel spans more depth than the tolerance).
+        float lo = 1e30, hi = 0.0;
+        for (int k = 0; k < 9; ++k)
+            if (around[k].depth > 0.0 && dot(tapNormal, around[k].normal) >= 1.0 - normalTolerance) {
+                lo = min(lo, around[k].depth);
+                hi = max(hi, around[k].depth);
+            }
+        if (tapDepth < lo * (1.0 - depthTolerance) || tapDepth > hi * (1.0 + depthTolerance)) continue;
         vec4 h = texelFetch(history, t, 0);
         float n = texelFetch(historyLength, t, 0).r;
         if (!isFinite(h) || !(n >= 1.0)) continue; // a NaN or infinity in the history is dropped, not spread

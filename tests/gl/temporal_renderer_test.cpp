@@ -2,6 +2,7 @@
 // TechniqueInfo::temporalReuse draws new samples every moving frame and blends them with its reprojected
 // history; one that does not renders as without the parameter. The pass itself is checked in
 // temporal_reuse_test.cpp against closed forms (exact reprojection, disocclusion, clamp).
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -9,6 +10,7 @@
 
 #include "core/cornell.h"
 #include "core/image.h"
+#include "core/metrics.h"
 #include "gl/renderer.h"
 #include "tests/gl/gl_test_fixture.h"
 
@@ -109,6 +111,59 @@ TEST_F(TemporalRendererTest, UndeclaredTechniqueIsUntouched)
         off.renderFrame(false);
     }
     EXPECT_EQ(relativeChange(on.image(), off.image()), 0.0);
+}
+
+} // namespace
+} // namespace bounce
+
+namespace bounce {
+namespace {
+
+// temporal.direct on a still view drawn as moving frames (accumulate off): each frame takes the sample a
+// still frame of that index takes (its point in the pixel, the shadow maps' shift, its point on the area
+// light), and the reuse with alpha 0.01 weighs the first 16 frames equally, so the image is the mean of the
+// still frames 1..16: what a still view shows after 17 frames (the first is the moving form and not in the
+// mean). Compared on 4x4-pixel blocks, left out: the emitter's, and those with a pixel that saw background
+// in some frame (a sample on the background restarts the pixel's history: the box's outer edges, where
+// the reuse is known to fall short of the mean). Within 4% elsewhere (measured: 2.8% over 192 blocks).
+// Before the pass accepted the surfaces of a pixel's neighbours, every silhouette pixel inside the box
+// restarted its history whenever its jittered sample changed surface: 11.9% over the same blocks.
+TEST_F(TemporalRendererTest, DirectLightReuseOfAStillViewIsTheMeanOfTheStillFrames)
+{
+    const core::Scene scene = core::makeCornell("cornell-area");
+    const gl::ParamValues t(gl::findTechnique("direct").params);
+    gl::ParamValues moving = frameValues(true, 0.01), still = frameValues(false);
+    moving.setValue("temporal.direct", 1);
+    still.setValue("accumulate", 1);
+    gl::Renderer reused(scene, "direct", moving, t, 64, 64), accumulated(scene, "direct", still, t, 64, 64);
+    accumulated.renderFrame(false);
+    std::vector<bool> sawBackground(16 * 16, false);
+    for (int k = 1; k <= 16; ++k) {
+        reused.renderFrame(false);
+        accumulated.renderFrame(false);
+        ASSERT_EQ(reused.frame().sampler().sampleIndex(), accumulated.frame().sampler().stillIndex());
+        const std::vector<float> p = reused.frame().readPositions(); // GL rows: row 0 at the bottom
+        for (int y = 0; y < 64; ++y)
+            for (int x = 0; x < 64; ++x)
+                if (p[(std::size_t(63 - y) * 64 + std::size_t(x)) * 4 + 3] == 0.0f)
+                    sawBackground[std::size_t(y / 4) * 16 + std::size_t(x / 4)] = true;
+    }
+    const core::Image a = core::boxDownsample(reused.image(), 16, 16);
+    const core::Image b = core::boxDownsample(accumulated.image(), 16, 16);
+    double se = 0.0, sum = 0.0;
+    int blocks = 0;
+    for (int y = 0; y < 16; ++y)
+        for (int x = 0; x < 16; ++x) {
+            const glm::vec3 u = a.at(x, y), v = b.at(x, y);
+            if (std::max({v.x, v.y, v.z}) > 1.0f || sawBackground[std::size_t(y) * 16 + std::size_t(x)]) continue;
+            ++blocks;
+            se += glm::dot(u - v, u - v);
+            sum += v.x + v.y + v.z;
+        }
+    const double relative = std::sqrt(se / (blocks * 3.0)) / (sum / (blocks * 3.0));
+    std::printf("[ measured ] reused moving frames against the still mean, %d 4x4 blocks: %.4f\n", blocks, relative);
+    EXPECT_GT(blocks, 150);
+    EXPECT_LT(relative, 0.04);
 }
 
 } // namespace

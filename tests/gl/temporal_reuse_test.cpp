@@ -41,7 +41,7 @@ float pixelOnPlane(int height)
 
 // A plane z = 0 facing +z from x = -5 to kPlaneRight, y = -5..5, its shading normal `normal` (the face's, +z,
 // unless a test tilts it); with `occluder`, a small quad facing the camera at z = 1 in front of it.
-core::Scene planeScene(bool occluder, glm::vec3 normal = {0.0f, 0.0f, 1.0f})
+core::Scene planeScene(bool occluder, glm::vec3 normal = {0.0f, 0.0f, 1.0f}, float occluderShift = 0.0f)
 {
     core::Scene s;
     s.name = "temporal-plane";
@@ -61,7 +61,9 @@ core::Scene planeScene(bool occluder, glm::vec3 normal = {0.0f, 0.0f, 1.0f})
         box.name = "occluder";
         // 0.25 m x 0.5 m at 1 m from the camera: columns 8..15 and rows 8..23 of a 64x32 view, its edges on
         // pixel boundaries, so that no pixel centre sits on one.
-        testing::addQuad(box, {-0.75f, -0.25f, 1}, {-0.5f, -0.25f, 1}, {-0.5f, 0.25f, 1}, {-0.75f, 0.25f, 1});
+        const float d = occluderShift;
+        testing::addQuad(box, {-0.75f + d, -0.25f, 1}, {-0.5f + d, -0.25f, 1}, {-0.5f + d, 0.25f, 1},
+                         {-0.75f + d, 0.25f, 1});
         s.meshes.push_back(box);
     }
     s.camera = core::Camera{};
@@ -274,6 +276,41 @@ TEST_F(TemporalReuseTest, DisoccludedPixelsTakeNoHistory)
         }
     EXPECT_EQ(disoccluded, 8 * 16) << "the occluder's pixels";
     EXPECT_GT(kept, 1000);
+}
+
+// 3. An edge moves by one pixel (the occluder 1/32 m, one pixel at 1 m, to the right; the same camera): the
+// column it now covers sees the occluder where the previous frame saw the plane, the column it left sees the
+// plane where the previous frame saw the occluder. Each of them has both surfaces in its 3x3 neighbourhood,
+// as a silhouette pixel has when its jittered samples land on either side, and keeps its history:
+// 5 + (1 - 5) / 2 = 3 at every pixel. (Tested against the pixel's own surface alone, those two columns took
+// none: 1.)
+TEST_F(TemporalReuseTest, SurfaceOfANeighbourKeepsTheHistory)
+{
+    const core::Scene before = planeScene(true), after = planeScene(true, {0.0f, 0.0f, 1.0f}, 1.0f / 32.0f);
+    gl::Frame first(before, smallFrame(64, 32)), second(after, smallFrame(64, 32));
+    gl::PassTimers timers;
+    gl::TemporalReuse reuse(noClamp());
+    gl::Texture t = makeSignal(64, 32);
+    renderGeometry(first, planeCamera(0.0f), timers);
+    const std::vector<float> was = first.readPositions();
+    upload(t, constantSignal(was, 5.0f, 0.0f));
+    reuse.apply(first, {&t}, timers);
+    renderGeometry(second, planeCamera(0.0f), timers);
+    const std::vector<float> positions = second.readPositions();
+    upload(t, constantSignal(positions, 1.0f, 0.0f));
+    reuse.apply(second, {&t}, timers);
+    const std::vector<float> out = t.readFloats(0, 4);
+    int changed = 0, wrong = 0;
+    for (int y = 0; y < 32; ++y)
+        for (int x = 0; x < 64; ++x) {
+            const std::size_t i = at(x, y, 64);
+            if (positions[i + 3] == 0.0f) continue;
+            changed += (was[i + 2] > 0.5f) != (positions[i + 2] > 0.5f);
+            wrong += out[i] != 3.0f;
+            EXPECT_EQ(out[i], 3.0f) << x << "," << y;
+        }
+    EXPECT_EQ(changed, 2 * 16) << "one column covered, one uncovered, 16 rows each";
+    EXPECT_EQ(wrong, 0);
 }
 
 // 3. The same point under a shading normal turned by more than the tolerance is another surface: no
