@@ -256,6 +256,23 @@ std::string raysMarkdown(const std::vector<SceneRays>& rays)
     return md.str();
 }
 
+// A scene's still runs: the table of errors, the per-pass GPU ms, the counters and the Pareto front.
+void stillTables(std::ostringstream& md, const std::vector<const nlohmann::json*>& recs, const BenchConfig& config)
+{
+    md << "\n| technique | parameters | size | light paths | ms | rel. RMSE (own) | rel. RMSE (full) |";
+    for (const std::string& p : config.compareTo) md << " rel. RMSE (" << p << ") |";
+    md << " rel. RMSE of the frame's direct light (direct) | SSIM (own) | rel. RMSE vs baseline (indirect) | "
+          "flicker "
+          "|\n|---|---|---|---|---:|---:|---:|";
+    for (std::size_t i = 0; i < config.compareTo.size(); ++i) md << "---:|";
+    md << "---:|---:|---|---:|\n";
+    for (const nlohmann::json* rec : recs) tableRow(md, *rec, config.compareTo);
+    md << "\n### per-pass GPU ms\n\n";
+    passTable(md, recs);
+    counterTable(md, recs);
+    paretoTable(md, recs);
+}
+
 std::string markdownText(const BenchConfig& config, const std::vector<BenchRow>& rows, const gl::ContextInfo& context,
                          const std::vector<std::string>& notes)
 {
@@ -276,19 +293,9 @@ std::string markdownText(const BenchConfig& config, const std::vector<BenchRow>&
         std::vector<const nlohmann::json*> recs, paths;
         for (const BenchRow& r : rows)
             if (r.scene == sceneName) (r.record.contains("sequence") ? paths : recs).push_back(&r.record);
-        md << "## " << sceneName
-           << "\n\n| technique | parameters | size | light paths | ms | rel. RMSE (own) | rel. RMSE (full) |";
-        for (const std::string& p : config.compareTo) md << " rel. RMSE (" << p << ") |";
-        md << " rel. RMSE of the frame's direct light (direct) | SSIM (own) | rel. RMSE vs baseline (indirect) | "
-              "flicker "
-              "|\n|---|---|---|---|---:|---:|---:|";
-        for (std::size_t i = 0; i < config.compareTo.size(); ++i) md << "---:|";
-        md << "---:|---:|---|---:|\n";
-        for (const nlohmann::json* rec : recs) tableRow(md, *rec, config.compareTo);
-        md << "\n### per-pass GPU ms\n\n";
-        passTable(md, recs);
-        counterTable(md, recs);
-        paretoTable(md, recs);
+        md << "## " << sceneName << "\n";
+        // A scene of camera-path runs alone has no still table.
+        if (!recs.empty()) stillTables(md, recs, config);
         if (!paths.empty()) pathTable(md, paths);
         md << "\n";
     }
