@@ -18,6 +18,7 @@
 #include "core/gltf_io.h"
 #include "core/image.h"
 #include "core/metrics.h"
+#include "tests/app/image_figures.h"
 #include "tests/app/run_command.h"
 #include "tests/app/test_backend.h"
 #include "tests/core/gltf_bad_cases.h"
@@ -402,16 +403,7 @@ bounce::core::Image withoutEmitters(bounce::core::Image image, const std::vector
     return image;
 }
 
-// sqrt(mean (a - r)^2) / mean(r) over every value, in double: the relative RMSE, written here again.
-double relativeRmseOf(const bounce::core::Image& a, const bounce::core::Image& r)
-{
-    double se = 0.0, sum = 0.0;
-    for (std::size_t i = 0; i < a.rgb.size(); ++i) {
-        se += (double(a.rgb[i]) - r.rgb[i]) * (double(a.rgb[i]) - r.rgb[i]);
-        sum += r.rgb[i];
-    }
-    return std::sqrt(se / double(a.rgb.size())) / (sum / double(a.rgb.size()));
-}
+using bounce::testing::relativeRmseOf;
 
 // `bounce bench` on a tiny config: the four files, one row per scene x run, and the figures in them. Each
 // error is computed again here from the same references (`bounce reference` with the bench's settings:

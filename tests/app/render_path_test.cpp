@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/image.h"
+#include "tests/app/image_figures.h"
 #include "tests/app/run_command.h"
 #include "tests/app/test_backend.h"
 
@@ -220,15 +221,7 @@ TEST(RenderPath, RefusesBadPathsAndStillOptionsWritingNothing)
 
 namespace {
 
-double relativeRmseOf(const bounce::core::Image& a, const bounce::core::Image& r)
-{
-    double se = 0.0, sum = 0.0;
-    for (std::size_t i = 0; i < a.rgb.size(); ++i) {
-        se += (double(a.rgb[i]) - r.rgb[i]) * (double(a.rgb[i]) - r.rgb[i]);
-        sum += r.rgb[i];
-    }
-    return std::sqrt(se / double(a.rgb.size())) / (sum / double(a.rgb.size()));
-}
+using bounce::testing::relativeRmseOf;
 
 // The flicker as the issue defines it: the RMS of the change of the error image over the references' mean.
 double flickerOf(const bounce::core::Image& a, const bounce::core::Image& ra, const bounce::core::Image& b,

@@ -152,6 +152,31 @@ gl::TemporalReuseSettings noClamp()
     return s;
 }
 
+// Two frames of the plane camera through one pass without the clamp: `before`'s G-buffer with the signal 5
+// on its geometry, then `after`'s with 1. The positions each frame saw (GL rows) and the output.
+struct TwoFrames {
+    std::vector<float> was, positions, out;
+};
+
+TwoFrames fiveThenOne(const core::Scene& before, const core::Scene& after)
+{
+    gl::Frame first(before, smallFrame(64, 32)), second(after, smallFrame(64, 32));
+    gl::PassTimers timers;
+    gl::TemporalReuse reuse(noClamp());
+    gl::Texture t = makeSignal(64, 32);
+    TwoFrames r;
+    renderGeometry(first, planeCamera(0.0f), timers);
+    r.was = first.readPositions();
+    upload(t, constantSignal(r.was, 5.0f, 0.0f));
+    reuse.apply(first, {&t}, timers);
+    renderGeometry(second, planeCamera(0.0f), timers);
+    r.positions = second.readPositions();
+    upload(t, constantSignal(r.positions, 1.0f, 0.0f));
+    reuse.apply(second, {&t}, timers);
+    r.out = t.readFloats(0, 4);
+    return r;
+}
+
 // 1. A still camera and a signal that does not change: every frame's output is the signal itself, exactly
 // (the history is the pixel's own texel, in its own neighbourhood, and h + (c - h) w is h when c = h), on a
 // scene with walls at many depths and normals and at a size that is no power of two.
@@ -248,23 +273,8 @@ TEST_F(TemporalReuseTest, WholePixelMoveReprojectsExactly)
 // it: 5 + (1 - 5) / 2 = 3.
 TEST_F(TemporalReuseTest, DisoccludedPixelsTakeNoHistory)
 {
-    const core::Scene with = planeScene(true), without = planeScene(false);
-    gl::Frame before(with, smallFrame(64, 32)), after(without, smallFrame(64, 32));
-    gl::PassTimers timers;
-    gl::TemporalReuse reuse(noClamp());
-    gl::Texture t = makeSignal(64, 32);
-
-    renderGeometry(before, planeCamera(0.0f), timers);
-    const std::vector<float> was = before.readPositions();
-    upload(t, constantSignal(was, 5.0f, 0.0f));
-    reuse.apply(before, {&t}, timers);
-
-    renderGeometry(after, planeCamera(0.0f), timers);
-    const std::vector<float> positions = after.readPositions();
-    upload(t, constantSignal(positions, 1.0f, 0.0f));
-    reuse.apply(after, {&t}, timers);
-    const std::vector<float> out = t.readFloats(0, 4);
-
+    const TwoFrames f = fiveThenOne(planeScene(true), planeScene(false));
+    const std::vector<float>&was = f.was, &positions = f.positions, &out = f.out;
     int disoccluded = 0, kept = 0;
     for (int y = 0; y < 32; ++y)
         for (int x = 0; x < 64; ++x) {
@@ -286,20 +296,8 @@ TEST_F(TemporalReuseTest, DisoccludedPixelsTakeNoHistory)
 // none: 1.)
 TEST_F(TemporalReuseTest, SurfaceOfANeighbourKeepsTheHistory)
 {
-    const core::Scene before = planeScene(true), after = planeScene(true, {0.0f, 0.0f, 1.0f}, 1.0f / 32.0f);
-    gl::Frame first(before, smallFrame(64, 32)), second(after, smallFrame(64, 32));
-    gl::PassTimers timers;
-    gl::TemporalReuse reuse(noClamp());
-    gl::Texture t = makeSignal(64, 32);
-    renderGeometry(first, planeCamera(0.0f), timers);
-    const std::vector<float> was = first.readPositions();
-    upload(t, constantSignal(was, 5.0f, 0.0f));
-    reuse.apply(first, {&t}, timers);
-    renderGeometry(second, planeCamera(0.0f), timers);
-    const std::vector<float> positions = second.readPositions();
-    upload(t, constantSignal(positions, 1.0f, 0.0f));
-    reuse.apply(second, {&t}, timers);
-    const std::vector<float> out = t.readFloats(0, 4);
+    const TwoFrames f = fiveThenOne(planeScene(true), planeScene(true, {0.0f, 0.0f, 1.0f}, 1.0f / 32.0f));
+    const std::vector<float>&was = f.was, &positions = f.positions, &out = f.out;
     int changed = 0, wrong = 0;
     for (int y = 0; y < 32; ++y)
         for (int x = 0; x < 64; ++x) {
@@ -320,19 +318,8 @@ TEST_F(TemporalReuseTest, NormalChangeBeyondToleranceTakesNoHistory)
     const core::Scene flat = planeScene(false);
     for (float cosine : {0.8f, 0.95f}) {
         SCOPED_TRACE(cosine);
-        const core::Scene turned = planeScene(false, {0.0f, std::sqrt(1.0f - cosine * cosine), cosine});
-        gl::Frame before(flat, smallFrame(64, 32)), after(turned, smallFrame(64, 32));
-        gl::PassTimers timers;
-        gl::TemporalReuse reuse(noClamp());
-        gl::Texture t = makeSignal(64, 32);
-        renderGeometry(before, planeCamera(0.0f), timers);
-        upload(t, constantSignal(before.readPositions(), 5.0f, 0.0f));
-        reuse.apply(before, {&t}, timers);
-        renderGeometry(after, planeCamera(0.0f), timers);
-        const std::vector<float> positions = after.readPositions();
-        upload(t, constantSignal(positions, 1.0f, 0.0f));
-        reuse.apply(after, {&t}, timers);
-        const std::vector<float> out = t.readFloats(0, 4);
+        const TwoFrames f = fiveThenOne(flat, planeScene(false, {0.0f, std::sqrt(1.0f - cosine * cosine), cosine}));
+        const std::vector<float>&positions = f.positions, &out = f.out;
         const float expected = cosine < 0.9f ? 1.0f : 3.0f;
         int plane = 0, wrong = 0;
         for (std::size_t i = 0; i < out.size(); i += 4)
