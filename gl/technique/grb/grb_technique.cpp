@@ -282,12 +282,7 @@ TechniqueInfo grbTechniqueInfo()
         choiceParam("kbuffer", {"auto", "stencil", "atomic", "peel"}, 0,
                     "capture: stencil routing (the paper), image atomics, depth peeling (reference); auto: "
                     "stencil where a start-up probe finds it exact, else atomic"),
-        k,
-        size,
-        samples,
-        density,
-        texels,
-        interleaved,
+        k, size, samples, density, texels, interleaved,
         choiceParam("finalGlossy", {"auto", "on", "off"}, 0,
                     "Sec. 5.3 final glossy bounce towards the eye (auto: where the scene is glossy); restarts "
                     "on camera moves"),
