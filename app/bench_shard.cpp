@@ -124,13 +124,15 @@ json taskListJson(const BenchConfig& config, const std::vector<BenchTask>& tasks
 {
     json list = json::array();
     for (const BenchTask& t : tasks)
-        list.push_back({{"index", t.index},
-                        {"id", t.id},
-                        {"kind", kindName(t.kind)},
-                        {"scene", config.sceneNames[t.scene]},
-                        {"technique", t.technique},
-                        {"params", t.params},
-                        {"row", t.kind == BenchTask::Kind::Reference ? json(nullptr) : json(t.row)}});
+        list.push_back(
+            {{"index", t.index},
+             {"id", t.id},
+             {"kind", kindName(t.kind)},
+             {"scene", config.sceneNames[t.scene]},
+             {"technique", t.technique},
+             {"params", t.params},
+             {"row",
+              t.kind == BenchTask::Kind::Reference || t.kind == BenchTask::Kind::Rays ? json(nullptr) : json(t.row)}});
     return list;
 }
 
@@ -254,7 +256,12 @@ int runBenchShard(const BenchConfig& config, const ShardRun& run)
                        {"glVersion", info.version},
                        {"platform", info.platform}};
         removeDeadStaging(run.out / "staging", t.id, host);
-        if (t.kind == BenchTask::Kind::Reference) {
+        if (t.kind == BenchTask::Kind::Rays) {
+            json figures = json::object();
+            for (const RayThroughput& f : measureRayThroughput(config.scenes[t.scene], config.rays, 3, 0))
+                figures[f.kind] = encodeDoubles(f.toJson());
+            record["rays"] = figures;
+        } else if (t.kind == BenchTask::Kind::Reference) {
             // Into the shared cache (ref/: concurrent writers each rename a whole file); the renders that
             // compare with it write it into images/ beside themselves.
             referenceImage(config.scenes[t.scene], config.sceneNames[t.scene], t.technique, t.width, t.height,
@@ -324,6 +331,7 @@ int mergeBenchShards(const std::vector<fs::path>& dirs, const fs::path& out)
     config.warmup = report.at("warmup");
     config.frames = report.at("frames");
     std::vector<BenchRow> rows;
+    std::vector<SceneRays> rays;
     std::vector<std::string> missing;
     for (const json& t : manifest.at("tasks")) {
         const std::string id = t.at("id");
@@ -334,7 +342,15 @@ int mergeBenchShards(const std::vector<fs::path>& dirs, const fs::path& out)
                               (stale.count(id) ? ", its record is of other sources" : ""));
             continue;
         }
-        if (t.at("kind") != "reference") rows.push_back(rowFrom(records[id].at("row")));
+        const json& record = records[id];
+        if (t.at("kind") == "rays") {
+            SceneRays scene{t.at("scene").get<std::string>(), {}};
+            for (const auto& [kind, figures] : record.at("rays").items())
+                scene.figures.push_back(RayThroughput::fromJson(kind, decodeDoubles(figures)));
+            rays.push_back(scene);
+        } else if (t.at("kind") != "reference") {
+            rows.push_back(rowFrom(record.at("row")));
+        }
     }
 
     fs::create_directories(out / "images");
@@ -369,7 +385,7 @@ int mergeBenchShards(const std::vector<fs::path>& dirs, const fs::path& out)
     gl::ContextInfo context;
     context.renderer = joinedText(renderers);
     context.platform = joinedText(platforms);
-    writeBenchReport(out, config, rows, {}, context, notes);
+    writeBenchReport(out, config, rows, rays, context, notes);
     const int rc = finishBenchReport(out, rows);
     std::printf("merged %zu of %zu tasks from %zu folder(s), source %s\n", total - missing.size(), total, dirs.size(),
                 hash.c_str());

@@ -67,6 +67,7 @@ const char* kindName(BenchTask::Kind kind)
     case BenchTask::Kind::Reference: return "reference";
     case BenchTask::Kind::Render: return "render";
     case BenchTask::Kind::PathTracer: return "path-tracer";
+    case BenchTask::Kind::Rays: return "rays";
     }
     return "?";
 }
@@ -133,6 +134,16 @@ std::vector<BenchTask> benchTasks(const BenchConfig& config)
     }
     std::vector<BenchTask> tasks = references;
     tasks.insert(tasks.end(), rows.begin(), rows.end());
+    // The "rays" table, measured after the renders as a one-machine run does: a task per scene.
+    if (config.rays > 0)
+        for (std::size_t si = 0; si < config.sceneNames.size(); ++si) {
+            BenchTask t;
+            t.kind = BenchTask::Kind::Rays;
+            t.scene = si;
+            t.technique = "ray-casting";
+            t.params = "rays=" + std::to_string(config.rays);
+            tasks.push_back(t);
+        }
     // A config may hold the same run twice: the second is another task (its own row and images).
     std::map<std::string, int> occurrences;
     for (std::size_t i = 0; i < tasks.size(); ++i) {

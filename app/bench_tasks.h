@@ -3,7 +3,8 @@
 // The list is a function of the config alone: the same config gives the same list, in the same order and
 // with the same ids, on every machine. References come first (the renders read them from the shared
 // cache; one that is not there yet is computed by the render that needs it), then per scene the path
-// tracer's rows and the renders, in the order of a one-machine run's rows.
+// tracer's rows and the renders, in the order of a one-machine run's rows, and last, when the config has
+// "rays", the ray-casting table's measurement of each scene (GPU against Embree).
 #pragma once
 
 #include <cstddef>
@@ -15,13 +16,14 @@
 namespace bounce::app {
 
 struct BenchTask {
-    enum class Kind { Reference, Render, PathTracer };
+    enum class Kind { Reference, Render, PathTracer, Rays };
     std::size_t index = 0; // in the list
     std::string id;        // 16 hex digits: a hash of what the task computes (taskKey())
     Kind kind = Kind::Render;
     std::size_t scene = 0;   // into config.sceneNames
-    std::string technique;   // the technique; "path-tracer"; a reference's light paths
-    std::string params;      // settingsText() of a render; "spp=N" of the path tracer; a reference's size
+    std::string technique;   // the technique; "path-tracer"; a reference's light paths; "ray-casting"
+    std::string params;      // settingsText() of a render; "spp=N" of the path tracer; a reference's size;
+                             // "rays=N" of the ray-casting table
     std::size_t setting = 0; // Render: into config.settings
     int width = 0, height = 0;
     int spp = 0;         // PathTracer

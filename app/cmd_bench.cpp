@@ -71,13 +71,13 @@ const char* kUsage =
     "\n"
     "On a cluster or several machines (README, \"The study\"; scripts/slurm/):\n"
     "  --list-tasks  print the config's tasks, one per line: INDEX ID KIND SCENE TECHNIQUE PARAMS (tab-separated;\n"
-    "                KIND reference, render or path-tracer; ID a hash of what the task computes), references\n"
+    "                KIND reference, render, path-tracer or rays; ID a hash of what the task computes), references\n"
     "                first; the same config gives the same list everywhere\n"
     "  --shard I/N   run the tasks whose index modulo N is I (0 <= I < N) into DIR, which all shards share:\n"
     "                DIR/manifest.json, DIR/tasks/ID.json per task (written after its images), DIR/images/.\n"
     "                A task with a record of the same sources is skipped, so a run resubmitted resumes. Under\n"
     "                a Slurm array, without --shard: I = SLURM_ARRAY_TASK_ID - SLURM_ARRAY_TASK_MIN (over the\n"
-    "                step), N = SLURM_ARRAY_TASK_COUNT. The shards write no report and skip \"rays\".\n"
+    "                step), N = SLURM_ARRAY_TASK_COUNT. The shards write no report; --merge does.\n"
     "  --merge DIR...  read every record of the DIRs and write into --out OUT what a one-machine run writes;\n"
     "                a task without a record is named in report.md and makes the merge exit with status 1;\n"
     "                rows of different GL renderers are on Pareto fronts of their own, and report.md says so\n";
@@ -122,8 +122,6 @@ int cmdBench(const Args& args)
     const bool sharded = o.has("shard") ? (shard = parseShard(o.get("shard")), true) : slurmShard(shard);
     const BenchConfig config = readBenchConfig(o.get("config"), o.get("cache"), o.has("full"));
     if (sharded) {
-        if (config.rays > 0)
-            std::printf("note: the config's \"rays\" table is not measured by shards (a one-machine run has it)\n");
         return runBenchShard(
             config, {o.get("config"), o.has("full"), o.get("out"), shard, o.get("backend", "egl"), o.has("roofline")});
     }

@@ -99,6 +99,19 @@ nlohmann::json RayThroughput::toJson() const
             {"hitFraction", hitFraction}};
 }
 
+RayThroughput RayThroughput::fromJson(const std::string& kind, const nlohmann::json& j)
+{
+    RayThroughput f;
+    f.kind = kind;
+    f.rays = j.at("rays");
+    f.embreeRaysPerS = j.at("embreeRaysPerS");
+    f.computeRaysPerS = j.at("gpuComputeRaysPerS");
+    f.fragmentRaysPerS = j.at("gpuFragmentRaysPerS");
+    f.agreement = j.at("sameTriangle");
+    f.hitFraction = j.at("hitFraction");
+    return f;
+}
+
 std::vector<RayThroughput> measureRayThroughput(const core::Scene& scene, int requested, int repeat, int threads)
 {
     if (threads <= 0) threads = int(std::max(1u, std::thread::hardware_concurrency()));

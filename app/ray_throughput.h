@@ -24,6 +24,7 @@ struct RayThroughput {
     double hitFraction = 0.0; // fraction of rays that hit anything (Embree)
 
     nlohmann::json toJson() const;
+    static RayThroughput fromJson(const std::string& kind, const nlohmann::json& j); // toJson()'s inverse
 };
 
 // Coherent and incoherent figures for about `rays` rays (the nearest square), the median of `repeat`

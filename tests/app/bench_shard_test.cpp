@@ -64,9 +64,10 @@ std::vector<std::vector<std::string>> taskLines(const std::string& output)
     return lines;
 }
 
-// Two renders, a sweep and the path tracer on one scene, at 16x16, one frame: seconds on llvmpipe.
+// Two renders, a sweep, the path tracer and the ray-casting table on one scene, at 16x16, one frame:
+// seconds on llvmpipe.
 const char* kTinyConfig = R"({"size": "16x16", "warmup": 0, "frames": 1, "reference": {"spp": 16},
-    "scenes": ["cornell-spot"], "pathTracerSpp": [4],
+    "scenes": ["cornell-spot"], "pathTracerSpp": [4], "rays": 1024,
     "runs": [{"technique": "direct"}, {"technique": "rsm", "sweep": {"vpls": [4, 16]}}]})";
 
 TEST(BenchShard, TaskListIsTheSameEveryTimeWithAnIdPerTask)
@@ -79,8 +80,9 @@ TEST(BenchShard, TaskListIsTheSameEveryTimeWithAnIdPerTask)
     ASSERT_EQ(a.status, 0) << a.output;
     EXPECT_EQ(a.output, b.output);
     const auto lines = taskLines(a.output);
-    // References: own light paths (direct, onebounce-novis), full, direct for the frame's direct light.
-    ASSERT_EQ(lines.size(), 3u + 1u + 3u) << a.output;
+    // References: own light paths (direct, onebounce-novis), full, direct for the frame's direct light;
+    // the path tracer, three renders; the ray-casting table.
+    ASSERT_EQ(lines.size(), 3u + 1u + 3u + 1u) << a.output;
     std::set<std::string> ids;
     bool renders = false;
     for (std::size_t i = 0; i < lines.size(); ++i) {
@@ -90,13 +92,15 @@ TEST(BenchShard, TaskListIsTheSameEveryTimeWithAnIdPerTask)
         ids.insert(lines[i][1]);
         EXPECT_EQ(lines[i][3], "cornell-spot");
         const std::string kind = lines[i][2];
-        EXPECT_TRUE(kind == "reference" || kind == "render" || kind == "path-tracer") << kind;
+        EXPECT_TRUE(kind == "reference" || kind == "render" || kind == "path-tracer" || kind == "rays") << kind;
         if (kind != "reference") renders = true;
         EXPECT_FALSE(renders && kind == "reference") << "references first:\n" << a.output;
     }
     EXPECT_EQ(ids.size(), lines.size()) << "an id per task:\n" << a.output;
-    EXPECT_EQ(lines.back()[4], "rsm");
-    EXPECT_NE(lines.back()[5].find("vpls=16"), std::string::npos) << a.output;
+    EXPECT_EQ(lines[6][4], "rsm");
+    EXPECT_NE(lines[6][5].find("vpls=16"), std::string::npos) << a.output;
+    EXPECT_EQ(lines.back()[2], "rays");
+    EXPECT_EQ(lines.back()[5], "rays=1024");
 
     // One run's frames changed: its id changes, the others' do not.
     std::string other = kTinyConfig;
@@ -206,7 +210,7 @@ TEST(BenchShard, TwoShardsAndAMergeGiveTheRecordsOfOneMachine)
     EXPECT_NE(s1.output.find("shard 1/2"), std::string::npos) << s1.output;
 
     const json manifest = json::parse(text(shards / "manifest.json"));
-    ASSERT_EQ(manifest["tasks"].size(), 7u);
+    ASSERT_EQ(manifest["tasks"].size(), 8u);
     EXPECT_EQ(manifest["sourceHash"].get<std::string>().size(), 16u);
     EXPECT_EQ(manifest["config"]["pathTracerSpp"], json::array({4}));
     for (const json& t : manifest["tasks"]) {
@@ -239,6 +243,16 @@ TEST(BenchShard, TwoShardsAndAMergeGiveTheRecordsOfOneMachine)
             EXPECT_TRUE(fs::exists(merged / (id.get<std::string>() + ".js"))) << paths;
     }
     EXPECT_EQ(text(merged / "report.md").find("Incomplete"), std::string::npos);
+    // The ray-casting table, a task of its own: the same rays cast, the same triangles found.
+    const json raysA = json::parse(text(d / "whole" / "rays.json"));
+    const json raysB = json::parse(text(merged / "rays.json"));
+    ASSERT_EQ(raysA.size(), 1u);
+    ASSERT_EQ(raysB.size(), 1u);
+    EXPECT_EQ(raysB[0]["scene"], "cornell-spot");
+    for (const char* kind : {"coherent", "incoherent"})
+        for (const char* key : {"rays", "sameTriangle", "hitFraction"})
+            EXPECT_EQ(raysB[0][kind][key], raysA[0][kind][key]) << kind << " " << key;
+    EXPECT_NE(text(merged / "report.md").find("GPU ray casting against Embree"), std::string::npos);
 
     // Run again: every task of the shard is done and skipped, its records untouched.
     const std::string firstId = manifest["tasks"][0]["id"];
@@ -274,7 +288,7 @@ TEST(BenchShard, TwoShardsAndAMergeGiveTheRecordsOfOneMachine)
     EXPECT_EQ(partial.status, 1) << partial.output;
     EXPECT_NE(partial.output.find(lost["id"].get<std::string>()), std::string::npos) << partial.output;
     const std::string md = text(d / "partial" / "report.md");
-    EXPECT_NE(md.find("Incomplete: 1 of 7 tasks"), std::string::npos) << md;
+    EXPECT_NE(md.find("Incomplete: 1 of 8 tasks"), std::string::npos) << md;
     EXPECT_NE(md.find(lost["id"].get<std::string>()), std::string::npos) << md;
     EXPECT_EQ(json::parse(text(d / "partial" / "results.json")).size(), 3u);
 }
@@ -376,7 +390,7 @@ echo "$id"
         EXPECT_NE(log.find("shard " + std::to_string(shard) + "/3"), std::string::npos) << log;
     }
     const std::string merge = text(dir / "logs" / "merge-1002.log");
-    EXPECT_NE(merge.find("merged 7 of 7 tasks"), std::string::npos) << merge;
+    EXPECT_NE(merge.find("merged 8 of 8 tasks"), std::string::npos) << merge;
     EXPECT_EQ(json::parse(text(dir / "results.json")).size(), 4u);
     EXPECT_TRUE(fs::exists(dir / "report.html"));
 
