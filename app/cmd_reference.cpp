@@ -24,7 +24,7 @@ namespace {
 const char* kUsage =
     "usage: bounce reference --scene NAME|PATH --out FILE.exr (--spp N | --noise FRACTION)\n"
     "                        [--paths P] [--size WxH] [--seed N] [--threads N] [--max-depth N]\n"
-    "                        [--no-cache] [--cache-dir DIR] [--json FILE]\n"
+    "                        [--no-normal-maps] [--no-cache] [--cache-dir DIR] [--json FILE]\n"
     "                        [--camera POS:TARGET[:FOV]] [--light TYPE:key=value;...]...\n"
     "\n"
     "Renders the ground truth with the CPU path tracer (Embree) over the chosen light paths and writes it\n"
@@ -44,6 +44,8 @@ const char* kUsage =
     "  --seed       random seed; the image depends on it and the sample count only [1]\n"
     "  --threads    worker threads, 0 = all                                        [0]\n"
     "  --max-depth  most reflections per path for --paths full, 0 = no limit        [0]\n"
+    "  --no-normal-maps  shade with the vertex normals where the scene has glTF normal maps (the frame\n"
+    "               parameter normalMaps=0's counterpart; cached apart from the mapped images)\n"
     "  --no-cache   render even when the cache has it, and do not store the result\n"
     "  --cache-dir  cache folder                      [$BOUNCE_CACHE or ~/.cache/bounce/references]\n"
     "  --json       also write the run's record (settings, spp, noise, seconds, rays/s) here\n";
@@ -63,6 +65,7 @@ int cmdReference(const Args& args)
                      {"seed"},
                      {"threads"},
                      {"max-depth"},
+                     {"no-normal-maps", false},
                      {"no-cache", false},
                      {"cache-dir"},
                      {"json"},
@@ -125,6 +128,7 @@ int cmdReference(const Args& args)
     if (const std::string err = scene.validate(); !err.empty())
         throw UsageError(o.get("scene") + ": invalid scene:\n" + err);
     applySceneOptions(scene, o.get("camera"), o.all("light"));
+    if (o.has("no-normal-maps")) core::dropNormalMaps(scene);
 
     std::printf("reference: %s, paths %s, %dx%d, %s\n", o.get("scene").c_str(),
                 ref::lightPathsName(settings.paths).c_str(), settings.width, settings.height,

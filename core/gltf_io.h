@@ -8,14 +8,17 @@
 // - only TRIANGLES primitives are read; other modes are skipped with a warning on stderr;
 // - without NORMAL, flat normals are generated (each triangle gets its own three vertices);
 // - without material, a primitive gets glTF's default material (white, metallic 1, roughness 1);
-// - only the baseColor texture is decoded (8-bit RGBA, sRGB as stored, alpha kept for MASK materials),
-//   and only TEXCOORD_0 is read; a metallicRoughness texture's mean (blue: metallic, green: roughness)
+// - the baseColor texture is decoded (8-bit RGBA, sRGB as stored, alpha kept for MASK materials), and
+//   only TEXCOORD_0 is read; a metallicRoughness texture's mean (blue: metallic, green: roughness)
 //   multiplies metallicFactor and roughnessFactor (Bounce has no per-texel metallic or roughness);
-//   samplers, occlusion/emissive textures are ignored; normal textures too, with a warning: the
-//   rasteriser and the path tracer both shade with the interpolated vertex normals, so they still agree
-//   (normal maps would need tangents in Mesh, MikkTSpace for files without them, and a second, linear
-//   texture array and unit in the frame; Sponza's change only fine shading detail); alphaMode MASK is kept with its alphaCutoff and baseColorFactor's alpha, BLEND is drawn
-//   OPAQUE with a warning;
+//   samplers, occlusion/emissive textures are ignored; alphaMode MASK is kept with its alphaCutoff and
+//   baseColorFactor's alpha, BLEND is drawn OPAQUE with a warning;
+// - the normalTexture is decoded as it is stored (linear) with its scale, and a normal-mapped primitive's
+//   TANGENT is read (made unit, the handedness +-1, flipped with a mirroring node). Where the file has no
+//   usable tangents they are computed from TEXCOORD_0 (core::tangentsFromUvs: per-vertex sums, not
+//   MikkTSpace, so across uv seams they may differ from the authoring tool's), with a warning; without
+//   TEXCOORD_0 the map is ignored for that primitive, with a warning. A normal texture read through
+//   another TEXCOORD is ignored with a warning;
 // - the first perspective camera met in a depth-first walk of the scene is used. Without zfar (an
 //   infinite projection) zfar becomes twice the distance from the camera to the farthest corner of the
 //   scene's bounds, which keeps every surface inside the frustum with usable depth precision.

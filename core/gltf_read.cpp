@@ -311,7 +311,11 @@ private:
     template <int N>
     std::vector<glm::vec<N, float>> readVectors(int accessorIndex, const std::string& what) const
     {
-        const View v = view(accessorIndex, N == 2 ? TINYGLTF_TYPE_VEC2 : TINYGLTF_TYPE_VEC3, what);
+        const View v = view(accessorIndex,
+                            N == 2   ? TINYGLTF_TYPE_VEC2
+                            : N == 3 ? TINYGLTF_TYPE_VEC3
+                                     : TINYGLTF_TYPE_VEC4,
+                            what);
         std::vector<glm::vec<N, float>> out(v.count);
         for (std::size_t i = 0; i < v.count; ++i)
             for (int c = 0; c < N; ++c) out[i][c] = float(component(v, i, c));
@@ -339,11 +343,13 @@ private:
 
     void loadTextures()
     {
-        // Scene textures follow the order of the glTF images that serve as base colour, so that a
-        // written scene (one image per texture) loads back with the same indices.
+        // Scene textures follow the order of the glTF images that serve as base colour or normal map, so
+        // that a written scene (one image per texture) loads back with the same indices.
         std::set<int> used;
-        for (const tinygltf::Material& m : model_.materials)
+        for (const tinygltf::Material& m : model_.materials) {
             if (const int t = m.pbrMetallicRoughness.baseColorTexture.index; t >= 0) used.insert(imageOfTexture(t));
+            if (const int t = m.normalTexture.index; t >= 0) used.insert(imageOfTexture(t));
+        }
         used.erase(-1);
         for (int image : used) {
             textureOfImage_[image] = int(scene_.textures.size());
@@ -430,9 +436,7 @@ private:
 
     void loadMaterials()
     {
-        int normalTextures = 0;
         for (const tinygltf::Material& gm : model_.materials) {
-            if (gm.normalTexture.index >= 0) ++normalTextures;
             Material m;
             m.name = gm.name;
             const tinygltf::PbrMetallicRoughness& pbr = gm.pbrMetallicRoughness;
@@ -472,11 +476,24 @@ private:
             }
             m.doubleSided = gm.doubleSided;
             readAlphaMode(gm, m);
+            readNormalTexture(gm, m);
             scene_.materials.push_back(m);
         }
-        if (normalTextures > 0)
-            warn(std::to_string(normalTextures) +
-                 " material(s) have normal textures; both renderers shade with the vertex normals (gltf_io.h)");
+    }
+
+    void readNormalTexture(const tinygltf::Material& gm, Material& m)
+    {
+        if (gm.normalTexture.index < 0) return;
+        if (gm.normalTexture.texCoord != 0) {
+            warn("material '" + gm.name + "': its normal texture reads TEXCOORD_" +
+                 std::to_string(gm.normalTexture.texCoord) + ", and only TEXCOORD_0 is read; the map is ignored");
+            return;
+        }
+        const auto it = textureOfImage_.find(imageOfTexture(gm.normalTexture.index));
+        if (it == textureOfImage_.end()) return;
+        m.normalTexture = it->second;
+        m.normalScale = float(gm.normalTexture.scale);
+        if (!std::isfinite(m.normalScale)) fail(path_, "material '" + gm.name + "': normal texture scale is not finite");
     }
 
     // MASK cuts holes wherever alpha < alphaCutoff; BLEND (translucency) has no model in Bounce.
@@ -646,6 +663,11 @@ private:
         m.positions = readVectors<3>(attribute("POSITION"), "POSITION");
         if (attribute("NORMAL") >= 0) m.normals = readVectors<3>(attribute("NORMAL"), "NORMAL");
         if (attribute("TEXCOORD_0") >= 0) m.uvs = readVectors<2>(attribute("TEXCOORD_0"), "TEXCOORD_0");
+        // Tangents matter only under a normal map; elsewhere they are not read (nor hashed, nor uploaded).
+        const bool mapped = scene_.materials[m.material].hasNormalMap();
+        if (mapped && attribute("TANGENT") >= 0) m.tangents = readVectors<4>(attribute("TANGENT"), "TANGENT");
+        if (!m.tangents.empty() && m.tangents.size() != m.positions.size())
+            fail(path_, where + ": TANGENT and POSITION counts differ");
         if (!m.normals.empty() && m.normals.size() != m.positions.size())
             fail(path_, where + ": NORMAL and POSITION counts differ");
         if (!m.uvs.empty() && m.uvs.size() != m.positions.size())
@@ -672,6 +694,7 @@ private:
         });
         if (!normalsUsable) warn(where + ": zero or non-finite normals; flat normals generated instead");
         if (m.normals.empty() || !normalsUsable) makeFlat(m);
+        if (mapped) readyTangents(m, where);
         if (m.indices.empty()) return;
         scene_.meshes.push_back(std::move(m));
     }
@@ -681,9 +704,43 @@ private:
         for (glm::vec3& p : m.positions) p = glm::vec3(world * glm::dvec4(p, 1.0));
         const glm::dmat3 normalMatrix = glm::inverseTranspose(glm::dmat3(world));
         for (glm::vec3& n : m.normals) n = glm::vec3(normalMatrix * glm::dvec3(n));
+        // Tangents lie in the surface: they move with the model matrix, not the normals' inverse transpose.
+        // A mirroring transform flips the cross product of normal and tangent, so the handedness flips with
+        // it, and the bitangent keeps pointing where the image's +y does.
+        const bool mirrors = glm::determinant(glm::dmat3(world)) < 0.0;
+        for (glm::vec4& t : m.tangents)
+            t = glm::vec4(glm::vec3(glm::dmat3(world) * glm::dvec3(t)), mirrors ? -t.w : t.w);
         // A mirroring transform turns counter-clockwise triangles clockwise; swap two corners back.
-        if (glm::determinant(glm::dmat3(world)) < 0.0)
+        if (mirrors)
             for (std::size_t t = 0; t + 2 < m.indices.size(); t += 3) std::swap(m.indices[t + 1], m.indices[t + 2]);
+    }
+
+    // The tangents of a normal-mapped mesh: the file's, made unit with a handedness of +-1; where the file
+    // has none, or one that is zero or not finite, computed from the uvs; without uvs, none (the mesh
+    // shades with its vertex normals), with a warning each.
+    void readyTangents(Mesh& m, const std::string& where) const
+    {
+        bool usable = !m.tangents.empty();
+        for (glm::vec4& t : m.tangents) {
+            const glm::dvec3 xyz(t);
+            const double len2 = glm::dot(xyz, xyz);
+            if (!(std::isfinite(len2) && len2 > 1e-12 && std::isfinite(t.w))) {
+                usable = false;
+                break;
+            }
+            t = glm::vec4(glm::vec3(unitIfNeeded(xyz)), t.w < 0.0f ? -1.0f : 1.0f);
+        }
+        if (usable) return;
+        const bool had = !m.tangents.empty();
+        m.tangents.clear();
+        if (m.uvs.empty()) {
+            warn(where + ": a normal map without TEXCOORD_0; the mesh shades with its vertex normals");
+            return;
+        }
+        m.tangents = tangentsFromUvs(m);
+        warn(where + (had ? ": zero or non-finite tangents" : ": no TANGENT") +
+             "; tangents computed from TEXCOORD_0 (each vertex's sum over its triangles, not MikkTSpace: across "
+             "uv seams they may differ from the authoring tool's)");
     }
 
     // glTF: without normals, flat normals. Each triangle gets its own three vertices.
@@ -706,6 +763,7 @@ private:
                 flat.positions.push_back(m.positions[i]);
                 flat.normals.push_back(n);
                 if (!m.uvs.empty()) flat.uvs.push_back(m.uvs[i]);
+                if (!m.tangents.empty()) flat.tangents.push_back(m.tangents[i]);
             }
         }
         m = std::move(flat);

@@ -173,6 +173,10 @@ json materialJson(const Material& m, std::set<std::string>& extensions)
                 {"roughnessFactor", decimal(m.roughness)}};
     if (m.baseColorTexture >= 0) pbr["baseColorTexture"] = {{"index", m.baseColorTexture}};
     json j = {{"name", m.name}, {"pbrMetallicRoughness", pbr}};
+    if (m.hasNormalMap()) {
+        j["normalTexture"] = {{"index", m.normalTexture}};
+        if (m.normalScale != 1.0f) j["normalTexture"]["scale"] = decimal(m.normalScale);
+    }
     if (m.doubleSided) j["doubleSided"] = true;
     if (m.isMasked()) {
         j["alphaMode"] = "MASK";
@@ -249,6 +253,9 @@ void writeGltf(const Scene& scene, const std::string& path)
         if (!m.uvs.empty())
             attributes["TEXCOORD_0"] =
                 bin.addAccessor(m.uvs, "VEC2", TINYGLTF_COMPONENT_TYPE_FLOAT, kTargetArrayBuffer);
+        if (!m.tangents.empty())
+            attributes["TANGENT"] =
+                bin.addAccessor(m.tangents, "VEC4", TINYGLTF_COMPONENT_TYPE_FLOAT, kTargetArrayBuffer);
         const int indices =
             bin.addAccessor(m.indices, "SCALAR", TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, kTargetElementArrayBuffer);
         json primitive = {{"attributes", attributes}, {"indices", indices}, {"material", m.material}};

@@ -1,5 +1,6 @@
 #include "core/scene.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <sstream>
@@ -77,6 +78,59 @@ bool Scene::hasAlphaMask() const
     return false;
 }
 
+bool Scene::hasNormalMaps() const
+{
+    for (const Mesh& m : meshes)
+        if (m.material < materials.size() && materials[m.material].hasNormalMap() && !m.tangents.empty() &&
+            !m.uvs.empty())
+            return true;
+    return false;
+}
+
+void dropNormalMaps(Scene& scene)
+{
+    for (Material& m : scene.materials) m.normalTexture = -1;
+}
+
+std::vector<glm::vec4> tangentsFromUvs(const Mesh& mesh)
+{
+    const std::size_t n = mesh.positions.size();
+    std::vector<glm::dvec3> du(n, glm::dvec3(0.0)), dv(n, glm::dvec3(0.0));
+    if (mesh.uvs.size() == n)
+        for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+            const std::uint32_t i[3] = {mesh.indices[t], mesh.indices[t + 1], mesh.indices[t + 2]};
+            if (i[0] >= n || i[1] >= n || i[2] >= n) continue;
+            const glm::dvec3 e1 = glm::dvec3(mesh.positions[i[1]]) - glm::dvec3(mesh.positions[i[0]]);
+            const glm::dvec3 e2 = glm::dvec3(mesh.positions[i[2]]) - glm::dvec3(mesh.positions[i[0]]);
+            const glm::dvec2 w1 = glm::dvec2(mesh.uvs[i[1]]) - glm::dvec2(mesh.uvs[i[0]]);
+            const glm::dvec2 w2 = glm::dvec2(mesh.uvs[i[2]]) - glm::dvec2(mesh.uvs[i[0]]);
+            const double det = w1.x * w2.y - w2.x * w1.y;
+            if (!(std::abs(det) > 1e-20) || !std::isfinite(det)) continue; // no uv area: no direction
+            const glm::dvec3 sdir = (e1 * w2.y - e2 * w1.y) / det, tdir = (e2 * w1.x - e1 * w2.x) / det;
+            if (!std::isfinite(glm::dot(sdir, sdir)) || !std::isfinite(glm::dot(tdir, tdir))) continue;
+            for (std::uint32_t v : i) {
+                du[v] += sdir;
+                dv[v] += tdir;
+            }
+        }
+    std::vector<glm::vec4> tangents(n);
+    for (std::size_t v = 0; v < n; ++v) {
+        const glm::dvec3 normal = v < mesh.normals.size() ? glm::dvec3(mesh.normals[v]) : glm::dvec3(0, 0, 1);
+        glm::dvec3 t = du[v] - normal * glm::dot(normal, du[v]);
+        double len = glm::length(t);
+        if (!(len > 1e-12 * std::max(glm::length(du[v]), 1e-30)) || !std::isfinite(len)) {
+            // Any direction in the tangent plane: the axis least aligned with the normal, made orthogonal.
+            const glm::dvec3 a = std::abs(normal.x) < 0.5 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
+            t = a - normal * glm::dot(normal, a);
+            len = glm::length(t);
+        }
+        t /= len;
+        const double handedness = glm::dot(glm::cross(normal, t), -dv[v]) < 0.0 ? -1.0 : 1.0;
+        tangents[v] = glm::vec4(glm::vec3(t), float(handedness));
+    }
+    return tangents;
+}
+
 namespace {
 // A vector's length, then its elements' bytes.
 template <class T>
@@ -102,6 +156,8 @@ std::uint64_t Scene::contentHash() const
         addVector(f, m.uvs);
         addVector(f, m.indices);
         f.addBytesOf(m.material);
+        // Hashed only where present, so that the keys of scenes without normal maps stay what they were.
+        if (!m.tangents.empty()) addVector(f, m.tangents);
     }
     f.addBytesOf(materials.size());
     for (const Material& m : materials) {
@@ -116,6 +172,10 @@ std::uint64_t Scene::contentHash() const
         f.addBytesOf(m.alphaMode);
         f.addBytesOf(m.baseAlpha);
         f.addBytesOf(m.alphaCutoff);
+        if (m.hasNormalMap()) {
+            f.addBytesOf(m.normalTexture);
+            f.addBytesOf(m.normalScale);
+        }
     }
     f.addBytesOf(textures.size());
     for (const Texture& t : textures) {
@@ -177,6 +237,13 @@ std::string Scene::validate() const
                 err << where << ": non-finite (NaN/Inf) normal\n";
                 break;
             }
+        if (!m.tangents.empty() && m.tangents.size() != m.positions.size())
+            err << where << ": " << m.tangents.size() << " tangents for " << m.positions.size() << " positions\n";
+        for (const glm::vec4& t : m.tangents)
+            if (!finite(glm::vec3(t)) || !(t.w == 1.0f || t.w == -1.0f)) {
+                err << where << ": tangent not finite or its handedness not +-1\n";
+                break;
+            }
     }
     for (std::size_t i = 0; i < materials.size(); ++i) {
         const Material& m = materials[i];
@@ -185,6 +252,9 @@ std::string Scene::validate() const
             !std::isfinite(m.alphaCutoff))
             err << "material " << i << " ('" << m.name << "'): non-finite value\n";
         if (m.baseColorTexture >= int(textures.size())) err << "material " << i << ": texture index out of range\n";
+        if (m.normalTexture >= int(textures.size()))
+            err << "material " << i << ": normal texture index out of range\n";
+        if (!std::isfinite(m.normalScale)) err << "material " << i << " ('" << m.name << "'): non-finite normal scale\n";
     }
     for (std::size_t i = 0; i < lights.size(); ++i) {
         const Light& l = lights[i];

@@ -32,6 +32,11 @@ struct Material {
     AlphaMode alphaMode = AlphaMode::Opaque;
     float baseAlpha = 1.0f;   // baseColorFactor's alpha, multiplied by the texture's alpha
     float alphaCutoff = 0.5f; // MASK: alpha below this is a hole, in every pass and in the path tracer
+    // glTF's normalTexture: tangent-space normals (x right, y up in the image, z out of the surface, texels
+    // linear, 2 v - 1), whose x and y are multiplied by normalScale. It bends the shading normal of the
+    // meshes that carry tangents (Mesh::tangents), in the G-buffer and in the path tracer alike.
+    int normalTexture = -1; // index into Scene::textures, -1 when none
+    float normalScale = 1.0f;
 
     bool isEmissive() const { return emission.x > 0.0f || emission.y > 0.0f || emission.z > 0.0f; }
     // True when the GGX lobe contributes (a Lambertian-only scene needs no glossy resources).
@@ -40,10 +45,11 @@ struct Material {
     // glTF 3.9.4: a masked surface is "fully transparent" where baseColorFactor.a x texture alpha <
     // alphaCutoff, opaque elsewhere. textureAlpha is 1 without a texture.
     bool cutsOut(float textureAlpha) const { return isMasked() && baseAlpha * textureAlpha < alphaCutoff; }
+    bool hasNormalMap() const { return normalTexture >= 0; }
 };
 
-// An 8-bit RGBA image, colour sRGB-encoded, alpha linear (the mask of MASK materials); row 0 at the top
-// (glTF image convention).
+// An 8-bit RGBA image, row 0 at the top (glTF image convention). As a base colour its colour is
+// sRGB-encoded and its alpha linear (the mask of MASK materials); as a normal map every channel is linear.
 struct Texture {
     std::string name;
     int width = 0;
@@ -57,6 +63,9 @@ struct Mesh {
     std::vector<glm::vec3> positions;   // metres
     std::vector<glm::vec3> normals;     // unit length, one per position
     std::vector<glm::vec2> uvs;         // one per position, or empty
+    // glTF's TANGENT: one per position, or empty. xyz a unit tangent along +u, w = +-1 the handedness: the
+    // bitangent (the normal map's +y) is w cross(normal, tangent). Read only through a normal map.
+    std::vector<glm::vec4> tangents;
     std::vector<std::uint32_t> indices; // triangle list, counter-clockwise front faces
     std::uint32_t material = 0;         // index into Scene::materials
 };
@@ -122,6 +131,9 @@ struct Scene {
     bool hasEmission() const;
     bool hasGlossy() const;
     bool hasAlphaMask() const; // some mesh's material is alpha-masked
+    // Some mesh with uvs and tangents has a material with a normal texture: what the renderers bend
+    // normals on (a mesh without tangents shades with its vertex normals).
+    bool hasNormalMaps() const;
     // FNV-1a over geometry, materials, textures and lights (not the camera, not names): the key of
     // cached references together with camera, size and light paths.
     std::uint64_t contentHash() const;
@@ -130,7 +142,22 @@ struct Scene {
     // Moves every vertex, in place: positions[v] and normals[v] for the meshes' vertices in order (mesh by
     // mesh, as the GPU scene lays them out); the moved scene as a loader would give it. Throws
     // std::out_of_range, changing nothing, where the counts differ.
+    // Tangents stay as they were: the renderers orthogonalise them against the moved normals.
     void setVertices(const std::vector<glm::vec3>& positions, const std::vector<glm::vec3>& normals);
 };
+
+// The scene as it shades without normal maps (every material's normalTexture -1; the textures stay):
+// `bounce reference --no-normal-maps`, the path tracer's side of the frame parameter normalMaps=0. Its
+// contentHash differs from the scene's where the scene had a normal map, so cached references of the two
+// never mix.
+void dropNormalMaps(Scene& scene);
+
+// Tangents for a mesh with uvs and normals whose file has none: at each vertex the sum over its triangles
+// of dP/du and of dP/dv (Lengyel's), the first made orthogonal to the vertex normal and unit, the
+// handedness w chosen so that w cross(normal, tangent) points along -dP/dv, the image's +y (glTF's v grows
+// down the image; this is MikkTSpace's convention with v flipped, which the files' own tangents follow).
+// Not MikkTSpace itself: no splitting at uv seams. A vertex whose triangles span no uv area gets any unit
+// tangent orthogonal to its normal.
+std::vector<glm::vec4> tangentsFromUvs(const Mesh& mesh);
 
 } // namespace bounce::core

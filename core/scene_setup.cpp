@@ -104,6 +104,7 @@ void applyTransform(Scene& scene, std::size_t firstMesh, const json& t, const st
     for (std::size_t i = firstMesh; i < scene.meshes.size(); ++i) {
         for (glm::vec3& p : scene.meshes[i].positions) p = rotate * (scale * p) + translate;
         for (glm::vec3& n : scene.meshes[i].normals) n = rotate * n; // uniform scale keeps normals
+        for (glm::vec4& t : scene.meshes[i].tangents) t = glm::vec4(rotate * glm::vec3(t), t.w);
     }
     for (Light& l : scene.lights) {
         l.position = rotate * (scale * l.position) + translate;
@@ -117,7 +118,8 @@ void applyTransform(Scene& scene, std::size_t firstMesh, const json& t, const st
 
 void overrideMaterial(Material& m, const json& o, const std::string& where)
 {
-    allowOnly(o, where, {"baseColor", "metallic", "roughness", "specular", "emission", "baseColorTexture"});
+    allowOnly(o, where,
+              {"baseColor", "metallic", "roughness", "specular", "emission", "baseColorTexture", "normalTexture"});
     if (o.contains("baseColor")) m.baseColor = colour(o, where, "baseColor");
     if (o.contains("metallic")) m.metallic = std::clamp(number(o["metallic"], where, "metallic"), 0.0f, 1.0f);
     if (o.contains("roughness")) m.roughness = std::clamp(number(o["roughness"], where, "roughness"), 0.0f, 1.0f);
@@ -128,6 +130,11 @@ void overrideMaterial(Material& m, const json& o, const std::string& where)
             fail(where, "'baseColorTexture' can only be false (drop the texture)");
         m.baseColorTexture = -1;
     }
+    if (o.contains("normalTexture")) {
+        if (!o["normalTexture"].is_boolean() || o["normalTexture"].get<bool>())
+            fail(where, "'normalTexture' can only be false (drop the normal map)");
+        m.normalTexture = -1;
+    }
 }
 
 // Appends `add` to `scene`: meshes, materials and textures re-indexed, lights appended.
@@ -137,6 +144,7 @@ void merge(Scene& scene, Scene add)
     const int textureBase = int(scene.textures.size());
     for (Material& m : add.materials) {
         if (m.baseColorTexture >= 0) m.baseColorTexture += textureBase;
+        if (m.normalTexture >= 0) m.normalTexture += textureBase;
         scene.materials.push_back(std::move(m));
     }
     for (Texture& t : add.textures) scene.textures.push_back(std::move(t));

@@ -7,7 +7,8 @@
 //     "gltf": "../../../shared/assets/x/x.gltf",   optional: relative to the setup file
 //     "transform": {"scale": 0.01, "rotateYDeg": 90, "translate": [0, 0, 0]},   applied to the glTF
 //     "materials": {"*": {...}, "gold": {...}},    overrides of the glTF's materials by name ("*": all):
-//                  baseColor [r,g,b], metallic, roughness, specular, emission [r,g,b] W/(m^2 sr)
+//                  baseColor [r,g,b], metallic, roughness, specular, emission [r,g,b] W/(m^2 sr),
+//                  baseColorTexture false, normalTexture false (drop the texture, or the normal map)
 //     "floor": {"y": 0, "halfSize": 1, "albedo": [0.5, 0.5, 0.5]},   optional: a square floor, facing up
 //     "camera": {"position": [x,y,z], "target": [x,y,z], "yfovDeg": 40},
 //     "lights": [ ...lightFromJson... ]

@@ -97,6 +97,7 @@ EmbreeScene::EmbreeScene(const core::Scene& scene, bool withAllHits)
     rtcSetSceneBuildQuality(rtcScene_, RTC_BUILD_QUALITY_HIGH);
 
     triangleOffset_.assign(scene.meshes.size() + 1, 0);
+    const bool normalMaps = scene.hasNormalMaps();
     for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
         const core::Mesh& mesh = scene.meshes[m];
         const std::size_t triCount = mesh.indices.size() / 3;
@@ -119,6 +120,15 @@ EmbreeScene::EmbreeScene(const core::Scene& scene, bool withAllHits)
             r.uv2 = uvs ? mesh.uvs[i2] : glm::vec2(0.0f);
             r.mesh = std::uint32_t(m);
             triangles_.push_back(r);
+            if (normalMaps) {
+                TangentRecord tr;
+                if (!mesh.tangents.empty() && uvs) {
+                    tr.t0 = mesh.tangents[i0];
+                    tr.t1 = mesh.tangents[i1];
+                    tr.t2 = mesh.tangents[i2];
+                }
+                tangents_.push_back(tr);
+            }
         }
         if (triCount == 0) continue;
         RTCGeometry geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
@@ -155,6 +165,23 @@ EmbreeScene::EmbreeScene(const core::Scene& scene, bool withAllHits)
         lt.texels.resize(std::size_t(t.width) * std::size_t(t.height));
         for (std::size_t p = 0; p < lt.texels.size(); ++p)
             lt.texels[p] = {lut[t.rgba8[4 * p]], lut[t.rgba8[4 * p + 1]], lut[t.rgba8[4 * p + 2]]};
+    }
+    // Normal maps keep their bytes' linear values (v / 255), as the GPU's RGBA8 array does.
+    if (normalMaps) {
+        normalTextures_.resize(scene.textures.size());
+        for (const core::Material& m : scene.materials) {
+            if (!m.hasNormalMap() || std::size_t(m.normalTexture) >= scene.textures.size()) continue;
+            const core::Texture& t = scene.textures[std::size_t(m.normalTexture)];
+            LinearTexture& lt = normalTextures_[std::size_t(m.normalTexture)];
+            if (!lt.texels.empty() || t.width <= 0 || t.height <= 0 ||
+                t.rgba8.size() < std::size_t(t.width) * std::size_t(t.height) * 4)
+                continue;
+            lt.width = t.width;
+            lt.height = t.height;
+            lt.texels.resize(std::size_t(t.width) * std::size_t(t.height));
+            for (std::size_t p = 0; p < lt.texels.size(); ++p)
+                lt.texels[p] = glm::vec3(t.rgba8[4 * p], t.rgba8[4 * p + 1], t.rgba8[4 * p + 2]) / 255.0f;
+        }
     }
 }
 
@@ -233,7 +260,30 @@ SurfacePoint EmbreeScene::surface(const Hit& hit) const
     s.uv = w * r.uv0 + hit.u * r.uv1 + hit.v * r.uv2;
     s.triangle = global;
     s.material = &scene_.materials[scene_.meshes[r.mesh].material];
+    if (!tangents_.empty() && s.material->hasNormalMap()) {
+        const TangentRecord& t = tangents_[global];
+        s.ns = normalMapped(s.ns, w * t.t0 + hit.u * t.t1 + hit.v * t.t2, *s.material, s.uv);
+    }
     return s;
+}
+
+glm::vec3 EmbreeScene::normalMapped(const glm::vec3& n, const glm::vec4& tangent, const core::Material& m,
+                                    const glm::vec2& uv) const
+{
+    if (std::size_t(m.normalTexture) >= normalTextures_.size()) return n;
+    const LinearTexture& map = normalTextures_[std::size_t(m.normalTexture)];
+    if (map.texels.empty()) return n;
+    glm::vec3 t = glm::vec3(tangent) - n * glm::dot(n, glm::vec3(tangent));
+    const float t2 = glm::dot(t, t);
+    if (!(t2 > 1e-12f)) return n; // no tangent (a mesh without), or one along n
+    t /= std::sqrt(t2);
+    const glm::vec3 b = glm::cross(n, t) * (tangent.w < 0.0f ? -1.0f : 1.0f);
+    glm::vec3 v = core::bilinearRepeat(map.texels, map.width, map.height, uv) * 2.0f - 1.0f;
+    v.x *= m.normalScale;
+    v.y *= m.normalScale;
+    const glm::vec3 bent = v.x * t + v.y * b + v.z * n;
+    const float len2 = glm::dot(bent, bent);
+    return len2 > 1e-12f ? bent / std::sqrt(len2) : n;
 }
 
 glm::vec3 EmbreeScene::textureColor(const core::Material& m, const glm::vec2& uv) const

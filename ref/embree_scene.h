@@ -30,7 +30,8 @@ struct Hit {
 struct SurfacePoint {
     glm::vec3 p{0.0f};
     glm::vec3 ng{0.0f, 0.0f, 1.0f}; // unit normal of the triangle as stored: its front (counter-clockwise) side
-    glm::vec3 ns{0.0f, 0.0f, 1.0f}; // interpolated vertex normal, flipped onto ng's side when it is not
+    glm::vec3 ns{0.0f, 0.0f, 1.0f}; // interpolated vertex normal, flipped onto ng's side when it is not, then
+                                    // bent by the material's normal map (common/normal_map.glsl's formula)
     glm::vec2 uv{0.0f};
     std::uint32_t triangle = 0; // global triangle index (EmbreeScene::globalTriangle)
     const core::Material* material = nullptr;
@@ -82,6 +83,13 @@ private:
         int width = 0, height = 0;
         std::vector<glm::vec3> texels; // linear RGB
     };
+    // The tangents of a triangle's corners (core::Mesh::tangents), for its material's normal map.
+    struct TangentRecord {
+        glm::vec4 t0{0.0f}, t1{0.0f}, t2{0.0f};
+    };
+    // n bent by material m's normal map at uv with the interpolated tangent (n where nothing bends it).
+    glm::vec3 normalMapped(const glm::vec3& n, const glm::vec4& tangent, const core::Material& m,
+                           const glm::vec2& uv) const;
 
     const core::Scene& scene_;
     RTCDevice device_ = nullptr;
@@ -99,6 +107,10 @@ private:
     std::vector<std::uint32_t> triangleOffset_; // per mesh, plus the total at the end
     std::vector<TriangleRecord> triangles_;     // by global triangle index
     std::vector<LinearTexture> textures_;
+    // With normal maps only (core::Scene::hasNormalMaps): by global triangle, zero for meshes without
+    // tangents; and by scene texture, the normal maps' texels as they are stored (linear, 0..1).
+    std::vector<TangentRecord> tangents_;
+    std::vector<LinearTexture> normalTextures_;
     core::AlphaMasks masks_;
     bool withAllHits_ = false;
 };

@@ -9,9 +9,9 @@
 #   .device/gl/*.deb     Debian's GL vendor-neutral dispatch (libglvnd: libEGL.so.1, libOpenGL.so.0, ...):
 #                        the NVIDIA driver brings only its vendor libraries (libEGL_nvidia.so.0)
 #   .device/cache/       the references of bench/device.json and bench/device-1024x768.json (Embree, here)
-#   .device/assets/sponza  Crytek Sponza from ../shared/assets without its normal maps (Bounce shades with
-#                        vertex normals and never decodes them: each is replaced by one small JPEG so that
-#                        the folder fits; the scene, and so the reference cache key, is the same)
+#   .device/assets/sponza  Crytek Sponza from ../shared/assets with the images Bounce reads (base colours,
+#                        metallic-roughness, normal maps); any other is replaced by one small JPEG so that
+#                        the folder fits; the scene, and so the reference cache key, is the same
 #   .device/ROOT         the checkout's path here: the test binaries have it compiled in
 #   .device/COMMIT       the commit the binaries were built from (-dirty: with uncommitted changes)
 #
@@ -62,7 +62,7 @@ tar -C "$stage" -cJf .device/bin.tar.xz build lib
 # libglvnd from Debian, unpacked on the GPU machine only where it has no libEGL.so.1 of its own.
 (cd .device/gl && rm -f ./*.deb && apt-get download libegl1 libglvnd0 libopengl0 libgl1 libglx0 libgles2 >/dev/null)
 
-# Sponza without its normal maps.
+# Sponza with the images Bounce reads.
 python3 - "$assets/sponza" .device/assets/sponza <<'EOF'
 import json, os, shutil, sys
 src, dst = sys.argv[1], sys.argv[2]
@@ -73,6 +73,7 @@ for m in gltf["materials"]:
     pbr = m.get("pbrMetallicRoughness", {})
     for key in ("baseColorTexture", "metallicRoughnessTexture"):
         if key in pbr: kept.add(source(pbr[key]))
+    if "normalTexture" in m: kept.add(source(m["normalTexture"]))
 stand_in = min((os.path.join(src, i["uri"]) for n, i in enumerate(gltf["images"]) if n in kept), key=os.path.getsize)
 os.makedirs(dst, exist_ok=True)
 for name in os.listdir(src):

@@ -73,6 +73,7 @@ SceneProgram gbufferProgram(const core::Scene& scene, const GpuScene& gpu, const
 {
     std::vector<Define> defines = sceneDefines(scene, gpu);
     if (settings.gbufferConstantFragment) defines.push_back({"GBUFFER_CONSTANT_FRAGMENT", "1"});
+    if (settings.normalMaps && gpu.hasNormalMaps()) defines.push_back({"NORMAL_MAPS", "1"});
     SceneProgram p("gbuffer", "frame/gbuffer.vert", "frame/gbuffer.frag", defines);
     p.prepare(gpu);
     return p;
@@ -337,7 +338,8 @@ void Frame::renderGBuffer(PassTimers& timers)
     const double targetBytes = 8 + 8 + (t.specular ? 8 : 0) + (t.emission ? 8 : 0);
     PassCost cost;
     cost.flops = 50;                           // normalize, brdfParams, the back-face case, the octahedral map
-    cost.fetches = gpu_.hasTextures() ? 4 : 0; // one bilinear base-colour sample
+    // One bilinear base-colour sample, and one of the normal map where the pass bends normals.
+    cost.fetches = (gpu_.hasTextures() ? 4 : 0) + (settings_.normalMaps && gpu_.hasNormalMaps() ? 4 : 0);
     cost.bytesRead = 4;                        // depth test
     cost.bytesWritten = targetBytes + 4;
     const double pixels = double(t.width) * t.height;
@@ -364,6 +366,7 @@ void Frame::renderGBuffer(PassTimers& timers)
                                             (p[2][0] - 1.0f) / p[0][0], (p[2][1] - 1.0f) / p[1][1]));
     gpu_.materials().bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_MATERIALS);
     gpu_.baseColorTextures().bind(UNIT_BASE_COLOR);
+    gpu_.normalTextures().bind(UNIT_NORMAL_MAP);
     gbufferProgram_.draw(gpu_);
 }
 

@@ -12,7 +12,7 @@ namespace bounce::gl {
 
 namespace {
 
-// sRGB-encoded 8-bit texels resampled (box filter, or nearest when enlarging) to size x size.
+// 8-bit texels resampled (a box filter of the encoded bytes, or nearest when enlarging) to size x size.
 void resampleInto(const core::Texture& t, int size, std::uint8_t* out)
 {
     for (int y = 0; y < size; ++y)
@@ -31,10 +31,12 @@ void resampleInto(const core::Texture& t, int size, std::uint8_t* out)
 } // namespace
 
 GpuScene::GpuScene(const core::Scene& scene, int textureSize)
-    : vao_("scene"), hasAlphaMask_(scene.hasAlphaMask()), bounds_(scene.bounds())
+    : vao_("scene"), hasNormalMaps_(scene.hasNormalMaps()), hasAlphaMask_(scene.hasAlphaMask()),
+      bounds_(scene.bounds())
 {
     std::vector<Vertex> vertices;
     std::vector<std::uint32_t> indices;
+    std::vector<glm::vec4> tangents; // with normal maps only: one per vertex, zero where a mesh has none
     vertices.reserve(scene.triangleCount() * 3);
     int lightCount = 0;
     bool warned = false;
@@ -43,6 +45,11 @@ GpuScene::GpuScene(const core::Scene& scene, int textureSize)
         const auto base = std::uint32_t(vertices.size());
         for (std::size_t i = 0; i < m.positions.size(); ++i)
             vertices.push_back({m.positions[i], m.normals[i], m.uvs.empty() ? glm::vec2(0.0f) : m.uvs[i], m.material});
+        if (hasNormalMaps_) {
+            const bool mapped = !m.tangents.empty() && !m.uvs.empty();
+            for (std::size_t i = 0; i < m.positions.size(); ++i)
+                tangents.push_back(mapped ? m.tangents[i] : glm::vec4(0.0f));
+        }
         for (std::uint32_t idx : m.indices) indices.push_back(base + idx);
 
         // Every emitting triangle is an area light (up to kMaxAreaTriangles); those of one mesh share a
@@ -105,8 +112,16 @@ GpuScene::GpuScene(const core::Scene& scene, int textureSize)
     glEnableVertexArrayAttrib(vao_.id(), 3);
     glVertexArrayAttribIFormat(vao_.id(), 3, 1, GL_UNSIGNED_INT, GLuint(offsetof(Vertex, material)));
     glVertexArrayAttribBinding(vao_.id(), 3, 0);
+    if (hasNormalMaps_) {
+        tangents_ = Buffer::fromVector("scene.tangents", tangents);
+        glVertexArrayVertexBuffer(vao_.id(), 1, tangents_.id(), 0, sizeof(glm::vec4));
+        glEnableVertexArrayAttrib(vao_.id(), 4);
+        glVertexArrayAttribFormat(vao_.id(), 4, 4, GL_FLOAT, GL_FALSE, 0);
+        glVertexArrayAttribBinding(vao_.id(), 4, 1);
+    }
 
     // Textures: only what the scene uses; a scene without textures gets a 1x1 white layer to bind.
+    uploadNormalTextures(scene, textureSize);
     std::vector<int> layerOf(scene.textures.size(), -1);
     int layers = 0;
     for (const core::Material& m : scene.materials)
@@ -138,12 +153,43 @@ GpuScene::GpuScene(const core::Scene& scene, int textureSize)
         mats.push_back({glm::vec4(m.baseColor, m.metallic), glm::vec4(m.emission, m.roughness),
                         glm::vec4(m.specularColor, m.specular),
                         glm::ivec4(m.baseColorTexture >= 0 ? layerOf[m.baseColorTexture] : -1, m.doubleSided,
-                                   std::bit_cast<int>(cutoff), std::bit_cast<int>(m.baseAlpha))});
+                                   std::bit_cast<int>(cutoff), std::bit_cast<int>(m.baseAlpha)),
+                        glm::ivec4(m.hasNormalMap() ? normalLayerOf_[m.normalTexture] : -1,
+                                   std::bit_cast<int>(m.normalScale), 0, 0)});
     }
     if (mats.empty()) mats.push_back({});
     materials_ = Buffer::fromVector("scene.materials", mats);
 
     setLights(scene.lights);
+}
+
+void GpuScene::uploadNormalTextures(const core::Scene& scene, int textureSize)
+{
+    // The layers of the textures that serve as normal maps (a texture that is both a base colour and a
+    // normal map is uploaded twice: sRGB-decoded in the one array, linear in this one).
+    normalLayerOf_.assign(scene.textures.size(), -1);
+    int layers = 0;
+    if (hasNormalMaps_)
+        for (const core::Material& m : scene.materials)
+            if (m.hasNormalMap() && normalLayerOf_[m.normalTexture] < 0) normalLayerOf_[m.normalTexture] = layers++;
+    const int size = layers > 0 ? textureSize : 1;
+    normalTextures_ =
+        Texture::create2DArray("scene.normalTextures", GL_RGBA8, size, size, std::max(layers, 1));
+    // Box-filtered like the base colours: the mean of the encoded normals, which the shader makes unit
+    // again. A flat normal (0.5, 0.5, 1) fills the one texel of a scene without maps.
+    std::vector<std::uint8_t> texels(std::size_t(size) * size * 4, 255);
+    for (std::size_t t = 0; t < scene.textures.size(); ++t) {
+        if (normalLayerOf_[t] < 0) continue;
+        resampleInto(scene.textures[t], size, texels.data());
+        glTextureSubImage3D(normalTextures_.id(), 0, 0, 0, normalLayerOf_[t], size, size, 1, GL_RGBA,
+                            GL_UNSIGNED_BYTE, texels.data());
+    }
+    if (layers == 0) {
+        const std::uint8_t flat[4] = {128, 128, 255, 255};
+        glTextureSubImage3D(normalTextures_.id(), 0, 0, 0, 0, 1, 1, 1, GL_RGBA, GL_UNSIGNED_BYTE, flat);
+    }
+    normalTextures_.setFilter(GL_LINEAR, GL_LINEAR);
+    normalTextures_.setWrap(GL_REPEAT);
 }
 
 void GpuScene::placeEmitters(const std::vector<Vertex>& vertices)

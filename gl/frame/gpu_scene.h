@@ -1,6 +1,7 @@
 // core::Scene on the GPU: one vertex/index buffer for all meshes (world space), materials, lights and
 // area-light polygons in SSBOs (layouts in glsl/common/scene.glsl), base-colour textures (with the alpha
-// of masked materials) in one array.
+// of masked materials) in one array, and for a scene with normal maps (core::Scene::hasNormalMaps) the
+// normal textures in another and the vertices' tangents in a second vertex buffer.
 #pragma once
 
 #include <cstdint>
@@ -22,6 +23,7 @@ struct GpuMaterial {
     glm::vec4 emissionRoughness;
     glm::vec4 specularColorSpecular;
     glm::ivec4 flags;
+    glm::ivec4 normalMap{-1, 0, 0, 0}; // x: layer of normalTextures() or -1, y: the scale's float bits
 };
 // The lights' records on the GPU are the frame's: gl/frame/frame_lights.h.
 inline constexpr int kLightPoint = 0, kLightSpot = 1, kLightDirectional = 2, kLightArea = 3;
@@ -88,6 +90,12 @@ public:
     const Buffer& materials() const { return materials_; }
     const Texture& baseColorTextures() const { return textures_; }
     bool hasTextures() const { return hasTextures_; }
+    // Normal maps (core::Scene::hasNormalMaps): the normal textures, linear RGBA8, one layer each, and the
+    // tangents at vertex attribute 4 (glsl/frame/gbuffer.vert under NORMAL_MAPS; zero for the vertices of
+    // meshes without tangents, which then keep their vertex normals). Without normal maps the array is one
+    // texel and attribute 4 is off.
+    bool hasNormalMaps() const { return hasNormalMaps_; }
+    const Texture& normalTextures() const { return normalTextures_; }
     // Alpha-masked materials (glTF MASK): the passes that rasterise the scene compile their ALPHA_MASK
     // variant (glsl/common/base_color.glsl) only for such scenes, so other scenes pay no texture fetch
     // and no discard. Those variants read materials (SSBO_MATERIALS) and textures (UNIT_BASE_COLOR).
@@ -115,8 +123,12 @@ private:
     VertexArray vao_;
     Buffer vertices_, indices_, materials_, emissive_;
     int emissiveCount_ = 0;
-    Texture textures_;
+    Buffer tangents_;
+    std::vector<int> normalLayerOf_; // scene texture -> layer of normalTextures_, -1 when not a normal map
+    void uploadNormalTextures(const core::Scene& scene, int textureSize);
+    Texture textures_, normalTextures_;
     bool hasTextures_ = false;
+    bool hasNormalMaps_ = false;
     bool hasAlphaMask_ = false;
     // Ranges of the index buffer for glMultiDrawElements.
     struct IndexRanges {

@@ -82,7 +82,10 @@ const std::vector<ParamDecl>& frameParams()
          "a directional light's shadow views fitted to slices of the camera's frustum (cascaded shadow maps; "
          "still frames only), before its view of the whole scene (0: that view only)"},
         {"shadow.linear", ParamType::Bool, 1, 0, 1, "hardware bilinear depth comparison (off: hard shadow edges)"},
-        {"textures.size", ParamType::Int, 512, 1, 4096, "base-colour textures are resampled to this size"},
+        {"textures.size", ParamType::Int, 512, 1, 4096, "base-colour and normal textures are resampled to this size"},
+        {"normalMaps", ParamType::Bool, 1, 0, 1,
+         "the G-buffer's normals bent by the scene's glTF normal maps (off: the vertex normals; `bounce reference "
+         "--no-normal-maps` is the path tracer's side)"},
         choiceParam("shadow.area", {"hard", "pcss"}, 0,
                     "area lights' shadows while the view moves: hard from the emitter's centroid, or penumbrae "
                     "estimated by percentage-closer soft shadows (Fernando 2005); still frames sample the emitter "
@@ -123,6 +126,7 @@ FrameSettings frameSettingsFrom(const ParamValues& v, int width, int height)
     s.shadowFootprint = float(v.get("shadow.footprint"));
     s.pcfLinear = v.getBool("shadow.linear");
     s.textureSize = v.getInt("textures.size");
+    s.normalMaps = v.getBool("normalMaps");
     s.accumulate = v.getBool("accumulate");
     s.temporal = v.getBool("temporal");
     s.temporalAlpha = float(v.get("temporal.alpha"));

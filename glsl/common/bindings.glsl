@@ -51,6 +51,7 @@
 #define UNIT_TEMPORAL_HISTORY 34          // the pass's previous output for the signal
 #define UNIT_TEMPORAL_HISTORY_LENGTH 35   // frames that history averages (R32F)
 #define UNIT_TEMPORAL_PREVIOUS_GEOMETRY 36 // a copy of the previous frame's gGeometry (common/gbuffer.glsl)
+#define UNIT_NORMAL_MAP 37        // common/normal_map.glsl (NORMAL_MAPS): the scene's normal textures, one layer each
 
 // Uniform buffers (glBindBufferBase(GL_UNIFORM_BUFFER, slot)). Slot 0 and slots 2 and up belong to the
 // technique that binds them.

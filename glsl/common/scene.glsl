@@ -8,6 +8,7 @@ struct Material {
     vec4 specularColorSpecular;   // rgb, specular factor
     ivec4 flags;                  // x: texture layer or -1, y: double-sided, z: alpha cutoff (float bits,
                                   // 0 unless MASK), w: baseColorFactor alpha (float bits)
+    ivec4 normalMap;              // x: normal texture layer or -1, y: its scale (float bits)
 };
 
 const int kLightPoint = 0;

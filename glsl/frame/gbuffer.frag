@@ -1,12 +1,18 @@
 #version 450 core
 // The G-buffer pass: eye depth, normal and the material terms of the one BRDF at each pixel, in the layout
 // of common/gbuffer.glsl. SCENE_DIFFUSE_ONLY, SCENE_NO_EMITTERS: the scene has no glossy material, no
-// emitter, and the frame no such target (Frame::gbufferDefines).
+// emitter, and the frame no such target (Frame::gbufferDefines); NORMAL_MAPS: the scene has normal maps
+// and the frame parameter normalMaps is on (frame.cpp, gbufferProgram).
 #include "common/brdf.glsl"
 #include "common/packing.glsl"
 #include "common/scene.glsl"
 #include "common/base_color.glsl"
 #include "common/material.glsl"
+#ifdef NORMAL_MAPS
+#include "common/normal_map.glsl"
+in vec4 vTangent;
+flat in ivec4 vNormalMap;
+#endif
 
 in vec3 vNormal;
 in vec2 vUv;
@@ -66,8 +72,13 @@ void main()
 void main()
 {
     float eyeDepth = eyeDepthOnPlane(); // before any discard: the derivatives need the whole quad
-    Material m = Material(vBaseColorMetallic, vEmissionRoughness, vSpecularColorSpecular, vFlags);
+#ifdef NORMAL_MAPS
+    Material m = Material(vBaseColorMetallic, vEmissionRoughness, vSpecularColorSpecular, vFlags, vNormalMap);
+    vec3 n = normalMapped(normalize(vNormal), vTangent, vNormalMap, vUv);
+#else
+    Material m = Material(vBaseColorMetallic, vEmissionRoughness, vSpecularColorSpecular, vFlags, ivec4(-1, 0, 0, 0));
     vec3 n = normalize(vNormal);
+#endif
     bool doubleSided = m.flags.y != 0;
     vec4 texel = baseColorTexel(m, vUv);
 #ifdef ALPHA_MASK

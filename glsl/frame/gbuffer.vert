@@ -8,6 +8,11 @@ layout(location = 0) in vec3 inPosition;
 layout(location = 1) in vec3 inNormal;
 layout(location = 2) in vec2 inUv;
 layout(location = 3) in uint inMaterial;
+#ifdef NORMAL_MAPS
+layout(location = 4) in vec4 inTangent; // zero on meshes without tangents (gl/frame/gpu_scene.h)
+out vec4 vTangent;
+flat out ivec4 vNormalMap;
+#endif
 
 uniform mat4 viewProj;
 uniform mat4 view;
@@ -29,6 +34,10 @@ void main()
     vEmissionRoughness = m.emissionRoughness;
     vSpecularColorSpecular = m.specularColorSpecular;
     vFlags = m.flags;
+#ifdef NORMAL_MAPS
+    vTangent = inTangent;
+    vNormalMap = m.normalMap;
+#endif
     vEye = (view * vec4(inPosition, 1.0)).xyz;
     gl_Position = viewProj * vec4(inPosition, 1.0);
 }
