@@ -121,6 +121,12 @@ void checkParameters(const gl::TechniqueInfo& info, const std::vector<std::strin
         } catch (const UsageError& e) {
             refuse(key + "." + s.substr(0, s.find('=')), e.what());
         }
+    // The references are of the scene as loaded: a render without its normal maps would be held against
+    // images with them. A setup drops them for both renderers.
+    if (!f.getBool("normalMaps"))
+        refuse(key + ".normalMaps",
+               "the references see the scene's normal maps; to compare without them, give the run a scene setup "
+               "with \"materials\": {\"*\": {\"normalTexture\": false}} (core/scene_setup.h)");
 }
 
 // A camera-path run: the file (read relative to the current folder, as `bounce render --path` reads it),

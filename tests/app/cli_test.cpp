@@ -596,6 +596,9 @@ TEST(Cli, BenchConfigIsCheckedBeforeAnythingRuns)
         {R"({"runs": [{"technique": "rsm", "set": {"vpls": [1]}}]})", "runs[0].set.vpls",
          "number, a boolean or a string"},
         {R"({"runs": [{"technique": "direct", "set": {"shadow.size": 3}}]})", "runs[0].set.shadow.size", "range"},
+        // The references see the scene's normal maps: a run without them would be judged against them.
+        {R"({"runs": [{"technique": "direct", "set": {"normalMaps": 0}}]})", "runs[0].set.normalMaps",
+         "normalTexture\": false"},
         {R"({"runs": [{"technique": "rsm", "sweep": {"vpls": []}}]})", "runs[0].sweep.vpls", "non-empty list"},
         {R"({"runs": [{"technique": "rsm", "sweep": {}}]})", "runs[0].sweep", "non-empty object"},
         {R"({"runs": [{"technique": "rsm", "sweep": {"vpls": [16, -3]}}]})", "runs[0].sweep.vpls", "range"},
