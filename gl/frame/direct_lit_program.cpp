@@ -1,5 +1,6 @@
 #include "gl/frame/direct_lit_program.h"
 
+#include <algorithm>
 #include <utility>
 
 #include "gl/frame/frame.h"
@@ -16,11 +17,15 @@ Program& DirectLitProgram::forFrame(const Frame& frame)
     Program& program = forms_[still ? 1 : 0];
     if (!program) {
         std::vector<Define> d = defines_;
-        const std::vector<Define> light = frame.directLightDefines(still);
-        d.insert(d.end(), light.begin(), light.end());
+        // The program's own defines may hold one of the estimator's already (ALPHA_MASK, from the ray
+        // caster's): each once.
+        for (const Define& l : frame.directLightDefines(still))
+            if (std::none_of(d.begin(), d.end(), [&](const Define& o) { return o.name == l.name; })) d.push_back(l);
         program = Program::compute(still ? label_ + ".still" : label_, path_, d);
     }
     frame.setDirectLightUniforms(program);
+    // Still frames' shadow rays walk the frame's BVH (common/shadow.glsl, RAY_SHADOWS).
+    if (still && frame.settings().stillRayShadows) frame.rayCaster().bind();
     return program;
 }
 

@@ -47,6 +47,11 @@ std::vector<Define> directLightKinds(const GpuScene& gpu, const FrameSettings& s
     if (still && area) kinds.push_back({"AREA_SAMPLED", "1"});
     if (still && cascades) kinds.push_back({"SHADOW_CASCADES", "1"});
     if (!still && area && settings.areaPcss) kinds.push_back({"SHADOW_PCSS", "1"});
+    // Still frames' shadow rays (common/shadow.glsl): the BVH's walk, which skips the masks' holes.
+    if (still && settings.stillRayShadows && !gpu.lights().empty()) {
+        kinds.push_back({"RAY_SHADOWS", "1"});
+        if (gpu.hasAlphaMask()) kinds.push_back({"ALPHA_MASK", "1"});
+    }
     return kinds;
 }
 
@@ -54,7 +59,8 @@ std::vector<Define> directLightKinds(const GpuScene& gpu, const FrameSettings& s
 bool stillFormDiffers(const GpuScene& gpu, const FrameSettings& settings, bool areaLights)
 {
     const bool area = areaLights && int(gpu.lights().size()) > gpu.punctualLightCount();
-    return area || (settings.shadowCascades > 0 && hasLightOfType(gpu.lights(), kLightDirectional));
+    return area || (settings.shadowCascades > 0 && hasLightOfType(gpu.lights(), kLightDirectional)) ||
+           (settings.stillRayShadows && !gpu.lights().empty());
 }
 
 // The direct-light program: emission plus the estimator at every pixel. The still program is none where
@@ -459,6 +465,7 @@ void Frame::renderDirect(PassTimers& timers)
     bindGBuffer();
     bindSceneData();
     const bool still = sampler_.sampleIndex() > 0 && directStillProgram_;
+    if (still && settings_.stillRayShadows) rayCaster().bind();
     Program& program = still ? directStillProgram_ : directProgram_;
     program.set("cameraPosition", camera_.position);
     setDirectLightUniforms(program);

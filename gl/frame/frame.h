@@ -36,6 +36,7 @@ struct FrameSettings {
     bool pcfLinear = true;        // hardware 2x2 bilinear comparison
     bool accumulate = true;       // still frames jitter the pixel centre and are averaged (gl/renderer.h)
     bool areaPcss = false;        // moving frames: area lights' penumbrae estimated by PCSS (else hard, centroid)
+    bool stillRayShadows = true;  // still frames: shadow rays through the BVH (RAY_SHADOWS), not the shadow maps
     bool temporal = false;        // temporal reuse of the technique's indirect light (gl/renderer.h)
     float temporalAlpha = 0.2f;   //   its weight of the new frame (TemporalReuseSettings::alpha)
     bool temporalClamp = true;    //   its neighbourhood clamp (TemporalReuseSettings::clamp)

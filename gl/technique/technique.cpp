@@ -90,6 +90,11 @@ const std::vector<ParamDecl>& frameParams()
                     "area lights' shadows while the view moves: hard from the emitter's centroid, or penumbrae "
                     "estimated by percentage-closer soft shadows (Fernando 2005); still frames sample the emitter "
                     "either way"),
+        choiceParam("shadow.still", {"rays", "maps"}, 0,
+                    "the still frames' shadows: one ray per light and pixel through the frame's BVH towards the "
+                    "frame's point on the light (converges to the path tracer's, contacts included), or the "
+                    "shadow maps with a shifted tap per frame (a bias that scales with the texel stays); moving "
+                    "frames read the shadow maps either way"),
         {"accumulate", ParamType::Bool, 1, 0, 1,
          "while the view is still, sample each frame at another point inside the pixel and show the mean of "
          "the frames (converges to box-filtered pixels; the area lights' shadows to soft ones)"},
@@ -133,6 +138,7 @@ FrameSettings frameSettingsFrom(const ParamValues& v, int width, int height)
     s.temporalClamp = v.getBool("temporal.clamp");
     s.temporalDirect = v.getBool("temporal.direct");
     s.areaPcss = v.getChoice(frameParams(), "shadow.area") == "pcss";
+    s.stillRayShadows = v.getChoice(frameParams(), "shadow.still") == "rays";
     s.gbufferConstantFragment = v.getChoice(frameParams(), "gbuffer.fragment") == "constant";
     return s;
 }

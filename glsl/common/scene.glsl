@@ -2,6 +2,12 @@
 #ifndef BOUNCE_SCENE_GLSL
 #define BOUNCE_SCENE_GLSL
 
+// Still frames' shadow rays in a scene with alpha masks (common/shadow.glsl, RAY_SHADOWS) read the triangles'
+// materials and uvs: the geometry comes with the scene whichever file includes this one first.
+#if defined(RAY_SHADOWS) && defined(ALPHA_MASK) && !defined(SCENE_GEOMETRY)
+#define SCENE_GEOMETRY
+#endif
+
 struct Material {
     vec4 baseColorMetallic;       // rgb linear, metallic
     vec4 emissionRoughness;       // rgb W/(m^2 sr), roughness

@@ -6,6 +6,9 @@
 #define BOUNCE_SHADOW_GLSL
 
 #include "common/scene.glsl"
+#ifdef RAY_SHADOWS
+#include "common/raycast.glsl"
+#endif
 
 layout(binding = UNIT_SHADOW_MAPS) uniform sampler2DArrayShadow shadowMaps;
 uniform int pcfRadius;
@@ -170,9 +173,31 @@ float percentageCloserAt(int layer, vec3 p, vec3 n)
     return percentageCloser(clamp(s.xy, vec2(margin), vec2(scale - margin)), float(layer), s.z);
 }
 
+#ifdef RAY_SHADOWS
+// Still frames (RAY_SHADOWS, the frame parameter shadow.still=rays): the light's visibility from p by one
+// shadow ray through the frame's BVH (common/raycast.glsl), towards the light's position (for an emitting
+// mesh this still frame's point on it) or against a directional light's direction. Exact for the point the
+// frame samples, with no map's texel and no bias beyond a ray offset of 2e-4 of p's largest coordinate (at
+// least 0.2 mm), so that contact shadows converge as the still frames accumulate (issue 59).
+float rayVisibility(Light l, vec3 p, vec3 n)
+{
+    float offset = 2e-4 * max(max(abs(p.x), abs(p.y)), max(abs(p.z), 1.0));
+    vec3 origin = p + n * offset;
+    if (l.type == kLightDirectional) return anyHit(origin, -l.direction, 0.0, 3.0e38) ? 0.0 : 1.0;
+    vec3 d = l.position - origin;
+    float distance = length(d);
+    // Short of the light by as much as the offset: an emitter's point lies on its own triangle.
+    float tMax = distance - max(offset, 1e-4 * distance);
+    return tMax <= 0.0 || !anyHit(origin, d / distance, 0.0, tMax) ? 1.0 : 0.0;
+}
+#endif
+
 float shadowVisibility(Light l, vec3 p, vec3 n)
 {
     if (l.shadow.x < 0) return 1.0;
+#ifdef RAY_SHADOWS
+    return rayVisibility(l, p, n);
+#endif
     // One call of the filter whatever the light (a SIMD rasteriser such as llvmpipe runs every call site a
     // lane needs: two of them made cornell-spot's direct pass 20% slower).
     int layer = l.shadow.x;
