@@ -24,8 +24,6 @@ Program& DirectLitProgram::forFrame(const Frame& frame)
         program = Program::compute(still ? label_ + ".still" : label_, path_, d);
     }
     frame.setDirectLightUniforms(program);
-    // Still frames' shadow rays walk the frame's BVH (common/shadow.glsl, RAY_SHADOWS).
-    if (still && frame.settings().stillRayShadows) frame.rayCaster().bind();
     return program;
 }
 

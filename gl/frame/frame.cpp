@@ -439,6 +439,9 @@ void Frame::bindSceneData() const
     gpu_.bindGeometry();
     lights_.bind();
     shadows_.bind();
+    // The still frames' shadow rays walk the frame's BVH (common/shadow.glsl, RAY_SHADOWS): every pass that
+    // lights points with the frame's estimator binds the scene data, so it gets the BVH too.
+    if (settings_.stillRayShadows && !gpu_.lights().empty()) rayCaster().bind();
 }
 
 void Frame::drawFullscreen() const
@@ -465,7 +468,6 @@ void Frame::renderDirect(PassTimers& timers)
     bindGBuffer();
     bindSceneData();
     const bool still = sampler_.sampleIndex() > 0 && directStillProgram_;
-    if (still && settings_.stillRayShadows) rayCaster().bind();
     Program& program = still ? directStillProgram_ : directProgram_;
     program.set("cameraPosition", camera_.position);
     setDirectLightUniforms(program);

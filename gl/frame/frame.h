@@ -143,7 +143,8 @@ public:
     bool hasEmissionTarget() const { return bool(full_.emission); }
     // Binds materials (SSBO 0), lights (1), shadow views (2), area polygons (3), the scene's geometry
     // (vertices 4, indices 5, emissive triangles 6: glsl/common/scene.glsl with SCENE_GEOMETRY), shadow
-    // depth (unit 5) and the base-colour textures (unit 6).
+    // depth (unit 5) and the base-colour textures (unit 6); with shadow.still=rays the BVH of rayCaster() too
+    // (SSBO 18, 19), which the still frames' estimator walks.
     void bindSceneData() const;
     void drawFullscreen() const;
 
