@@ -493,7 +493,8 @@ private:
         if (it == textureOfImage_.end()) return;
         m.normalTexture = it->second;
         m.normalScale = float(gm.normalTexture.scale);
-        if (!std::isfinite(m.normalScale)) fail(path_, "material '" + gm.name + "': normal texture scale is not finite");
+        if (!std::isfinite(m.normalScale))
+            fail(path_, "material '" + gm.name + "': normal texture scale is not finite");
     }
 
     // MASK cuts holes wherever alpha < alphaCutoff; BLEND (translucency) has no model in Bounce.

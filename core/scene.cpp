@@ -252,9 +252,9 @@ std::string Scene::validate() const
             !std::isfinite(m.alphaCutoff))
             err << "material " << i << " ('" << m.name << "'): non-finite value\n";
         if (m.baseColorTexture >= int(textures.size())) err << "material " << i << ": texture index out of range\n";
-        if (m.normalTexture >= int(textures.size()))
-            err << "material " << i << ": normal texture index out of range\n";
-        if (!std::isfinite(m.normalScale)) err << "material " << i << " ('" << m.name << "'): non-finite normal scale\n";
+        if (m.normalTexture >= int(textures.size())) err << "material " << i << ": normal texture index out of range\n";
+        if (!std::isfinite(m.normalScale))
+            err << "material " << i << " ('" << m.name << "'): non-finite normal scale\n";
     }
     for (std::size_t i = 0; i < lights.size(); ++i) {
         const Light& l = lights[i];

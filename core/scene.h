@@ -60,9 +60,9 @@ struct Texture {
 // A triangle mesh in world space: node transforms are applied when the scene is built or loaded.
 struct Mesh {
     std::string name;
-    std::vector<glm::vec3> positions;   // metres
-    std::vector<glm::vec3> normals;     // unit length, one per position
-    std::vector<glm::vec2> uvs;         // one per position, or empty
+    std::vector<glm::vec3> positions; // metres
+    std::vector<glm::vec3> normals;   // unit length, one per position
+    std::vector<glm::vec2> uvs;       // one per position, or empty
     // glTF's TANGENT: one per position, or empty. xyz a unit tangent along +u, w = +-1 the handedness: the
     // bitangent (the normal map's +y) is w cross(normal, tangent). Read only through a normal map.
     std::vector<glm::vec4> tangents;

@@ -343,10 +343,10 @@ void Frame::renderGBuffer(PassTimers& timers)
     // scene has them specular (8) and emission (8); the depth test reads and writes 4.
     const double targetBytes = 8 + 8 + (t.specular ? 8 : 0) + (t.emission ? 8 : 0);
     PassCost cost;
-    cost.flops = 50;                           // normalize, brdfParams, the back-face case, the octahedral map
+    cost.flops = 50; // normalize, brdfParams, the back-face case, the octahedral map
     // One bilinear base-colour sample, and one of the normal map where the pass bends normals.
     cost.fetches = (gpu_.hasTextures() ? 4 : 0) + (settings_.normalMaps && gpu_.hasNormalMaps() ? 4 : 0);
-    cost.bytesRead = 4;                        // depth test
+    cost.bytesRead = 4; // depth test
     cost.bytesWritten = targetBytes + 4;
     const double pixels = double(t.width) * t.height;
     cost.bytesFixed = pixels * (targetBytes + 4) + 3.0 * gpu_.triangleCount() * kVertexBytes; // clears, vertices

@@ -31,8 +31,7 @@ void resampleInto(const core::Texture& t, int size, std::uint8_t* out)
 } // namespace
 
 GpuScene::GpuScene(const core::Scene& scene, int textureSize)
-    : vao_("scene"), hasNormalMaps_(scene.hasNormalMaps()), hasAlphaMask_(scene.hasAlphaMask()),
-      bounds_(scene.bounds())
+    : vao_("scene"), hasNormalMaps_(scene.hasNormalMaps()), hasAlphaMask_(scene.hasAlphaMask()), bounds_(scene.bounds())
 {
     std::vector<Vertex> vertices;
     std::vector<std::uint32_t> indices;
@@ -173,16 +172,15 @@ void GpuScene::uploadNormalTextures(const core::Scene& scene, int textureSize)
         for (const core::Material& m : scene.materials)
             if (m.hasNormalMap() && normalLayerOf_[m.normalTexture] < 0) normalLayerOf_[m.normalTexture] = layers++;
     const int size = layers > 0 ? textureSize : 1;
-    normalTextures_ =
-        Texture::create2DArray("scene.normalTextures", GL_RGBA8, size, size, std::max(layers, 1));
+    normalTextures_ = Texture::create2DArray("scene.normalTextures", GL_RGBA8, size, size, std::max(layers, 1));
     // Box-filtered like the base colours: the mean of the encoded normals, which the shader makes unit
     // again. A flat normal (0.5, 0.5, 1) fills the one texel of a scene without maps.
     std::vector<std::uint8_t> texels(std::size_t(size) * size * 4, 255);
     for (std::size_t t = 0; t < scene.textures.size(); ++t) {
         if (normalLayerOf_[t] < 0) continue;
         resampleInto(scene.textures[t], size, texels.data());
-        glTextureSubImage3D(normalTextures_.id(), 0, 0, 0, normalLayerOf_[t], size, size, 1, GL_RGBA,
-                            GL_UNSIGNED_BYTE, texels.data());
+        glTextureSubImage3D(normalTextures_.id(), 0, 0, 0, normalLayerOf_[t], size, size, 1, GL_RGBA, GL_UNSIGNED_BYTE,
+                            texels.data());
     }
     if (layers == 0) {
         const std::uint8_t flat[4] = {128, 128, 255, 255};

@@ -70,7 +70,8 @@ TEST(NormalMapIo, NormalTextureScaleAndTangentsComeBackAsWritten)
 {
     const Scene s = mappedPlane();
     std::string warnings;
-    const Scene back = roundTrip(s, [](json&) {}, &warnings);
+    const Scene back = roundTrip(
+        s, [](json&) {}, &warnings);
     EXPECT_EQ(warnings, "");
     ASSERT_EQ(back.materials.size(), 1u);
     EXPECT_EQ(back.materials[0].normalTexture, 0);

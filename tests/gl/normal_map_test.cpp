@@ -101,8 +101,7 @@ double lambert(glm::dvec3 normal, glm::vec3 towardsLight)
     return kAlbedo / core::kPi * std::max(0.0, glm::dot(normal, glm::normalize(glm::dvec3(towardsLight))));
 }
 
-core::Image glDirect(const core::Scene& scene, bool normalMaps, int frames = 1, int size = kSize,
-                     int textureSize = 512)
+core::Image glDirect(const core::Scene& scene, bool normalMaps, int frames = 1, int size = kSize, int textureSize = 512)
 {
     gl::ParamValues frameValues(gl::frameParams());
     frameValues.setValue("normalMaps", normalMaps ? 1 : 0);
@@ -140,8 +139,7 @@ void expectUniform(const core::Image& image, double want, const std::string& wha
             }
         }
     std::printf("[ measured ] %s: want %.5f, largest relative difference %.2e\n", what.c_str(), want, worst);
-    EXPECT_EQ(off, 0) << what << ": " << off << " channels more than 1% from " << want << " (largest " << worst
-                      << ")";
+    EXPECT_EQ(off, 0) << what << ": " << off << " channels more than 1% from " << want << " (largest " << worst << ")";
 }
 
 struct TiltCase {
@@ -158,18 +156,36 @@ constexpr float kLight = 0.5235988f; // 30 degrees: the light's, from the plane'
 // With the light 30 degrees off the normal towards the tilt, cos 10 degrees; away from it, cos 70; unbent,
 // cos 30. Each case tells one convention from its mirror image.
 const TiltCase kCases[] = {
-    {"towards the tangent", {std::sin(kTilt), 0.0f, std::cos(kTilt)}, {1, 0, 0, 1}, 1.0f,
+    {"towards the tangent",
+     {std::sin(kTilt), 0.0f, std::cos(kTilt)},
+     {1, 0, 0, 1},
+     1.0f,
      {std::sin(kLight), std::cos(kLight), 0.0f}},
-    {"towards the bitangent (-z for w = +1)", {0.0f, std::sin(kTilt), std::cos(kTilt)}, {1, 0, 0, 1}, 1.0f,
+    {"towards the bitangent (-z for w = +1)",
+     {0.0f, std::sin(kTilt), std::cos(kTilt)},
+     {1, 0, 0, 1},
+     1.0f,
      {0.0f, std::cos(kLight), -std::sin(kLight)}},
-    {"left-handed: the bitangent +z", {0.0f, std::sin(kTilt), std::cos(kTilt)}, {1, 0, 0, -1}, 1.0f,
+    {"left-handed: the bitangent +z",
+     {0.0f, std::sin(kTilt), std::cos(kTilt)},
+     {1, 0, 0, -1},
+     1.0f,
      {0.0f, std::cos(kLight), -std::sin(kLight)}},
-    {"scale 0.5", {std::sin(kTilt), 0.0f, std::cos(kTilt)}, {1, 0, 0, 1}, 0.5f,
+    {"scale 0.5",
+     {std::sin(kTilt), 0.0f, std::cos(kTilt)},
+     {1, 0, 0, 1},
+     0.5f,
      {std::sin(kLight), std::cos(kLight), 0.0f}},
-    {"scale 0: unbent", {std::sin(kTilt), 0.0f, std::cos(kTilt)}, {1, 0, 0, 1}, 0.0f,
+    {"scale 0: unbent",
+     {std::sin(kTilt), 0.0f, std::cos(kTilt)},
+     {1, 0, 0, 1},
+     0.0f,
      {std::sin(kLight), std::cos(kLight), 0.0f}},
     // Hard case: a tangent along the normal spans no tangent plane; nothing is bent (not NaN).
-    {"tangent along the normal: unbent", {std::sin(kTilt), 0.0f, std::cos(kTilt)}, {0, 1, 0, 1}, 1.0f,
+    {"tangent along the normal: unbent",
+     {std::sin(kTilt), 0.0f, std::cos(kTilt)},
+     {0, 1, 0, 1},
+     1.0f,
      {std::sin(kLight), std::cos(kLight), 0.0f}},
 };
 
@@ -182,7 +198,8 @@ TEST_F(NormalMapTest, TiltedMapGivesLambertOfTheBentNormalInBothRenderers)
         const core::Scene scene = mappedPlane(map, c.tangent, c.scale, c.towardsLight);
         const glm::dvec3 t = glm::dvec3(glm::vec3(c.tangent));
         const bool degenerate = std::abs(glm::dot(t, glm::dvec3(0, 1, 0))) > 0.999;
-        const glm::dvec3 bent = degenerate ? glm::dvec3(0, 1, 0) : bentNormal(map.rgba8.data(), t, c.tangent.w, c.scale);
+        const glm::dvec3 bent =
+            degenerate ? glm::dvec3(0, 1, 0) : bentNormal(map.rgba8.data(), t, c.tangent.w, c.scale);
         const double want = lambert(bent, c.towardsLight);
         SCOPED_TRACE(c.name);
         expectUniform(glDirect(scene, true), want, std::string("frame, ") + c.name);
@@ -231,10 +248,8 @@ TEST_F(NormalMapTest, RidgedPlaneMatchesThePathTracer)
     scene.camera.up = glm::normalize(glm::vec3(0.0f, 1.6f, -1.6f));
     scene.camera.yfovRad = 0.6f;
     const core::Image reference = core::boxDownsample(pathTracerDirect(scene, 64, kRidgeSize), 16, 16);
-    const core::Image mapped =
-        core::boxDownsample(glDirect(scene, true, 16, kRidgeSize, kMapSize), 16, 16);
-    const core::Image unbent =
-        core::boxDownsample(glDirect(scene, false, 16, kRidgeSize, kMapSize), 16, 16);
+    const core::Image mapped = core::boxDownsample(glDirect(scene, true, 16, kRidgeSize, kMapSize), 16, 16);
+    const core::Image unbent = core::boxDownsample(glDirect(scene, false, 16, kRidgeSize, kMapSize), 16, 16);
     const double error = core::relativeRmse(mapped, reference), unbentError = core::relativeRmse(unbent, reference);
     std::printf("[ measured ] ridged plane, 4x4-pixel blocks: mapped %.4f, unbent %.4f\n", error, unbentError);
     EXPECT_LT(error, 0.03);
