@@ -1,8 +1,9 @@
 // Contact shadows converge (issue 59): a box resting on a floor under a spot, the frame's still frames against
-// the path tracer's direct light along a column of pixels that runs up the floor, across the contact line and
-// up the box's shadowed face. With the still frames' shadow rays (shadow.still=rays, the default) every
-// sample lies within 2% of the lit floor's value; with the shadow maps' shifted taps (shadow.still=maps) the
-// map's bias lights a band along the contact that no count of frames removes, and the same comparison fails.
+// the path tracer's direct light along the columns of pixels that run up the floor, across the box's shadow
+// edge where it leaves the contact, and up the box's faces. With the still frames' shadow rays
+// (shadow.still=rays, the default) every sample lies within 2% of the lit floor's value; with the shadow maps'
+// shifted taps (shadow.still=maps) the map's normal offset and bias light a band along the contact that no
+// count of frames removes (up to 78% of the lit floor here), and the same comparison fails.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -21,7 +22,7 @@
 namespace bounce {
 namespace {
 
-constexpr int kSize = 32;
+constexpr int kSize = 64;
 
 // A 4 m floor, a 0.5 m box on it at the origin, a spot above and behind the box (its shadow falls towards
 // the camera's side, the contact in view), the camera low in front of the box's shadowed face.
@@ -55,10 +56,12 @@ core::Scene boxOnFloor()
     spot.innerConeRad = 0.5f;
     spot.outerConeRad = 0.7f;
     s.lights.push_back(spot);
-    s.camera.position = {0.1f, 0.35f, 1.4f};
-    s.camera.forward = glm::normalize(glm::vec3(0.0f, 0.0f, h) - s.camera.position);
+    // Close on the box's front corner: its lit +x face on the right, its shadowed +z face on the left, the
+    // floor below them with the box's shadow edge running from the corner towards the camera.
+    s.camera.position = {1.0f, 0.8f, 1.6f};
+    s.camera.forward = glm::normalize(glm::vec3(h, 0.05f, h) - s.camera.position);
     s.camera.up = glm::normalize(glm::cross(glm::cross(s.camera.forward, glm::vec3(0, 1, 0)), s.camera.forward));
-    s.camera.yfovRad = 0.5f;
+    s.camera.yfovRad = 0.3f;
     return s;
 }
 
@@ -71,16 +74,18 @@ core::Image stillFrames(const core::Scene& scene, const std::string& shadows, in
     return r.image();
 }
 
-// The largest difference along the image's middle column, over the lit floor's value (the column's
-// brightest reference sample).
-double worstAlongTheColumn(const core::Image& image, const core::Image& reference, double& lit)
+// The largest difference along the columns that cross the box's shadow edge where it leaves the contact
+// (the left half of the image's middle), each over its lit floor's value (the column's brightest reference
+// sample).
+double worstAcrossTheContact(const core::Image& image, const core::Image& reference)
 {
-    const int x = kSize / 2;
-    lit = 0.0;
-    for (int y = 0; y < kSize; ++y) lit = std::max(lit, double(reference.at(x, y).y));
     double worst = 0.0;
-    for (int y = 0; y < kSize; ++y)
-        worst = std::max(worst, std::abs(double(image.at(x, y).y) - double(reference.at(x, y).y)) / lit);
+    for (int x = kSize / 4; x < kSize / 2; ++x) {
+        double lit = 0.0;
+        for (int y = 0; y < kSize; ++y) lit = std::max(lit, double(reference.at(x, y).y));
+        for (int y = 0; y < kSize; ++y)
+            worst = std::max(worst, std::abs(double(image.at(x, y).y) - double(reference.at(x, y).y)) / lit);
+    }
     return worst;
 }
 
@@ -96,12 +101,10 @@ TEST_F(ContactShadowTest, StillFramesConvergeToThePathTracerAcrossTheContact)
     rs.seed = 3;
     rs.progress = false;
     const core::Image reference = ref::render(scene, scene.camera, rs).image;
-    double lit = 0.0;
-    const double rays = worstAlongTheColumn(stillFrames(scene, "rays", 256), reference, lit);
-    const double maps = worstAlongTheColumn(stillFrames(scene, "maps", 256), reference, lit);
-    std::printf("[ measured ] largest difference along the column over the lit floor (%.4f): rays %.4f, maps %.4f\n",
-                lit, rays, maps);
-    ASSERT_GT(lit, 0.0);
+    const double rays = worstAcrossTheContact(stillFrames(scene, "rays", 256), reference);
+    const double maps = worstAcrossTheContact(stillFrames(scene, "maps", 256), reference);
+    std::printf("[ measured ] largest difference across the contact over the lit floor: rays %.4f, maps %.4f\n", rays,
+                maps);
     EXPECT_LT(rays, 0.02);
     EXPECT_GT(maps, 0.02) << "the maps' bias must show, or this test could not tell the rays from them";
 }
