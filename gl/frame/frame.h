@@ -41,7 +41,7 @@ struct FrameSettings {
     float temporalAlpha = 0.2f;   //   its weight of the new frame (TemporalReuseSettings::alpha)
     bool temporalClamp = true;    //   its neighbourhood clamp (TemporalReuseSettings::clamp)
     bool temporalDirect = false;  //   with it, the direct light's reuse in moving frames (gl/renderer.h)
-    int textureSize = 512;        // base-colour and normal textures are resampled to this size
+    int textureSize = 512;        // base-colour textures are resampled to this size (normal maps keep theirs)
     bool normalMaps = true;       // the G-buffer's normals bent by the scene's normal maps (NORMAL_MAPS)
     // Profiling only (bench/sponza-gbuffer.json): the G-buffer pass with a fragment shader that writes
     // constants, to tell fragment work from vertex work and triangle setup. The images are wrong.

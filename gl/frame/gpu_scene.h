@@ -125,7 +125,7 @@ private:
     int emissiveCount_ = 0;
     Buffer tangents_;
     std::vector<int> normalLayerOf_; // scene texture -> layer of normalTextures_, -1 when not a normal map
-    void uploadNormalTextures(const core::Scene& scene, int textureSize);
+    void uploadNormalTextures(const core::Scene& scene);
     Texture textures_, normalTextures_;
     bool hasTextures_ = false;
     bool hasNormalMaps_ = false;

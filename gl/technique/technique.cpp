@@ -82,7 +82,8 @@ const std::vector<ParamDecl>& frameParams()
          "a directional light's shadow views fitted to slices of the camera's frustum (cascaded shadow maps; "
          "still frames only), before its view of the whole scene (0: that view only)"},
         {"shadow.linear", ParamType::Bool, 1, 0, 1, "hardware bilinear depth comparison (off: hard shadow edges)"},
-        {"textures.size", ParamType::Int, 512, 1, 4096, "base-colour and normal textures are resampled to this size"},
+        {"textures.size", ParamType::Int, 512, 1, 4096,
+         "base-colour textures are resampled to this size (normal maps keep their own, up to 2048)"},
         {"normalMaps", ParamType::Bool, 1, 0, 1,
          "the G-buffer's normals bent by the scene's glTF normal maps (off: the vertex normals; `bounce reference "
          "--no-normal-maps` is the path tracer's side)"},
