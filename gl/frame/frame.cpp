@@ -31,6 +31,13 @@ std::vector<Define> sceneDefines(const core::Scene& scene, const GpuScene& gpu)
     return d;
 }
 
+// The directional lights' cascades the still frames render and read: none where they cast shadow rays,
+// whose estimator reads no map (the moving frames and every other pass read the whole-scene view).
+int stillCascades(const FrameSettings& settings)
+{
+    return settings.stillRayShadows ? 0 : settings.shadowCascades;
+}
+
 // The defines of the frame's direct-light estimator (glsl/common/lighting.glsl, addDirectLight) for the kinds
 // of light the scene has: a loop over a kind the scene lacks still costs a masked pass through its body on a
 // SIMD rasteriser (llvmpipe), the polygon form factor of the emitting triangles most of all.
@@ -41,7 +48,7 @@ std::vector<Define> directLightKinds(const GpuScene& gpu, const FrameSettings& s
 {
     std::vector<Define> kinds;
     const bool area = areaLights && int(gpu.lights().size()) > gpu.punctualLightCount();
-    const bool cascades = settings.shadowCascades > 0 && hasLightOfType(gpu.lights(), kLightDirectional);
+    const bool cascades = stillCascades(settings) > 0 && hasLightOfType(gpu.lights(), kLightDirectional);
     if (gpu.punctualLightCount() > 0) kinds.push_back({"PUNCTUAL_LIGHTS", "1"});
     if (area) kinds.push_back({"AREA_LIGHTS", "1"});
     if (still && area) kinds.push_back({"AREA_SAMPLED", "1"});
@@ -59,7 +66,7 @@ std::vector<Define> directLightKinds(const GpuScene& gpu, const FrameSettings& s
 bool stillFormDiffers(const GpuScene& gpu, const FrameSettings& settings, bool areaLights)
 {
     const bool area = areaLights && int(gpu.lights().size()) > gpu.punctualLightCount();
-    return area || (settings.shadowCascades > 0 && hasLightOfType(gpu.lights(), kLightDirectional)) ||
+    return area || (stillCascades(settings) > 0 && hasLightOfType(gpu.lights(), kLightDirectional)) ||
            (settings.stillRayShadows && !gpu.lights().empty());
 }
 
@@ -98,7 +105,7 @@ Frame::Frame(const core::Scene& scene, const FrameSettings& settings)
       settings_(settings),
       camera_(scene.camera),
       gpu_(scene, settings.textureSize),
-      shadows_(gpu_, lights_, settings.shadowMapSize, settings.shadowCascades, settings.shadowFootprint),
+      shadows_(gpu_, lights_, settings.shadowMapSize, stillCascades(settings), settings.shadowFootprint),
       compositeFbo_("composite.fbo"),
       emptyVao_("fullscreen"),
       gbufferProgram_(gbufferProgram(scene, gpu_, settings)),

@@ -80,7 +80,7 @@ const std::vector<ParamDecl>& frameParams()
         {"shadow.pcf", ParamType::Int, 1, 0, 4, "PCF kernel radius in texels (0: one tap)"},
         {"shadow.cascades", ParamType::Int, 3, 0, 6,
          "a directional light's shadow views fitted to slices of the camera's frustum (cascaded shadow maps; "
-         "still frames only), before its view of the whole scene (0: that view only)"},
+         "still frames with shadow.still=maps only), before its view of the whole scene (0: that view only)"},
         {"shadow.linear", ParamType::Bool, 1, 0, 1, "hardware bilinear depth comparison (off: hard shadow edges)"},
         {"textures.size", ParamType::Int, 512, 1, 4096,
          "base-colour textures are resampled to this size (normal maps keep their own, up to 2048)"},

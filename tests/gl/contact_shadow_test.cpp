@@ -6,6 +6,7 @@
 // count of frames removes (up to 78% of the lit floor here), and the same comparison fails.
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <string>
 #include <utility>
@@ -25,9 +26,8 @@ namespace {
 
 constexpr int kSize = 64;
 
-// A 4 m floor, a 0.5 m box on it at the origin, a spot above and behind the box (its shadow falls towards
-// the camera's side, the contact in view), the camera low in front of the box's shadowed face.
-core::Scene boxOnFloor()
+// A scene of one Lambertian material of albedo 0.6, for the meshes the cases add.
+core::Scene whiteScene()
 {
     core::Scene s;
     core::Material white;
@@ -35,6 +35,26 @@ core::Scene boxOnFloor()
     white.baseColor = glm::vec3(0.6f);
     white.specular = 0.0f;
     s.materials.push_back(white);
+    return s;
+}
+
+// The path tracer's direct light at the scene's camera, kSize^2.
+core::Image directReference(const core::Scene& scene, int spp, std::uint64_t seed)
+{
+    ref::RenderSettings rs;
+    rs.paths = ref::LightPaths::Direct;
+    rs.width = rs.height = kSize;
+    rs.spp = spp;
+    rs.seed = seed;
+    rs.progress = false;
+    return ref::render(scene, scene.camera, rs).image;
+}
+
+// A 4 m floor, a 0.5 m box on it at the origin, a spot above and behind the box (its shadow falls towards
+// the camera's side, the contact in view), the camera low in front of the box's shadowed face.
+core::Scene boxOnFloor()
+{
+    core::Scene s = whiteScene();
     core::Mesh floor;
     floor.name = "floor";
     testing::addQuad(floor, {-2, 0, -2}, {-2, 0, 2}, {2, 0, 2}, {2, 0, -2});
@@ -115,13 +135,7 @@ class ContactShadowTest : public GlTest {};
 TEST_F(ContactShadowTest, StillFramesConvergeToThePathTracerAcrossTheContact)
 {
     const core::Scene scene = boxOnFloor();
-    ref::RenderSettings rs;
-    rs.paths = ref::LightPaths::Direct;
-    rs.width = rs.height = kSize;
-    rs.spp = 4096;
-    rs.seed = 3;
-    rs.progress = false;
-    const core::Image reference = ref::render(scene, scene.camera, rs).image;
+    const core::Image reference = directReference(scene, 4096, 3);
     const double rays = worstAcrossTheContact(stillFrames(scene, "rays", 256), reference);
     const double maps = worstAcrossTheContact(stillFrames(scene, "maps", 256), reference);
     std::printf("[ measured ] largest difference across the contact over the lit floor: rays %.4f, maps %.4f\n", rays,
@@ -138,12 +152,7 @@ TEST_F(ContactShadowTest, StillFramesConvergeToThePathTracerAcrossTheContact)
 // band past the terminator (here 7.5% of the image's mean on 4x4-pixel blocks, 0.4% with the rays).
 core::Scene smoothPrism(int sides)
 {
-    core::Scene s;
-    core::Material white;
-    white.name = "white";
-    white.baseColor = glm::vec3(0.6f);
-    white.specular = 0.0f;
-    s.materials.push_back(white);
+    core::Scene s = whiteScene();
     core::Mesh prism;
     prism.name = "prism";
     const float r = 0.3f, height = 2.0f;
@@ -182,13 +191,7 @@ core::Scene smoothPrism(int sides)
 TEST_F(ContactShadowTest, SmoothLowPolyTerminatorIsShadowedAsThePathTracerShadowsIt)
 {
     const core::Scene scene = smoothPrism(8);
-    ref::RenderSettings rs;
-    rs.paths = ref::LightPaths::Direct;
-    rs.width = rs.height = kSize;
-    rs.spp = 1024;
-    rs.seed = 5;
-    rs.progress = false;
-    const core::Image reference = ref::render(scene, scene.camera, rs).image;
+    const core::Image reference = directReference(scene, 1024, 5);
     const core::Image rays = stillFrames(scene, "rays", 64);
     const core::Image maps = stillFrames(scene, "maps", 64);
     const double eRays = blockError(rays, reference), eMaps = blockError(maps, reference);
