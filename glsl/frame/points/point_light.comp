@@ -24,8 +24,9 @@ void main()
     vec4 diffuseWeight = unpackUnorm4x8(s.diffuse);
 #ifdef GLOSSY_POINTS
     // Every point: a metal's diffuse colour is black, and its glossy lobe is all it sends.
-    PointLight pl = pointDirectLight(s.position, s.normal, diffuseWeight.rgb);
     vec4 material = unpackUnorm4x8(pointGlossy[i].w); // F0, sqrt(alpha) of the surface (point_update.comp)
+    BrdfParams brdf = BrdfParams(diffuseWeight.rgb, material.rgb, diffuseWeight.a, 1.0); // alpha is not read
+    PointLight pl = pointDirectLight(s.position, s.normal, brdf);
     float alpha = widenedAlpha(material.a * material.a, pl.spread2);
     pointGlossy[i] = packGlossy(pl.direction, pl.irradiance * diffuseWeight.a, packGlossyMaterial(material.rgb, alpha));
     uvec2 h = packRadiance(pl.radiance);

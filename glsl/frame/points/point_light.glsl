@@ -9,12 +9,19 @@
 #include "common/lighting.glsl"
 
 // The lights' direct light at a surface point p (normal n) for the points: the outgoing radiance of the
-// BRDF's diffuse lobe alone, seen along the normal (micro-rendering §2.2: "when using only diffuse surfaces,
-// we can store the reflected radiance inside the point hierarchy"), and for the glossy lobe, which depends
-// on where it is seen from, the shadowed irradiance with the luminance-weighted mean of the directions it
-// comes from (point_cloud.glsl's `glossy`).
+// BRDF's diffuse lobe alone (micro-rendering §2.2: "when using only diffuse surfaces, we can store the
+// reflected radiance inside the point hierarchy"), and for the glossy lobe, which depends on where it is
+// seen from, the shadowed irradiance with the luminance-weighted mean of the directions it comes from
+// (point_cloud.glsl's `glossy`).
+// The diffuse lobe is core/brdf.h's, (1 - w Fo)(1 - w Fi) c_diff / pi: what the glossy interface lets
+// through on the way in, 1 - w F(n.wi) per light, and on the way out, 1 - w F(n.wo). One radiance per point
+// cannot follow wo, so it takes the mean of 1 - w F(n.wo) over the outgoing directions weighted by their
+// cosine (the flux it sends): 1 - w (F0 + (1 - F0) / 21), as 2 int_0^1 (1 - mu)^5 mu dmu = 1/21.
+// Without both factors a dielectric of Sponza's (w = 1, F0 = 0.04) sent 14% more light than its BRDF
+// lets through: micro-rendering's indirect light on assets/setups/sponza-sun.json read 1.19 of the path tracer's
+// `onebounce` minus `direct`, and 1.05 with every material Lambertian (gl/technique/microrender/README.md).
 struct PointLight {
-    vec3 radiance;   // (c_diff / pi) E
+    vec3 radiance;   // (1 - w Fo) (1 - w Fi) (c_diff / pi) E, Fo the cosine-weighted mean (above)
     vec3 irradiance; // E, shadowed
     vec3 direction;  // unit; n where no light arrives
     float spread2;   // the mean squared angle between `direction` and the directions light comes from (rad^2)
@@ -56,7 +63,18 @@ float areaTriangleExtent2(Light l, vec3 p, vec3 wi)
     return area * abs(dot(wi, l.direction)) / max(dot(d, d), 1e-12) / (2.0 * kPi);
 }
 
-PointLight pointDirectLight(vec3 p, vec3 n, vec3 diffuse)
+// 1 - w Fo at the cosine-weighted mean of Schlick's weight over the outgoing directions, 1/21 (above).
+vec3 pointOutgoingTransmission(BrdfParams b)
+{
+#ifdef SCENE_DIFFUSE_ONLY
+    return vec3(1.0);
+#else
+    return 1.0 - b.weight * (b.f0 + (1.0 - b.f0) * (1.0 / 21.0));
+#endif
+}
+
+// b: the surface's BRDF (its diffuse colour, F0 and w; alpha is not read).
+PointLight pointDirectLight(vec3 p, vec3 n, BrdfParams b)
 {
     PointLight pl = PointLight(vec3(0.0), vec3(0.0), n, 0.0);
     PointLightSums sums = PointLightSums(0.0, vec3(0.0), 0.0);
@@ -64,17 +82,20 @@ PointLight pointDirectLight(vec3 p, vec3 n, vec3 diffuse)
 #ifdef PUNCTUAL_LIGHTS
     for (int i = 0; i < punctualLightCount; ++i) {
         vec3 e = punctualIrradiance(frameLight(i), p, n, wi);
-        if (pointLightArrives(e, n, wi)) addPointLight(pl, sums, diffuse, wi, e * shadowVisibility(frameLight(i), p, n), 0.0);
+        if (pointLightArrives(e, n, wi))
+            addPointLight(pl, sums, b.diffuse * brdfTransmission(b, dot(n, wi)), wi,
+                          e * shadowVisibility(frameLight(i), p, n), 0.0);
     }
 #endif
 #ifdef AREA_LIGHTS
     for (int i = punctualLightCount; i < lightCount; ++i) {
         vec3 e = areaTriangleIrradiance(frameLight(i), p, n, wi);
         if (pointLightArrives(e, n, wi))
-            addPointLight(pl, sums, diffuse, wi, e * areaTriangleVisibility(frameLight(i), p, n),
-                          areaTriangleExtent2(frameLight(i), p, wi));
+            addPointLight(pl, sums, b.diffuse * brdfTransmission(b, dot(n, wi)), wi,
+                          e * areaTriangleVisibility(frameLight(i), p, n), areaTriangleExtent2(frameLight(i), p, wi));
     }
 #endif
+    pl.radiance *= pointOutgoingTransmission(b);
     if (sums.weight > 0.0) {
         pl.direction = normalize(sums.direction);
         // Each light's own extent, and how far the lights' directions lie from their mean (for unit vectors,
@@ -96,11 +117,12 @@ PointLight pointDirectLight(vec3 p, vec3 n, vec3 diffuse)
 // strong (about the centroid alone: 26-44% low) and up to 65% high in its tail, at a fifth of the peak.
 float widenedAlpha(float alpha, float spread2) { return sqrt(alpha * alpha + spread2 / 4.0); }
 
-// The diffuse points' outgoing radiance, (c_diff / pi) E: for micro-rendering's ray-cast micro-pixels too.
+// A Lambertian point's outgoing radiance, (c_diff / pi) E (scenes without a glossy lobe, w = 0 everywhere:
+// without GLOSSY_POINTS): for micro-rendering's ray-cast micro-pixels too.
 vec3 pointDirectRadiance(vec3 p, vec3 n, vec3 diffuse)
 {
     if (max(diffuse.r, max(diffuse.g, diffuse.b)) <= 0.0) return vec3(0.0);
-    return pointDirectLight(p, n, diffuse).radiance;
+    return pointDirectLight(p, n, BrdfParams(diffuse, vec3(0.0), 0.0, 1.0)).radiance;
 }
 
 // Outgoing radiance towards wo of a surface point with the BRDF b, every lobe (a ray's hit on a glossy
