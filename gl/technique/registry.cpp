@@ -1,5 +1,6 @@
 // The registry: every technique of Bounce, in the order `bounce list` shows them. A family adds a line
 // here (an explicit table rather than static registration, which static libraries silently drop).
+#include "gl/technique/ddgi/ddgi_technique.h"
 #include "gl/technique/direct.h"
 #include "gl/technique/grb/grb_technique.h"
 #include "gl/technique/isr/hisr_technique.h"
@@ -28,6 +29,7 @@ const std::vector<TechniqueInfo>& techniques()
         t.push_back(photonTechniqueInfo());
         t.push_back(microrenderTechniqueInfo());
         t.push_back(pointprojTechniqueInfo());
+        t.push_back(ddgiTechniqueInfo());
         return t;
     }();
     return all;

@@ -62,6 +62,19 @@ vec3 brdfTransmission(BrdfParams p, float cosTheta)
 #endif
 }
 
+// 1 - w F at the cosine-weighted mean of Schlick's weight over a hemisphere of directions, 2 int (1 - mu)^5 mu dmu
+// = 1/21: what the interface lets through on one side of a light that reaches it (or leaves it) from every
+// direction alike, where one radiance or irradiance stands for all of them (the point clouds' stored
+// radiance, the irradiance probes of ddgi).
+vec3 brdfMeanTransmission(BrdfParams p)
+{
+#ifdef SCENE_DIFFUSE_ONLY
+    return vec3(1.0);
+#else
+    return 1.0 - p.weight * (p.f0 + (1.0 - p.f0) * (1.0 / 21.0));
+#endif
+}
+
 // The glossy lobe alone, w F D Vis, without the cosine; zero below either horizon.
 vec3 brdfGlossy(BrdfParams p, vec3 n, vec3 wo, vec3 wi)
 {

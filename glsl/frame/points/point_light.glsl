@@ -63,16 +63,6 @@ float areaTriangleExtent2(Light l, vec3 p, vec3 wi)
     return area * abs(dot(wi, l.direction)) / max(dot(d, d), 1e-12) / (2.0 * kPi);
 }
 
-// 1 - w Fo at the cosine-weighted mean of Schlick's weight over the outgoing directions, 1/21 (above).
-vec3 pointOutgoingTransmission(BrdfParams b)
-{
-#ifdef SCENE_DIFFUSE_ONLY
-    return vec3(1.0);
-#else
-    return 1.0 - b.weight * (b.f0 + (1.0 - b.f0) * (1.0 / 21.0));
-#endif
-}
-
 // b: the surface's BRDF (its diffuse colour, F0 and w; alpha is not read).
 PointLight pointDirectLight(vec3 p, vec3 n, BrdfParams b)
 {
@@ -95,7 +85,7 @@ PointLight pointDirectLight(vec3 p, vec3 n, BrdfParams b)
                           e * areaTriangleVisibility(frameLight(i), p, n), areaTriangleExtent2(frameLight(i), p, wi));
     }
 #endif
-    pl.radiance *= pointOutgoingTransmission(b);
+    pl.radiance *= brdfMeanTransmission(b);
     if (sums.weight > 0.0) {
         pl.direction = normalize(sums.direction);
         // Each light's own extent, and how far the lights' directions lie from their mean (for unit vectors,
