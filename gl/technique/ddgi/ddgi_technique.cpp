@@ -69,10 +69,10 @@ TechniqueInfo ddgiTechniqueInfo()
     };
     info.reads = {GBufferChannel::Position, GBufferChannel::Normal, GBufferChannel::Diffuse, GBufferChannel::Specular};
     info.params = {
-        {"probes", ParamType::Int, 256, 8, 262144,
+        {"probes", ParamType::Int, 256, 8, 16384,
          "the most probes of the grid, in cells as near to cubes as whole counts allow over the scene's bounds "
          "(at least 2 along each side)"},
-        {"raysPerProbe", ParamType::Int, 256, 1, 4096,
+        {"raysPerProbe", ParamType::Int, 256, 1, 1024,
          "rays per probe and frame blended into the atlases (spherical Fibonacci under a random rotation)"},
         {"fixedRays", ParamType::Int, 32, 4, 256,
          "fixed rays per probe and frame for relocation and classification (not blended)"},
