@@ -67,6 +67,13 @@ void Renderer::reuseDirectLight()
     // 3x3 neighbourhood holds that point's shadow only, and a clamp to it kept the penumbrae from averaging
     // (cornell-area along bench/paths/cornell-orbit.json: 40% with the clamp against 15% without).
     temporalDirect_.settings.clamp = false;
+    // With emitting triangles, only the share of their exact light that reaches each pixel is averaged
+    // (Frame::areaRatioDrawn): the rest of the light is exact in every frame.
+    if (frame_->areaRatioDrawn()) {
+        temporalDirect_.apply(*frame_, {&frame_->areaVisibility()}, timers_);
+        frame_->resolveAreaRatio(timers_);
+        return;
+    }
     temporalDirect_.apply(*frame_, {&frame_->direct()}, timers_);
 }
 

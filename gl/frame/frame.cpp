@@ -82,6 +82,29 @@ Program directProgram(const core::Scene& scene, const GpuScene& gpu, const Frame
     return Program::graphics(still ? "direct.still" : "direct", "frame/fullscreen.vert", "frame/direct.frag", kinds);
 }
 
+// Whether moving frames write the area lights' ratio estimator (common/lighting.glsl, areaLightsRatio): the
+// reuse of their direct light is on (`temporal`, `temporal.direct`) and the direct pass lights the scene's
+// emitting triangles.
+bool usesAreaRatio(const GpuScene& gpu, const FrameSettings& settings, bool areaLights)
+{
+    return settings.temporal && settings.temporalDirect && areaLights &&
+           int(gpu.lights().size()) > gpu.punctualLightCount();
+}
+
+// The moving frames' direct program with the ratio estimator: the still form's samples (this frame's point
+// on each emitter and its shadow ray or shifted cube), the emitters written apart (AREA_RATIO). None where
+// usesAreaRatio is false.
+Program directRatioProgram(const core::Scene& scene, const GpuScene& gpu, const FrameSettings& settings,
+                           bool areaLights)
+{
+    if (!usesAreaRatio(gpu, settings, areaLights)) return Program();
+    std::vector<Define> kinds = sceneDefines(scene, gpu);
+    const std::vector<Define> light = directLightKinds(gpu, settings, true, areaLights);
+    kinds.insert(kinds.end(), light.begin(), light.end());
+    kinds.push_back({"AREA_RATIO", "1"});
+    return Program::graphics("direct.ratio", "frame/fullscreen.vert", "frame/direct.frag", kinds);
+}
+
 SceneProgram gbufferProgram(const core::Scene& scene, const GpuScene& gpu, const FrameSettings& settings)
 {
     std::vector<Define> defines = sceneDefines(scene, gpu);
@@ -113,7 +136,8 @@ Frame::Frame(const core::Scene& scene, const FrameSettings& settings)
       directStillProgram_(directProgram(scene, gpu_, settings, true)),
       compositeProgram_(Program::graphics("composite", "frame/fullscreen.vert", "frame/composite.frag")),
       accumulateProgram_(Program::compute("accumulate", "frame/accumulate.comp")),
-      accumulateDirectProgram_(Program::compute("accumulate.direct", "frame/accumulate.comp", {{"ADD_INDIRECT", "1"}}))
+      accumulateDirectProgram_(Program::compute("accumulate.direct", "frame/accumulate.comp", {{"ADD_INDIRECT", "1"}})),
+      directRatioProgram_(directRatioProgram(scene, gpu_, settings, true))
 {
     shadows_.setPcf(settings.pcfLinear);
     sampler_.setFreshMovingSeeds(settings.temporal);
@@ -260,6 +284,7 @@ void Frame::rebuildDirectPrograms()
 {
     directProgram_ = directProgram(scene_, gpu_, settings_, false, areaLightsInDirect_);
     directStillProgram_ = directProgram(scene_, gpu_, settings_, true, areaLightsInDirect_);
+    directRatioProgram_ = directRatioProgram(scene_, gpu_, settings_, areaLightsInDirect_);
 }
 
 void Frame::resize(int width, int height)
@@ -273,6 +298,9 @@ void Frame::resize(int width, int height)
 
 void Frame::beginFrame(bool still)
 {
+    // Moving frames whose emitters' light takes the ratio estimator average only its visible share, not
+    // the image: their pixels stay at their centres (a jittered frame shown alone moves every edge).
+    sampler_.setMovingJitter(!directRatioProgram_);
     sampler_.advance(still);
     accumulatedResult_ = false;
 }
@@ -475,10 +503,55 @@ void Frame::renderDirect(PassTimers& timers)
     bindGBuffer();
     bindSceneData();
     const bool still = sampler_.sampleIndex() > 0 && directStillProgram_;
-    Program& program = still ? directStillProgram_ : directProgram_;
+    // A moving frame with the reuse of its direct light, at the frame's own size: the ratio estimator's form.
+    const bool ratio = still && sampler_.stillIndex() == 0 && directRatioProgram_ && !coarseActive_;
+    if (!coarseActive_) areaRatioDrawn_ = ratio;
+    if (ratio) {
+        allocateAreaRatio();
+        PassState::fullscreen(areaRatio_.fbo, t.width, t.height).apply();
+    }
+    Program& program = ratio ? directRatioProgram_ : still ? directStillProgram_ : directProgram_;
     program.set("cameraPosition", camera_.position);
     setDirectLightUniforms(program);
     program.use();
+    drawFullscreen();
+}
+
+void Frame::allocateAreaRatio()
+{
+    AreaRatio& r = areaRatio_;
+    if (r.unshadowed && r.unshadowed.width() == full_.width && r.unshadowed.height() == full_.height &&
+        r.direct == full_.direct.id())
+        return;
+    r.unshadowed = Texture::create2D("direct.areaUnshadowed", GL_RGBA32F, full_.width, full_.height);
+    r.visibility = Texture::create2D("direct.areaVisibility", GL_RGBA32F, full_.width, full_.height);
+    r.fbo = Framebuffer("direct.ratio.fbo");
+    r.fbo.attach(GL_COLOR_ATTACHMENT0, full_.direct);
+    r.fbo.attach(GL_COLOR_ATTACHMENT1, r.unshadowed);
+    r.fbo.attach(GL_COLOR_ATTACHMENT2, r.visibility);
+    r.fbo.setDrawBuffers({GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2});
+    r.fbo.checkComplete();
+    r.direct = full_.direct.id();
+    if (!r.resolve)
+        r.resolve = Program::graphics("direct.ratio.resolve", "frame/fullscreen.vert", "frame/direct_ratio.frag");
+}
+
+void Frame::resolveAreaRatio(PassTimers& timers)
+{
+    if (!areaRatioDrawn_) return;
+    PassCost cost;
+    cost.flops = 8;
+    cost.fetches = 2;
+    cost.bytesRead = 32 + 16; // the two inputs, and the blend's read of the direct light
+    cost.bytesWritten = 16;
+    auto t = timers.scope("direct.ratio", cost);
+    t.expectFragments(full_.width, full_.height);
+    PassState state = PassState::fullscreen(full_.directFbo, full_.width, full_.height);
+    state.blend = true; // one, one: the direct pass's other light plus the emitters' share
+    state.apply();
+    areaRatio_.unshadowed.bind(UNIT_AREA_UNSHADOWED);
+    areaRatio_.visibility.bind(UNIT_AREA_VISIBILITY);
+    areaRatio_.resolve.use();
     drawFullscreen();
 }
 

@@ -177,6 +177,16 @@ public:
     const Texture& direct() const { return targets().direct; }
     Texture& direct() { return targets().direct; } // temporal reuse writes it (gl/renderer.h)
     Texture& indirect() { return targets().indirect; }
+    // Moving frames with the reuse of their direct light in a scene with emitting triangles
+    // (`temporal.direct`; common/lighting.glsl, areaLightsRatio): the direct pass wrote the emitters' light
+    // apart, as its exact unshadowed value and this frame's sums of w V and w (areaVisibility(), RGBA32F:
+    // r and g), and direct() holds the rest. The Renderer averages areaVisibility() over the frames
+    // (TemporalReuse), then resolveAreaRatio() adds the unshadowed light times the mean of w V over the mean
+    // of w to direct(). areaRatioDrawn(): whether the last full-size direct pass took this form (false
+    // otherwise, and resolveAreaRatio() does nothing).
+    bool areaRatioDrawn() const { return areaRatioDrawn_; }
+    Texture& areaVisibility() { return areaRatio_.visibility; }
+    void resolveAreaRatio(PassTimers& timers);
     const Texture& result() const
     {
         return accumulatedResult_ ? accumulated_ : compositeUsed_ ? composite_ : full_.direct;
@@ -225,6 +235,16 @@ private:
     VertexArray emptyVao_;
     SceneProgram gbufferProgram_;
     Program directProgram_, directStillProgram_, compositeProgram_, accumulateProgram_, accumulateDirectProgram_;
+    Program directRatioProgram_; // moving frames with temporal.direct and emitters (areaRatioDrawn())
+    struct AreaRatio {
+        Texture unshadowed, visibility; // full size, allocated at the first frame that draws them
+        Framebuffer fbo{"direct.ratio.fbo"};
+        unsigned direct = 0; // the id of full_.direct that fbo draws into (a reallocated target remakes it)
+        Program resolve;
+    };
+    AreaRatio areaRatio_;
+    bool areaRatioDrawn_ = false;
+    void allocateAreaRatio();
     bool compositeUsed_ = true;
     bool areaLightsInDirect_ = true;
     bool accumulatedResult_ = false; // result() is accumulated_

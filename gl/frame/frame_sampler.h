@@ -74,6 +74,10 @@ public:
     }
     void setFreshMovingSeeds(bool on) { freshMovingSeeds_ = on; }
     void setMovingSamples(bool on) { movingSamples_ = on; }
+    // With moving samples, whether a moving frame's pixel takes the jitter too (on: the reuse averages the
+    // whole image over the pixel, as temporal antialiasing does) or stays at its centre (off: the frame's
+    // image is not averaged, only a part of its light is; Frame::areaRatioDrawn).
+    void setMovingJitter(bool on) { movingJitter_ = on; }
 
 private:
     std::uint64_t frameIndex_ = 0;
@@ -82,6 +86,7 @@ private:
     bool started_ = false;
     bool freshMovingSeeds_ = false;
     bool movingSamples_ = false;
+    bool movingJitter_ = true;
     glm::vec2 jitter_{0.0f};
 };
 

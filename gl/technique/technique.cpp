@@ -111,10 +111,12 @@ const std::vector<ParamDecl>& frameParams()
          "object moves; off: such changes fade over about 1/alpha frames, and noise that flips whole regions "
          "at once averages out, which one frame's neighbourhood clamps away)"},
         {"temporal.direct", ParamType::Bool, 0, 0, 1,
-         "with temporal on, the frame's direct light too: moving frames sampled as still frames are (a new "
-         "point in the pixel, shadow-map shift and point on each emitter every frame) and blended with their "
-         "reprojected history, unclamped (the emitters' point is one for the whole frame, so one frame's "
-         "neighbourhood holds one point's shadow); a light change drops that history"},
+         "with temporal on, the frame's direct light too: moving frames sample a new shadow-map shift and "
+         "point on each emitter every frame; emitting triangles give their exact unshadowed light times the "
+         "visible share, whose sums alone are blended with their reprojected history (the ratio estimator, "
+         "gl/frame/README.md), and a scene with no emitter blends its whole direct light, jittered in the "
+         "pixel; unclamped (the emitters' point is one for the whole frame, so one frame's neighbourhood "
+         "holds one point's shadow); a light change drops that history"},
         choiceParam("gbuffer.fragment", {"material", "constant"}, 0,
                     "profiling: constant writes the G-buffer without reading materials or textures (wrong images)"),
     };

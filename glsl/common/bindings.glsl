@@ -41,6 +41,8 @@
 #define UNIT_COMPOSITE_DIRECT 0
 #define UNIT_COMPOSITE_INDIRECT 1
 #define UNIT_TONEMAP_RADIANCE 0
+#define UNIT_AREA_UNSHADOWED 0    // frame/direct_ratio.frag (reads no G-buffer): the emitters' unshadowed light
+#define UNIT_AREA_VISIBILITY 1    //   and the sums of w V and w, averaged by the temporal reuse
 #define UNIT_UPSAMPLE_COARSE_INDIRECT 0 // frame/joint_upsample.frag (the demo's frame budget)
 #define UNIT_UPSAMPLE_COARSE_GEOMETRY 1 // the two frames' gGeometry (common/gbuffer.glsl)
 #define UNIT_UPSAMPLE_FULL_GEOMETRY 2

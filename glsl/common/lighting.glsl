@@ -14,7 +14,8 @@ uniform int lightCount;
 
 // Irradiance at p (normal n) from a Lambertian emitting triangle of radiance L, by Lambert's formula for
 // the polygon clipped to p's upper hemisphere: E = L/2 sum_i Theta_i (n . Gamma_i). Exact, unshadowed.
-float polygonFormFactor(vec3 p, vec3 n, vec3 a, vec3 b, vec3 c)
+// `toward`: the clipped polygon's vertex mean, from p (above p's horizon wherever the result is not 0).
+float polygonFormFactor(vec3 p, vec3 n, vec3 a, vec3 b, vec3 c, out vec3 toward)
 {
     vec3 v[3] = vec3[3](a - p, b - p, c - p);
     vec3 clipped[4];
@@ -25,7 +26,10 @@ float polygonFormFactor(vec3 p, vec3 n, vec3 a, vec3 b, vec3 c)
         if (dc >= 0.0) clipped[count++] = cur;
         if ((dc >= 0.0) != (dn >= 0.0)) clipped[count++] = cur + (nxt - cur) * (dc / (dc - dn));
     }
+    toward = n;
     if (count < 3) return 0.0;
+    toward = vec3(0.0);
+    for (int i = 0; i < count; ++i) toward += clipped[i];
     float sum = 0.0;
     for (int i = 0; i < count; ++i) {
         vec3 r0 = normalize(clipped[i]), r1 = normalize(clipped[(i + 1) % count]);
@@ -67,14 +71,20 @@ vec3 directFromPunctual(Light l, vec3 p, vec3 n, vec3 wo, BrdfParams b)
 }
 
 // Irradiance at p (normal n) from one emitting triangle l, unshadowed and exact (polygon form factor), and
-// the direction wi towards its centroid, which stands for the triangle where a BRDF is evaluated.
+// the direction wi towards the centre of its part above p's horizon, which stands for the triangle where a
+// BRDF is evaluated. (Towards the whole triangle's centroid, a triangle that straddles the horizon with its
+// centroid below it lost its visible part: the BRDF is 0 below the horizon. On cornell-area the tall
+// block's face toward the emitter read 11% under the path tracer, issue 58.)
 vec3 areaTriangleIrradiance(Light l, vec3 p, vec3 n, out vec3 wi)
 {
     int first = l.shadow.z;
     vec3 a = lightPolygon(first), bb = lightPolygon(first + 1), c = lightPolygon(first + 2);
     wi = normalize((a + bb + c) / 3.0 - p);
     if (dot(p - a, l.direction) <= 0.0) return vec3(0.0); // behind the one-sided emitter
-    return l.intensity * kPi * polygonFormFactor(p, n, a, bb, c);
+    vec3 toward;
+    float formFactor = polygonFormFactor(p, n, a, bb, c, toward);
+    if (formFactor > 0.0) wi = normalize(toward);
+    return l.intensity * kPi * formFactor;
 }
 
 // The moving frame's visibility of emitting triangle l from p: its mesh's shadow cube, seen from the mesh's
@@ -189,6 +199,42 @@ vec3 sampledAreaLights(int first, int end, vec3 p, vec3 n, vec3 wo, BrdfParams b
     return sum;
 }
 
+#ifdef AREA_RATIO
+// Moving frames with temporal reuse of the direct light (`temporal.direct`; gl/frame/README.md, "The area
+// lights' ratio estimator"): Heitz, Hill and McGuire, "Combining Analytic Direct Illumination and Stochastic
+// Shadows" (I3D 2018). The emitting triangles' light is the exact unshadowed light (the polygon form
+// factor, the lobe towards each centroid, as in moving frames) times the share of it that reaches p, and
+// only that share is estimated stochastically: this frame's point x on each mesh (the still frames'
+// sample) with weight w = lum(L) cos_x cos_p A / r^2, its one-sample estimate of the mesh's unshadowed
+// light, and x's visibility V (a shadow ray, or the cube moved to x). The pass writes the sums of w V and
+// of w over the meshes; the temporal reuse averages both over the frames and the frame divides the two
+// (Frame::resolveAreaRatio), a ratio of sums, so that E[w V] / E[w] is the visible share of the mesh's
+// light: unshadowed pixels take the exact light in every frame, noise is left only in penumbrae.
+void areaLightsRatio(int first, int end, vec3 p, vec3 n, vec3 wo, BrdfParams b, out vec3 unshadowed,
+                     out vec2 visibility)
+{
+    unshadowed = vec3(0.0);
+    visibility = vec2(0.0);
+    float meshWeight = 0.0;
+    for (int i = first; i < end; ++i) {
+        Light l = frameLight(i);
+        vec3 wi;
+        vec3 irradiance = areaTriangleIrradiance(l, p, n, wi);
+        if (max(irradiance.r, max(irradiance.g, irradiance.b)) > 0.0) unshadowed += brdfEval(b, n, wo, wi) * irradiance;
+        if (l.sampleArea > 0.0 && dot(p - lightPolygon(l.shadow.z), l.direction) > 0.0) {
+            vec3 d = l.position - p;
+            float d2 = max(dot(d, d), 1e-12);
+            vec3 wx = d * inversesqrt(d2);
+            float g = max(-dot(wx, l.direction), 0.0) * max(dot(n, wx), 0.0) / d2;
+            meshWeight += dot(l.intensity, vec3(0.2126, 0.7152, 0.0722)) * g * l.sampleArea;
+        }
+        if (i + 1 < end && frameLight(i + 1).shadow.x == l.shadow.x) continue;
+        if (meshWeight > 0.0) visibility += meshWeight * vec2(shadowVisibility(l, p, n), 1.0);
+        meshWeight = 0.0;
+    }
+}
+#endif
+
 // The frame's direct light at surface point p (normal n, BRDF b) towards wo, added to `radiance` light by
 // light in the lights' order (so that a pixel's emission, added first, keeps its place in the sum):
 //   point, spot, directional  directFromPunctual, through the shadow maps (PCF in moving frames, one shifted
@@ -208,7 +254,7 @@ void addDirectLight(inout vec3 radiance, vec3 p, vec3 n, vec3 wo, BrdfParams b, 
 #ifdef PUNCTUAL_LIGHTS
     for (int i = 0; i < punctualLightCount; ++i) radiance += directFromPunctual(frameLight(i), p, n, wo, b);
 #endif
-#ifdef AREA_LIGHTS
+#if defined(AREA_LIGHTS) && !defined(AREA_RATIO) // AREA_RATIO: frame/direct.frag adds them (areaLightsRatio)
 #ifdef AREA_SAMPLED
     radiance += sampledAreaLights(punctualLightCount, lightCount, p, n, wo, b, rotation);
 #else

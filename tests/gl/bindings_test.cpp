@@ -128,10 +128,12 @@ TEST(Bindings, NoTwoUnitsShareASlot)
 {
     const auto frame = table(root() / "glsl/common/bindings.glsl");
     ASSERT_FALSE(frame.empty());
-    // The passes that read no G-buffer (composite, tone map, joint upsampling) reuse the first units.
+    // The passes that read no G-buffer (composite, tone map, joint upsampling, the area ratio's resolve)
+    // reuse the first units.
     const std::vector<std::string> passLocal{"UNIT_COMPOSITE_DIRECT",         "UNIT_COMPOSITE_INDIRECT",
                                              "UNIT_TONEMAP_RADIANCE",         "UNIT_UPSAMPLE_COARSE_INDIRECT",
-                                             "UNIT_UPSAMPLE_COARSE_GEOMETRY", "UNIT_UPSAMPLE_FULL_GEOMETRY"};
+                                             "UNIT_UPSAMPLE_COARSE_GEOMETRY", "UNIT_UPSAMPLE_FULL_GEOMETRY",
+                                             "UNIT_AREA_UNSHADOWED",          "UNIT_AREA_VISIBILITY"};
     // RSM and multires pyramid names are the first of six units each.
     auto span = [](const std::string& n) { return n == "UNIT_RSM_FIRST" || n == "UNIT_MULTIRES_FIRST" ? 6 : 1; };
     // Tables bound together in one run must not share a slot.
