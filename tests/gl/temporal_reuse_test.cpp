@@ -267,6 +267,44 @@ TEST_F(TemporalReuseTest, WholePixelMoveReprojectsExactly)
     }
 }
 
+// A move by a fraction of a pixel (0.37 of one, the common case on a moving camera) resamples the history
+// between texel centres: for a signal linear in the world position the bilinear taps reproduce it
+// exactly, so twice the output (n = 2, the current value 0) must be frame 2's own world signal at every
+// pixel that keeps a history, to float rounding. A reprojection that lags or leads the camera by a
+// fraction of a pixel reads off here by that fraction of the signal's slope per pixel.
+TEST_F(TemporalReuseTest, SubPixelMoveReprojectsALinearSignal)
+{
+    constexpr int w = 37, h = 23;
+    const core::Scene scene = planeScene(false);
+    gl::Frame frame(scene, smallFrame(w, h));
+    gl::PassTimers timers;
+    gl::TemporalReuse reuse(noClamp());
+    gl::Texture t = makeSignal(w, h);
+    renderGeometry(frame, planeCamera(0.0f), timers);
+    upload(t, worldSignal(frame.readPositions(), 7.0f));
+    reuse.apply(frame, {&t}, timers);
+    renderGeometry(frame, planeCamera(-0.37f * pixelOnPlane(h)), timers);
+    const std::vector<float> positions = frame.readPositions();
+    const std::vector<float> want = worldSignal(positions, 7.0f);
+    upload(t, constantSignal(positions, 0.0f, 7.0f));
+    reuse.apply(frame, {&t}, timers);
+    const std::vector<float> out = t.readFloats(0, 4);
+    int compared = 0;
+    float worst = 0.0f;
+    for (int y = 0; y < h; ++y)
+        for (int x = 1; x < w; ++x) { // column 0 entered the view
+            const std::size_t i = at(x, y, w);
+            if (positions[i + 3] == 0.0f || x + 1 >= w || positions[at(x + 1, y, w) + 3] == 0.0f) continue;
+            ++compared;
+            for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(2.0f * out[i + c] - want[i + c]));
+        }
+    const float slope = pixelOnPlane(h); // the signal's change per pixel along x
+    std::printf("[ measured ] %d pixels, largest difference %.3g (%.3g of a pixel's slope)\n", compared, worst,
+                worst / slope);
+    EXPECT_GT(compared, w * h / 2);
+    EXPECT_LT(worst, 0.01f * slope);
+}
+
 // 3. An occluder in front of the plane goes away (frame 2 renders the scene without it, same camera): the
 // pixels it covered now see the plane, which the previous G-buffer has at another depth (1 m against 2 m),
 // and take no history (output: the current value, 1); every other plane pixel blends its history (5) with
