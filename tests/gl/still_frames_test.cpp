@@ -196,6 +196,17 @@ TEST_F(StillFramesTest, PcssSoftensTheMovingFrameAndLeavesLitFloorLit)
     }
 }
 
+// Moving frames only (accumulate off) with the reuse of their direct light: the emitters' ratio estimator.
+gl::ParamValues ratioFrameValues(double alpha)
+{
+    gl::ParamValues v(gl::frameParams());
+    v.setValue("accumulate", 0);
+    v.setValue("temporal", 1);
+    v.setValue("temporal.direct", 1);
+    v.setValue("temporal.alpha", alpha);
+    return v;
+}
+
 // A wall whose plane cuts the emitter with both of its triangles' centroids behind the wall (the emitter
 // [-0.25, 0.25]^2 split along a diagonal, centroids at x = +-0.083; the wall at x = 0.1 facing +x sees the
 // strip x > 0.1): the moving frame's exact form factor evaluates the BRDF towards the part of each triangle
@@ -220,11 +231,7 @@ TEST_F(StillFramesTest, MovingFrameLightsAWallThatSeesPartOfEachEmitterTriangle)
     // The moving frame's unshadowed light alone: with the ratio estimator (temporal.direct) and nothing
     // between wall and emitter, the visible share is 1. (The moving frame's own shadow, the cube at the
     // emitter's centre behind the wall, hides the wall from it.)
-    gl::ParamValues frameValues(gl::frameParams());
-    frameValues.setValue("accumulate", 0);
-    frameValues.setValue("temporal", 1);
-    frameValues.setValue("temporal.direct", 1);
-    gl::Renderer r(s, "direct", frameValues, gl::ParamValues(), kSize, kSize);
+    gl::Renderer r(s, "direct", ratioFrameValues(0.2), gl::ParamValues(), kSize, kSize);
     r.renderFrame(false);
     ASSERT_TRUE(r.frame().areaRatioDrawn());
     const core::Image moving = r.image();
@@ -254,12 +261,7 @@ TEST_F(StillFramesTest, MovingFramesRatioEstimatorIsExactWhereLitAndConvergesInT
 {
     const core::Scene scene = softShadowScene();
     constexpr int kSize = 64;
-    gl::ParamValues frameValues(gl::frameParams());
-    frameValues.setValue("accumulate", 0);
-    frameValues.setValue("temporal", 1);
-    frameValues.setValue("temporal.direct", 1);
-    frameValues.setValue("temporal.alpha", 0.01);
-    gl::Renderer r(scene, "direct", frameValues, gl::ParamValues(), kSize, kSize);
+    gl::Renderer r(scene, "direct", ratioFrameValues(0.01), gl::ParamValues(), kSize, kSize);
     r.renderFrame(false);
     ASSERT_TRUE(r.frame().areaRatioDrawn());
     ASSERT_EQ(r.frame().sampler().jitter(), glm::vec2(0.0f));

@@ -214,19 +214,33 @@ struct Shift {
 // columns on the left that enter the view take no history: their output is the current value (0), as is
 // every background pixel's (7). At 64x32 and at 37x23 (no power of two, pixels of 2/23 m that no float
 // holds exactly, and the plane's edge on a pixel boundary in both).
+// The plane without an occluder at w x h, and a first frame from planeCamera(0) whose signal (`first`, the
+// world signal, background 7) the reuse took as its history, unclamped.
+struct PlaneHistory {
+    core::Scene scene = planeScene(false);
+    gl::Frame frame;
+    gl::PassTimers timers;
+    gl::TemporalReuse reuse{noClamp()};
+    gl::Texture t;
+    std::vector<float> first;
+    PlaneHistory(int w, int h) : frame(scene, smallFrame(w, h)), t(makeSignal(w, h))
+    {
+        renderGeometry(frame, planeCamera(0.0f), timers);
+        first = worldSignal(frame.readPositions(), 7.0f);
+        upload(t, first);
+        reuse.apply(frame, {&t}, timers);
+    }
+};
+
 void expectWholePixelMoveReprojectsExactly(const Shift& shift)
 {
     const int w = shift.width, h = shift.height, k = shift.pixels;
-    const core::Scene scene = planeScene(false);
-    gl::Frame frame(scene, smallFrame(w, h));
-    gl::PassTimers timers;
-    gl::TemporalReuse reuse(noClamp());
-    gl::Texture t = makeSignal(w, h);
-
-    renderGeometry(frame, planeCamera(0.0f), timers);
-    const std::vector<float> first = worldSignal(frame.readPositions(), 7.0f);
-    upload(t, first);
-    reuse.apply(frame, {&t}, timers);
+    PlaneHistory p(w, h);
+    gl::Frame& frame = p.frame;
+    gl::PassTimers& timers = p.timers;
+    gl::TemporalReuse& reuse = p.reuse;
+    gl::Texture& t = p.t;
+    const std::vector<float>& first = p.first;
 
     renderGeometry(frame, planeCamera(-float(k) * pixelOnPlane(h)), timers);
     const std::vector<float> positions = frame.readPositions();
@@ -275,20 +289,13 @@ TEST_F(TemporalReuseTest, WholePixelMoveReprojectsExactly)
 TEST_F(TemporalReuseTest, SubPixelMoveReprojectsALinearSignal)
 {
     constexpr int w = 37, h = 23;
-    const core::Scene scene = planeScene(false);
-    gl::Frame frame(scene, smallFrame(w, h));
-    gl::PassTimers timers;
-    gl::TemporalReuse reuse(noClamp());
-    gl::Texture t = makeSignal(w, h);
-    renderGeometry(frame, planeCamera(0.0f), timers);
-    upload(t, worldSignal(frame.readPositions(), 7.0f));
-    reuse.apply(frame, {&t}, timers);
-    renderGeometry(frame, planeCamera(-0.37f * pixelOnPlane(h)), timers);
-    const std::vector<float> positions = frame.readPositions();
+    PlaneHistory p(w, h);
+    renderGeometry(p.frame, planeCamera(-0.37f * pixelOnPlane(h)), p.timers);
+    const std::vector<float> positions = p.frame.readPositions();
     const std::vector<float> want = worldSignal(positions, 7.0f);
-    upload(t, constantSignal(positions, 0.0f, 7.0f));
-    reuse.apply(frame, {&t}, timers);
-    const std::vector<float> out = t.readFloats(0, 4);
+    upload(p.t, constantSignal(positions, 0.0f, 7.0f));
+    p.reuse.apply(p.frame, {&p.t}, p.timers);
+    const std::vector<float> out = p.t.readFloats(0, 4);
     int compared = 0;
     float worst = 0.0f;
     for (int y = 0; y < h; ++y)
