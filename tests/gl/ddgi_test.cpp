@@ -43,20 +43,6 @@ std::vector<glm::vec4> texels(const gl::Texture& t)
     return v;
 }
 
-// The octahedral map's inverse (the standard one, written here apart from common/packing.glsl): a point of
-// [-1, 1]^2 to a unit direction, the corners' triangles folded onto the lower hemisphere.
-glm::vec3 octDecode(glm::vec2 e)
-{
-    glm::vec3 n(e.x, e.y, 1.0f - std::abs(e.x) - std::abs(e.y));
-    if (n.z < 0.0f) {
-        const glm::vec2 folded =
-            (1.0f - glm::abs(glm::vec2(e.y, e.x))) * glm::vec2(e.x >= 0.0f ? 1.0f : -1.0f, e.y >= 0.0f ? 1.0f : -1.0f);
-        n.x = folded.x;
-        n.y = folded.y;
-    }
-    return glm::normalize(n);
-}
-
 // A frame of `scene` (shadow maps only) and a probe field over it, updated `frames` times.
 struct FieldRun {
     static gl::FrameSettings settings()
@@ -195,16 +181,6 @@ gl::ParamValues ddgiValues(const std::vector<std::string>& sets)
         values.set(info.params, kv.substr(0, eq), kv.substr(eq + 1));
     }
     return values;
-}
-
-core::Image ddgiIndirect(const core::Scene& scene, const std::vector<std::string>& sets, int frames, int width,
-                         int height)
-{
-    gl::ParamValues frameValues(gl::frameParams());
-    frameValues.setValue("shadow.size", 256);
-    gl::Renderer r(scene, "ddgi", frameValues, ddgiValues(sets), width, height);
-    for (int i = 0; i < frames; ++i) r.renderFrame(false);
-    return r.frame().read(r.frame().indirect());
 }
 
 TEST_F(DdgiTest, FurnaceConvergesToTheClosedForm)
