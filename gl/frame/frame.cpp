@@ -38,6 +38,13 @@ int stillCascades(const FrameSettings& settings)
     return settings.stillRayShadows ? 0 : settings.shadowCascades;
 }
 
+// Whether the direct pass lights emitting triangles: the scene has some and the technique leaves them to it
+// (areaLights, Frame::setAreaLightsInDirect).
+bool areaLightsLit(const GpuScene& gpu, bool areaLights)
+{
+    return areaLights && int(gpu.lights().size()) > gpu.punctualLightCount();
+}
+
 // The defines of the frame's direct-light estimator (glsl/common/lighting.glsl, addDirectLight) for the kinds
 // of light the scene has: a loop over a kind the scene lacks still costs a masked pass through its body on a
 // SIMD rasteriser (llvmpipe), the polygon form factor of the emitting triangles most of all.
@@ -47,7 +54,7 @@ int stillCascades(const FrameSettings& settings)
 std::vector<Define> directLightKinds(const GpuScene& gpu, const FrameSettings& settings, bool still, bool areaLights)
 {
     std::vector<Define> kinds;
-    const bool area = areaLights && int(gpu.lights().size()) > gpu.punctualLightCount();
+    const bool area = areaLightsLit(gpu, areaLights);
     const bool cascades = stillCascades(settings) > 0 && hasLightOfType(gpu.lights(), kLightDirectional);
     if (gpu.punctualLightCount() > 0) kinds.push_back({"PUNCTUAL_LIGHTS", "1"});
     if (area) kinds.push_back({"AREA_LIGHTS", "1"});
@@ -65,7 +72,7 @@ std::vector<Define> directLightKinds(const GpuScene& gpu, const FrameSettings& s
 // Whether the still frames' estimator differs from the moving frame's (directLightKinds).
 bool stillFormDiffers(const GpuScene& gpu, const FrameSettings& settings, bool areaLights)
 {
-    const bool area = areaLights && int(gpu.lights().size()) > gpu.punctualLightCount();
+    const bool area = areaLightsLit(gpu, areaLights);
     return area || (stillCascades(settings) > 0 && hasLightOfType(gpu.lights(), kLightDirectional)) ||
            (settings.stillRayShadows && !gpu.lights().empty());
 }
@@ -87,8 +94,7 @@ Program directProgram(const core::Scene& scene, const GpuScene& gpu, const Frame
 // emitting triangles.
 bool usesAreaRatio(const GpuScene& gpu, const FrameSettings& settings, bool areaLights)
 {
-    return settings.temporal && settings.temporalDirect && areaLights &&
-           int(gpu.lights().size()) > gpu.punctualLightCount();
+    return settings.temporal && settings.temporalDirect && areaLightsLit(gpu, areaLights);
 }
 
 // The moving frames' direct program with the ratio estimator: the still form's samples (this frame's point

@@ -156,6 +156,16 @@ vec3 areaGlossyUnshadowed(Light l, vec3 p, vec3 n, vec3 wo, BrdfParams b, vec2 r
     return glossy;
 }
 
+// Still frames: the geometric term cos_x cos_p / r^2 between p (normal n) and this frame's point on emitting
+// triangle l's mesh (its position), and the direction wi towards that point.
+float areaSampleGeometry(Light l, vec3 p, vec3 n, out vec3 wi)
+{
+    vec3 d = l.position - p;
+    float d2 = max(dot(d, d), 1e-12);
+    wi = d * inversesqrt(d2);
+    return max(-dot(wi, l.direction), 0.0) * max(dot(n, wi), 0.0) / d2;
+}
+
 // Still frames: emitting triangle l's light towards wo from this frame's point on its mesh, diffuse and
 // glossy as described above, before the mesh's visibility.
 vec3 areaSampleUnshadowed(Light l, vec3 p, vec3 n, vec3 wo, BrdfParams b, vec2 rotation)
@@ -172,10 +182,8 @@ vec3 areaSampleUnshadowed(Light l, vec3 p, vec3 n, vec3 wo, BrdfParams b, vec2 r
     vec3 glossy = areaGlossyUnshadowed(l, p, n, wo, b, rotation);
     vec3 diffuse = vec3(0.0);
     if (sampleArea > 0.0) {
-        vec3 d = l.position - p;
-        float d2 = max(dot(d, d), 1e-12);
-        vec3 wi = d * inversesqrt(d2);
-        float g = max(-dot(wi, emitterNormal), 0.0) * max(dot(n, wi), 0.0) / d2;
+        vec3 wi;
+        float g = areaSampleGeometry(l, p, n, wi);
         vec3 diffuseFactor, glossyLobe;
         brdfEvalLobes(b, n, wo, wi, diffuseFactor, glossyLobe);
         diffuse = diffuseFactor * b.diffuse * L * (g * sampleArea);
@@ -222,10 +230,8 @@ void areaLightsRatio(int first, int end, vec3 p, vec3 n, vec3 wo, BrdfParams b, 
         vec3 irradiance = areaTriangleIrradiance(l, p, n, wi);
         if (max(irradiance.r, max(irradiance.g, irradiance.b)) > 0.0) unshadowed += brdfEval(b, n, wo, wi) * irradiance;
         if (l.sampleArea > 0.0 && dot(p - lightPolygon(l.shadow.z), l.direction) > 0.0) {
-            vec3 d = l.position - p;
-            float d2 = max(dot(d, d), 1e-12);
-            vec3 wx = d * inversesqrt(d2);
-            float g = max(-dot(wx, l.direction), 0.0) * max(dot(n, wx), 0.0) / d2;
+            vec3 wx;
+            float g = areaSampleGeometry(l, p, n, wx);
             meshWeight += dot(l.intensity, vec3(0.2126, 0.7152, 0.0722)) * g * l.sampleArea;
         }
         if (i + 1 < end && frameLight(i + 1).shadow.x == l.shadow.x) continue;
