@@ -46,6 +46,21 @@ bool isFrameParam(const std::string& key)
     return false;
 }
 
+std::string chooseDemoTemporal(gl::ParamValues& frameValues, const std::vector<std::string>& sets,
+                               bool softwareRasterizer)
+{
+    for (const std::string& kv : sets) {
+        const std::string key = kv.substr(0, kv.find('='));
+        if (key == "temporal" || key == "temporal.direct") return "temporal reuse: as --set says";
+    }
+    if (softwareRasterizer)
+        return "temporal reuse: off on a software rasterizer (its passes cost more than the moving frames' budget; "
+               "--set temporal=1 --set temporal.direct=1 turns it on)";
+    frameValues.setValue("temporal", 1.0);
+    frameValues.setValue("temporal.direct", 1.0);
+    return "temporal reuse: on (moving frames average the direct and indirect light of the frames before)";
+}
+
 std::vector<DemoStep> parseDemoScript(const std::string& text, const std::string& initialTechnique)
 {
     // The technique that a set: applies to is the one selected at that point of the script, so the

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "gl/frame/params.h"
+
 namespace bounce::app {
 
 struct DemoStep {
@@ -23,5 +25,12 @@ std::vector<DemoStep> parseDemoScript(const std::string& text, const std::string
 
 // Whether `key` is one of gl::frameParams() (changing it rebuilds the frame, so every renderer).
 bool isFrameParam(const std::string& key);
+
+// The demo's default for temporal reuse: on (the frame parameters `temporal` and `temporal.direct` set in
+// `frameValues`) on a hardware renderer, off on a software rasterizer, where its passes cost more than the
+// frame budget buys back (the README's paragraph on the demo's frame budget); `sets` (the command line's key=value) naming either
+// parameter leaves both as they are. Returns the line the demo prints to say which and why.
+std::string chooseDemoTemporal(gl::ParamValues& frameValues, const std::vector<std::string>& sets,
+                               bool softwareRasterizer);
 
 } // namespace bounce::app

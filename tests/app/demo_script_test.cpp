@@ -1,15 +1,22 @@
 // The demo's --script is parsed and checked without a window or GL (app/demo_script.h): each bad step is
 // refused with a message naming the step and the problem, and set: is checked against the technique
 // selected at that point of the script.
+#include <string>
+#include <utility>
+#include <vector>
+
 #include <gtest/gtest.h>
 
 #include "app/commands.h"
 #include "app/demo_script.h"
+#include "gl/technique/technique.h"
 
 namespace {
 
+using bounce::app::chooseDemoTemporal;
 using bounce::app::parseDemoScript;
 using bounce::app::UsageError;
+namespace gl = bounce::gl;
 
 TEST(DemoScript, ParsesEveryVerbInOrder)
 {
@@ -79,6 +86,28 @@ TEST(DemoScript, BadStepsAreRefusedWithTheReason)
         }
     }
     EXPECT_THROW(parseDemoScript("wait:1", "nosuch"), UsageError) << "the initial technique is checked too";
+}
+
+// The demo's temporal default: on for a hardware renderer, off for a software rasterizer, and a --set of
+// either parameter (whatever its value) leaves both as the command line made them.
+TEST(DemoScript, TemporalReuseDefaultFollowsTheRendererUnlessSet)
+{
+    const auto choose = [](const std::vector<std::string>& sets, bool software) {
+        gl::ParamValues v(gl::frameParams());
+        chooseDemoTemporal(v, sets, software);
+        return std::pair{v.getBool("temporal"), v.getBool("temporal.direct")};
+    };
+    EXPECT_EQ(choose({}, false), std::pair(true, true)) << "a GPU";
+    EXPECT_EQ(choose({}, true), std::pair(false, false)) << "llvmpipe";
+    EXPECT_EQ(choose({"shadow.size=512"}, false), std::pair(true, true)) << "another parameter";
+    EXPECT_EQ(choose({"temporal=0"}, false), std::pair(false, false)) << "the user's temporal=0 on a GPU";
+    EXPECT_EQ(choose({"temporal.direct=0"}, false), std::pair(false, false)) << "temporal.direct alone";
+    // The values the command line parsed stay: the function sets nothing when either is named.
+    gl::ParamValues set(gl::frameParams());
+    set.setValue("temporal", 1.0);
+    EXPECT_NE(chooseDemoTemporal(set, {"temporal=1"}, true).find("--set"), std::string::npos);
+    EXPECT_TRUE(set.getBool("temporal"));
+    EXPECT_FALSE(set.getBool("temporal.direct"));
 }
 
 } // namespace
