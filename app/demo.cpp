@@ -309,7 +309,9 @@ void Demo::applyBudget(double now)
     const bool moving = now - lastMoveTime_ < kStillSeconds;
     movingForLog_ = moving;
     int scale = indirectScale_;
-    if (!budgetOn_ || !moving)
+    // A technique drawn at full resolution at every scale (gl::Renderer::indirectScales) gains nothing from it.
+    const bool scales = left_->indirectScales() || (right_ && right_->indirectScales());
+    if (!budgetOn_ || !moving || !scales)
         scale = 1;
     else if (frameMs_ > budgetMs_ && scale < 8)
         scale *= 2; // the last frame was over budget: a quarter of the indirect pixels

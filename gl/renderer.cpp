@@ -80,8 +80,9 @@ void Renderer::reuseDirectLight()
 void Renderer::setIndirectScale(int scale)
 {
     if (scale < 1 || scale > 16) throw std::invalid_argument("indirect scale must be in 1..16");
+    const int drawn = drawnScale();
     indirectScale_ = scale;
-    stillReady_ = false; // the still mean starts again from the first frame at this scale
+    if (drawnScale() != drawn) stillReady_ = false; // the still mean starts again from the first frame at this scale
 }
 
 void Renderer::advanceStill()
@@ -107,7 +108,7 @@ void Renderer::renderFrame(bool keepTimings)
     // reads it: the viewer sees the full-resolution direct light.
     const bool readsDirect =
         std::find(info_->reads.begin(), info_->reads.end(), GBufferChannel::Direct) != info_->reads.end();
-    frame_->beginIndirect(indirectScale_, timers_, readsDirect);
+    frame_->beginIndirect(drawnScale(), timers_, readsDirect);
     technique_->render(*frame_, timers_);
     if (temporalReuse()) {
         temporal_.settings.alpha = frame_->settings().temporalAlpha;

@@ -54,11 +54,15 @@ public:
     // at full resolution. What the technique built that does not depend on the camera (ray-bundle atlases,
     // point hierarchies, clusters, compiled programs) survives a change of scale, and a progressive one
     // keeps accumulating through it. Throws std::invalid_argument outside 1..16.
+    // A technique whose indirect light would not get cheaper (Technique::indirectScales) is drawn at full
+    // resolution at every scale.
     void setIndirectScale(int scale);
     int indirectScale() const { return indirectScale_; }
+    // Whether the running technique's indirect light follows setIndirectScale().
+    bool indirectScales() const { return technique_->indirectScales(); }
     // The resolution the indirect light is computed at.
-    int indirectWidth() const { return (frame_->width() + indirectScale_ - 1) / indirectScale_; }
-    int indirectHeight() const { return (frame_->height() + indirectScale_ - 1) / indirectScale_; }
+    int indirectWidth() const { return (frame_->width() + drawnScale() - 1) / drawnScale(); }
+    int indirectHeight() const { return (frame_->height() + drawnScale() - 1) / drawnScale(); }
 
     // Temporal reuse (frame parameter `temporal`, off unless set): the indirect light of a
     // technique that declares TechniqueInfo::temporalReuse is blended, at the resolution it is computed at
@@ -89,6 +93,7 @@ public:
 private:
     void make(const TechniqueInfo& info, const ParamValues& techniqueValues);
     void reuseDirectLight();
+    int drawnScale() const { return technique_->indirectScales() ? indirectScale_ : 1; }
     std::unique_ptr<Frame> frame_;
     const TechniqueInfo* info_ = nullptr;
     std::unique_ptr<Technique> technique_;

@@ -48,6 +48,11 @@ public:
     // With carriesEmittersLight(): whether the technique reads the emitting meshes' shadow cubes (the frame
     // renders them only then).
     virtual bool readsAreaShadowMaps() const { return true; }
+    // False when the technique's work at the camera's pixels is a lookup of what it built apart from the
+    // camera (grb's display of its atlases without the final glossy bounce): a coarser indirect resolution
+    // (Renderer::setIndirectScale) would save next to nothing and lose detail, and the Renderer then draws
+    // its indirect light at full resolution at every scale.
+    virtual bool indirectScales() const { return true; }
 };
 
 // The G-buffer channels a technique may read (Frame::bindGBuffer, glsl/common/gbuffer.glsl).

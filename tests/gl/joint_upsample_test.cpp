@@ -127,5 +127,33 @@ TEST_F(JointUpsampleTest, CoarseIndirectStaysCloseToFullResolution)
     EXPECT_THROW(r.frame().beginIndirect(17, r.timers(), false), std::invalid_argument);
 }
 
+// grb's display is one lookup of its atlases per pixel (Technique::indirectScales): on a diffuse scene a
+// coarser scale draws it at full resolution, the same image as scale 1 after the same directions; with the
+// final glossy bounce (cornell-glossy), gathered at every glossy pixel for each direction, it follows the
+// scale. Moving frames (accumulate off), so that no still mean hides a difference.
+TEST_F(JointUpsampleTest, GrbDrawsItsDisplayAtFullResolutionAtEveryScale)
+{
+    gl::ParamValues frameValues = smallShadows();
+    frameValues.setValue("accumulate", 0);
+    const gl::TechniqueInfo& grb = gl::findTechnique("grb");
+    gl::ParamValues values(grb.params);
+    values.setValue("directionsPerFrame", 2);
+    constexpr int w = 40, h = 28;
+    const auto run = [&](const core::Scene& scene, int scale) {
+        gl::Renderer r(scene, "grb", frameValues, values, w, h);
+        r.setIndirectScale(scale);
+        for (int i = 0; i < 3; ++i) r.renderFrame(false);
+        return std::pair{r.image(), r.indirectWidth()};
+    };
+    const core::Scene area = core::makeCornell("cornell-area");
+    const auto [full, fullWidth] = run(area, 1);
+    const auto [quarter, quarterWidth] = run(area, 4);
+    EXPECT_EQ(fullWidth, w);
+    EXPECT_EQ(quarterWidth, w) << "grb without the final glossy bounce follows the scale";
+    EXPECT_EQ(core::relativeRmse(quarter, full), 0.0) << "scale 4 against 1, the same 6 directions";
+    const auto [glossy, glossyWidth] = run(core::makeCornell("cornell-glossy"), 4);
+    EXPECT_EQ(glossyWidth, (w + 3) / 4) << "the final glossy bounce is gathered at the coarse scale";
+}
+
 } // namespace
 } // namespace bounce
