@@ -67,9 +67,9 @@ void TemporalReuse::apply(const Frame& frame, const std::vector<Texture*>& signa
     const double pixels = double(w) * double(h);
     const bool clamp = settings.clamp;
     PassCost cost;
-    // The neighbourhood test: eight more G-buffer texels, nine points projected (about 30 flops each) and
-    // each tap's depth and normal against nine (about 12 flops each).
-    cost.flops = 120 + 9 * 30 + 4 * 9 * 12 + (clamp ? 9 * 6 : 0);
+    // The neighbourhood test: eight more G-buffer texels, nine points projected with their screen motion
+    // (about 34 flops each) and each tap's depth, normal and motion against nine (about 16 flops each).
+    cost.flops = 120 + 9 * 34 + 4 * 9 * 16 + (clamp ? 9 * 6 : 0);
     cost.fetches = 2 + 8 + 4 * 3 + (clamp ? 8 : 0);
     cost.bytesRead = 8 + 16 + 8 * 8 + 4 * (8 + 16 + 4) + (clamp ? 8 * 16 : 0);
     cost.bytesWritten = 16 + 4;

@@ -5,7 +5,9 @@
 // with the previous view-projection and takes the previous output there from the four nearest texels, each
 // kept only where the previous G-buffer saw a surface this pixel or one of its 3x3 neighbours sees now (its
 // normal within `normalTolerance`, 1 - cos, of theirs, its eye depth within the span of theirs widened by
-// `depthTolerance`, relative: jittered samples of a pixel that straddles two surfaces land on either) and
+// `depthTolerance`, relative: jittered samples of a pixel that straddles two surfaces land on either; a
+// neighbour's surface only where the camera moves it on screen as it moves this pixel's own point, within
+// 0.15 pixel, so that a surface uncovered by parallax takes nothing of the edge that covered it) and
 // held a finite value. Where none is kept (disocclusion, the
 // border, background then) the pixel takes the current value and its history restarts. The history, clamped
 // to the current signal's 3x3 neighbourhood (min/max, against ghosting; `clamp`), is blended with weight

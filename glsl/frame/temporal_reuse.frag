@@ -29,6 +29,14 @@ layout(location = 1) out float outLength; // frames the blend averages (0: no ge
 // position rebuilt from depth is off by float rounding (~1e-4 pixel at 256 pixels), and a still camera or a
 // whole-pixel move would otherwise blur the history by that fraction of its neighbours every frame.
 const float kSnapPixels = 1.0 / 64.0;
+// A neighbour's surface counts for this pixel's history only where it moves on screen with this pixel's own
+// point (previous pixel coordinates less current ones, within this per axis): a surface whose edge straddles
+// the pixel moves with it, while the surface that a nearer edge uncovers by parallax (a wall beside a box
+// the camera passes) moves otherwise, and taking the box's history there left a trail behind the edge as
+// long as the parallax per frame over alpha (cornell-spot along bench/paths/cornell-orbit.json: the direct
+// light's reuse read 29% with no such test, 19% with it; gl/frame/README.md). A trail is at most this over
+// alpha pixels long.
+const float kMotionPixels = 0.15;
 // Valid taps holding less of the bilinear weight than this are no history (disocclusion), as in SVGF.
 const float kMinHistoryWeight = 0.01;
 
@@ -53,16 +61,23 @@ void neighbourhood(ivec2 px, ivec2 size, out vec3 lo, out vec3 hi)
 // because the frames jitter (FrameSampler::sampleIndex): where a pixel's footprint straddles two surfaces
 // (a silhouette, a corner), one frame's sample lands on one and the next frame's on the other, and both
 // belong to the pixel's box-filtered value; testing against its own sample alone restarted the history at
-// every such pixel each time the sample changed surface, and those pixels never averaged. A surface that
+// every such pixel each time the sample changed surface, and those pixels never averaged. A neighbour's
+// surface counts only where it moves on screen with this pixel's own point (kMotionPixels). A surface that
 // no pixel around sees any more (a disocclusion) still takes no history.
 struct Neighbour {
     float depth; // eye depth in the previous camera (0: no geometry)
     vec3 normal;
+    vec2 motion; // its previous pixel coordinates less its current ones (pixels)
 };
+
+// Where the point of the current G-buffer at pixel px, projected by the previous camera (clip), lay in the
+// previous frame's pixel coordinates (texel centres at integers). The point lies at px's centre plus this
+// frame's jitter, which is taken off: the history is kept at pixel centres.
+vec2 previousPixel(vec4 clip, ivec2 size) { return (clip.xy / clip.w * 0.5 + 0.5) * vec2(size) - 0.5 - currentJitter; }
 
 Neighbour neighbourAt(ivec2 px, ivec2 size)
 {
-    Neighbour n = Neighbour(0.0, vec3(0.0));
+    Neighbour n = Neighbour(0.0, vec3(0.0), vec2(0.0));
     if (any(lessThan(px, ivec2(0))) || any(greaterThanEqual(px, size))) return n;
     uvec2 g = texelFetch(gGeometry, px, 0).xy;
     if (g.x == 0u) return n;
@@ -70,6 +85,7 @@ Neighbour neighbourAt(ivec2 px, ivec2 size)
     if (clip.w <= 0.0) return n;
     n.depth = clip.w;
     n.normal = unpackUnitVector(g.y);
+    n.motion = previousPixel(clip, size) - vec2(px);
     return n;
 }
 
@@ -85,9 +101,7 @@ void main()
 
     vec4 clip = previousViewProjection * vec4(s.position, 1.0);
     if (clip.w <= 0.0) return; // behind the previous camera
-    // The previous frame's pixel coordinates, texel centres at integers.
-    // This pixel's G-buffer point lies at its centre plus the jitter: without it, the centre's own point.
-    vec2 q = (clip.xy / clip.w * 0.5 + 0.5) * vec2(size) - 0.5 - currentJitter;
+    vec2 q = previousPixel(clip, size);
     q = mix(q, round(q), lessThan(abs(q - round(q)), vec2(kSnapPixels)));
     ivec2 base = ivec2(floor(q));
     vec2 f = q - vec2(base);
@@ -110,7 +124,8 @@ void main()
         // of their surfaces (at a grazing angle one pixel spans more depth than the tolerance).
         float lo = 1e30, hi = 0.0;
         for (int k = 0; k < 9; ++k)
-            if (around[k].depth > 0.0 && dot(tapNormal, around[k].normal) >= 1.0 - normalTolerance) {
+            if (around[k].depth > 0.0 && dot(tapNormal, around[k].normal) >= 1.0 - normalTolerance &&
+                all(lessThanEqual(abs(around[k].motion - (q - vec2(px))), vec2(kMotionPixels)))) {
                 lo = min(lo, around[k].depth);
                 hi = max(hi, around[k].depth);
             }

@@ -356,6 +356,51 @@ TEST_F(TemporalReuseTest, SurfaceOfANeighbourKeepsTheHistory)
     EXPECT_EQ(wrong, 0);
 }
 
+// 3. The camera moves by one pixel of the plane (1/16 m at 2 m); the occluder, at half the distance, moves
+// by two: one column of the plane beside it is uncovered by parallax. Those pixels saw the occluder in the
+// previous frame where they reproject, and the occluder is in their 3x3 neighbourhood now, but it moves
+// otherwise than they do: they take no history (1), where without the motion test they took the occluder's
+// (9, then (9 + 1) / 2 = 5) and every later frame would have drawn the trail on. The rest of the plane keeps
+// its own history, 5 + (1 - 5) / 2 = 3, the occluder its own, 5.
+TEST_F(TemporalReuseTest, SurfaceUncoveredByParallaxTakesNoHistoryOfTheEdge)
+{
+    constexpr int w = 64, h = 32;
+    const core::Scene scene = planeScene(true);
+    gl::Frame frame(scene, smallFrame(w, h));
+    gl::PassTimers timers;
+    gl::TemporalReuse reuse(noClamp());
+    gl::Texture t = makeSignal(w, h);
+    renderGeometry(frame, planeCamera(0.0f), timers);
+    const std::vector<float> was = frame.readPositions();
+    std::vector<float> first = constantSignal(was, 5.0f, 0.0f);
+    for (std::size_t i = 0; i < was.size(); i += 4)
+        if (was[i + 3] != 0.0f && was[i + 2] > 0.5f) first[i] = first[i + 1] = first[i + 2] = 9.0f;
+    upload(t, first);
+    reuse.apply(frame, {&t}, timers);
+    renderGeometry(frame, planeCamera(pixelOnPlane(h)), timers);
+    const std::vector<float> positions = frame.readPositions();
+    upload(t, constantSignal(positions, 1.0f, 0.0f));
+    reuse.apply(frame, {&t}, timers);
+    const std::vector<float> out = t.readFloats(0, 4);
+    int uncovered = 0, plane = 0, occluder = 0;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x + 1 < w; ++x) { // the last column entered the view
+            const std::size_t i = at(x, y, w);
+            if (positions[i + 3] == 0.0f) continue;
+            if (positions[i + 2] > 0.5f) {
+                ++occluder;
+                EXPECT_EQ(out[i], 5.0f) << "occluder " << x << "," << y;
+                continue;
+            }
+            ++plane;
+            uncovered += out[i] == 1.0f;
+            EXPECT_TRUE(out[i] == 1.0f || out[i] == 3.0f) << "plane " << x << "," << y << ": " << out[i];
+        }
+    EXPECT_EQ(occluder, 8 * 16);
+    EXPECT_EQ(uncovered, 16) << "one column of 16 rows uncovered";
+    EXPECT_GT(plane, 1000);
+}
+
 // 3. The same point under a shading normal turned by more than the tolerance is another surface: no
 // history; turned by less, the history is kept. normalTolerance 0.1 (1 - cos): 0.2 rejects, 0.05 keeps.
 TEST_F(TemporalReuseTest, NormalChangeBeyondToleranceTakesNoHistory)
