@@ -304,9 +304,6 @@ void Frame::resize(int width, int height)
 
 void Frame::beginFrame(bool still)
 {
-    // Moving frames whose emitters' light takes the ratio estimator average only its visible share, not
-    // the image: their pixels stay at their centres (a jittered frame shown alone moves every edge).
-    sampler_.setMovingJitter(!directRatioProgram_);
     sampler_.advance(still);
     accumulatedResult_ = false;
 }

@@ -56,8 +56,8 @@ void FrameSampler::advance(bool still)
     started_ = true;
     stillIndex_ = still ? stillIndex_ + 1 : 0;
     sampleIndex_ = stillIndex_ > 0 ? stillIndex_ : movingSamples_ ? int(frameIndex_ % 0x40000000u) + 1 : 0;
-    const bool jittered = stillIndex_ > 0 || (sampleIndex_ > 0 && movingJitter_);
-    jitter_ = jittered ? sample2(SampleStream::PixelJitter, std::uint64_t(sampleIndex_)) - 0.5f : glm::vec2(0.0f);
+    jitter_ =
+        stillIndex_ > 0 ? sample2(SampleStream::PixelJitter, std::uint64_t(sampleIndex_)) - 0.5f : glm::vec2(0.0f);
 }
 
 } // namespace bounce::gl

@@ -54,13 +54,15 @@ public:
     void advance(bool still);
     std::uint64_t frameIndex() const { return frameIndex_; }
     int stillIndex() const { return stillIndex_; }
-    // The index of the frame's own samples: its point in the pixel, the shadow maps' shift, the emitters'
-    // points. A still frame's is its still index; a moving frame's is 0 (the pixel's centre and the direct
+    // The index of the frame's own samples: its point in the pixel (still frames only), the shadow maps'
+    // shift, the emitters' points. A still frame's is its still index; a moving frame's is 0 (the direct
     // light's moving form: one frame that stands alone), or, with moving samples (the temporal reuse of the
-    // direct light, gl/renderer.h), a new index every frame (frameIndex + 1), so that the reuse averages
-    // new samples as temporal antialiasing does, rather than one sample again and again.
+    // direct light, gl/renderer.h), a new index every frame (frameIndex + 1), so that the reuse averages new
+    // samples rather than one sample again and again. Moving frames keep their pixels at their centres
+    // either way: a jittered frame shown alone moves every edge, and a reuse that restarts at the
+    // silhouettes while the camera moves shows them one jittered sample at a time (gl/frame/README.md).
     int sampleIndex() const { return sampleIndex_; }
-    // The frame's offset from the pixel's centre, each component in [-0.5, 0.5) (0 at sample index 0).
+    // The frame's offset from the pixel's centre, each component in [-0.5, 0.5) (0 in a moving frame).
     glm::vec2 jitter() const { return jitter_; }
     // A seed of a shader's hashed random numbers (glsl/common/random.glsl) for this frame: `base` in a moving
     // frame (still frame 0), so that its image stays what it was; base mixed with the still index after, so
@@ -74,10 +76,6 @@ public:
     }
     void setFreshMovingSeeds(bool on) { freshMovingSeeds_ = on; }
     void setMovingSamples(bool on) { movingSamples_ = on; }
-    // With moving samples, whether a moving frame's pixel takes the jitter too (on: the reuse averages the
-    // whole image over the pixel, as temporal antialiasing does) or stays at its centre (off: the frame's
-    // image is not averaged, only a part of its light is; Frame::areaRatioDrawn).
-    void setMovingJitter(bool on) { movingJitter_ = on; }
 
 private:
     std::uint64_t frameIndex_ = 0;
@@ -86,7 +84,6 @@ private:
     bool started_ = false;
     bool freshMovingSeeds_ = false;
     bool movingSamples_ = false;
-    bool movingJitter_ = true;
     glm::vec2 jitter_{0.0f};
 };
 

@@ -114,8 +114,9 @@ const std::vector<ParamDecl>& frameParams()
          "with temporal on, the frame's direct light too: moving frames sample a new shadow-map shift and "
          "point on each emitter every frame; emitting triangles give their exact unshadowed light times the "
          "visible share, whose sums alone are blended with their reprojected history (the ratio estimator, "
-         "gl/frame/README.md), and a scene with no emitter blends its whole direct light, jittered in the "
-         "pixel; unclamped (the emitters' point is one for the whole frame, so one frame's neighbourhood "
+         "gl/frame/README.md), and a scene with no emitter blends its whole direct light (pixel centres, "
+         "as every moving frame); unclamped (the emitters' point is one for the whole frame, so one frame's "
+         "neighbourhood "
          "holds one point's shadow); a light change drops that history"},
         choiceParam("gbuffer.fragment", {"material", "constant"}, 0,
                     "profiling: constant writes the G-buffer without reading materials or textures (wrong images)"),

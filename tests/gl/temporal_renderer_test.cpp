@@ -120,19 +120,15 @@ namespace bounce {
 namespace {
 
 // temporal.direct on a still view drawn as moving frames (accumulate off), in a scene without emitting
-// triangles (cornell-point), whose whole direct light the reuse averages (with emitters only their visible
-// share is: still_frames_test.cpp, MovingFramesRatioEstimator...): each frame takes the sample a still
-// frame of that index takes (its point in the pixel, the shadow's), and the reuse with alpha 0.01 weighs
-// the first 16 frames equally, so the image is the mean of the still frames 1..16: what a still view shows
-// after 17 frames (the first is the moving form and not in the mean). Compared on 4x4-pixel blocks, left
-// out: those with a pixel that saw background in some frame (a sample on the background restarts the
-// pixel's history: the box's outer edges, where the reuse is known to fall short of the mean). Within 4%
-// elsewhere (measured: 1.1% over 190 blocks; on cornell-spot 5.5%, from seven blocks on the floor along the boxes'
-// shadow edges, 5-10% apart each, the same with shadow.still=maps and with shadow.pcf=0; cause not found). Before the pass accepted the surfaces of a pixel's neighbours, every
-// silhouette pixel inside the box restarted its history whenever its jittered sample changed surface
-// (mutation temporal-own-surface-only: 5.6%; on cornell-area, before its emitter took the ratio estimator,
-// 2.8% and 11.9%).
-TEST_F(TemporalRendererTest, DirectLightReuseOfAStillViewIsTheMeanOfTheStillFrames)
+// triangles (cornell-point), whose whole direct light the reuse blends (with emitters only their visible
+// share is: still_frames_test.cpp, MovingFramesRatioEstimator...). Moving frames sample the pixels' centres
+// and a point light's shadow is exact in the still form they take, so every frame is the same image and the
+// reuse must give it back exactly, 16 frames on (a history resampled a fraction of a pixel off, the snap
+// of temporal_reuse.frag undone, blurs it). Against an independent path, the still frames' mean (frames
+// 1..16, jittered): equal on 4x4-pixel blocks that lie on one plane (one normal, one offset along it),
+// the blocks compared here (silhouettes and creases left out, where a still frame's jitter box-filters an
+// edge that a pixel centre does not). Within 3% (measured: 2.05% over 120 blocks, the shadows' edges).
+TEST_F(TemporalRendererTest, DirectLightReuseOfAStillViewIsTheMeanOfTheStillFramesOnEachPlane)
 {
     const core::Scene scene = core::makeCornell("cornell-point");
     const gl::ParamValues t(gl::findTechnique("direct").params);
@@ -141,17 +137,30 @@ TEST_F(TemporalRendererTest, DirectLightReuseOfAStillViewIsTheMeanOfTheStillFram
     still.setValue("accumulate", 1);
     gl::Renderer reused(scene, "direct", moving, t, 64, 64), accumulated(scene, "direct", still, t, 64, 64);
     accumulated.renderFrame(false);
-    std::vector<bool> sawBackground(16 * 16, false);
+    core::Image first;
     for (int k = 1; k <= 16; ++k) {
         reused.renderFrame(false);
         accumulated.renderFrame(false);
+        if (k == 1) first = reused.image();
         ASSERT_EQ(reused.frame().sampler().sampleIndex(), accumulated.frame().sampler().stillIndex());
-        const std::vector<float> p = reused.frame().readPositions(); // GL rows: row 0 at the bottom
-        for (int y = 0; y < 64; ++y)
-            for (int x = 0; x < 64; ++x)
-                if (p[(std::size_t(63 - y) * 64 + std::size_t(x)) * 4 + 3] == 0.0f)
-                    sawBackground[std::size_t(y / 4) * 16 + std::size_t(x / 4)] = true;
+        ASSERT_EQ(reused.frame().sampler().jitter(), glm::vec2(0.0f)) << "a moving frame samples pixel centres";
     }
+    EXPECT_EQ(relativeChange(reused.image(), first), 0.0) << "the reuse of identical frames changed them";
+    // Blocks on one plane: every pixel sees geometry with the block's first normal and lies on its plane.
+    const std::vector<float> p = reused.frame().readPositions(), n = reused.frame().readNormals(); // GL rows
+    const auto onOnePlane = [&](int bx, int by) {
+        const auto at = [](int x, int y) { return (std::size_t(63 - y) * 64 + std::size_t(x)) * 4; };
+        const std::size_t o = at(bx * 4, by * 4);
+        const glm::vec3 p0(p[o], p[o + 1], p[o + 2]), n0(n[o], n[o + 1], n[o + 2]);
+        for (int y = by * 4; y < by * 4 + 4; ++y)
+            for (int x = bx * 4; x < bx * 4 + 4; ++x) {
+                const std::size_t i = at(x, y);
+                const glm::vec3 pi(p[i], p[i + 1], p[i + 2]), ni(n[i], n[i + 1], n[i + 2]);
+                if (p[i + 3] == 0.0f || glm::dot(ni, n0) < 0.999f || std::abs(glm::dot(n0, pi - p0)) > 1e-3f)
+                    return false;
+            }
+        return true;
+    };
     const core::Image a = core::boxDownsample(reused.image(), 16, 16);
     const core::Image b = core::boxDownsample(accumulated.image(), 16, 16);
     double se = 0.0, sum = 0.0;
@@ -159,15 +168,16 @@ TEST_F(TemporalRendererTest, DirectLightReuseOfAStillViewIsTheMeanOfTheStillFram
     for (int y = 0; y < 16; ++y)
         for (int x = 0; x < 16; ++x) {
             const glm::vec3 u = a.at(x, y), v = b.at(x, y);
-            if (std::max({v.x, v.y, v.z}) > 1.0f || sawBackground[std::size_t(y) * 16 + std::size_t(x)]) continue;
+            if (std::max({v.x, v.y, v.z}) > 1.0f || !onOnePlane(x, y)) continue;
             ++blocks;
             se += glm::dot(u - v, u - v);
             sum += v.x + v.y + v.z;
         }
     const double relative = std::sqrt(se / (blocks * 3.0)) / (sum / (blocks * 3.0));
-    std::printf("[ measured ] reused moving frames against the still mean, %d 4x4 blocks: %.4f\n", blocks, relative);
-    EXPECT_GT(blocks, 150);
-    EXPECT_LT(relative, 0.04);
+    std::printf("[ measured ] reused moving frames against the still mean, %d 4x4 blocks on one plane: %.4f\n", blocks,
+                relative);
+    EXPECT_GE(blocks, 100);
+    EXPECT_LT(relative, 0.03);
 }
 
 } // namespace
