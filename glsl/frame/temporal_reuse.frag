@@ -58,7 +58,7 @@ void neighbourhood(ivec2 px, ivec2 size, out vec3 lo, out vec3 hi)
 // What a previous texel must match to be this pixel's history: a surface of this pixel or of one of its
 // 3x3 neighbours, each as the previous camera sees it (eye depth) with its normal: the texel's normal within
 // the tolerance of theirs, its eye depth within the span of their depths (widened by the tolerance). The neighbours count
-// because the frames jitter (FrameSampler::sampleIndex): where a pixel's footprint straddles two surfaces
+// because still frames jitter (FrameSampler::jitter): where a pixel's footprint straddles two surfaces
 // (a silhouette, a corner), one frame's sample lands on one and the next frame's on the other, and both
 // belong to the pixel's box-filtered value; testing against its own sample alone restarted the history at
 // every such pixel each time the sample changed surface, and those pixels never averaged. A neighbour's
