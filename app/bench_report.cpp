@@ -223,8 +223,9 @@ void pathTable(std::ostringstream& md, const std::vector<const nlohmann::json*>&
         std::string ratio = "-";
         char buf[1024];
         if (q.contains("meanStillRatio")) {
-            std::snprintf(buf, sizeof buf, "%.2f (worst %.2f, %d still frames)", q["meanStillRatio"].get<double>(),
-                          q["worstStillRatio"].get<double>(), q["stillFrames"].get<int>());
+            std::snprintf(buf, sizeof buf, "%.2f (worst %.2f, second half %.2f, %d still frames)",
+                          q["meanStillRatio"].get<double>(), q["worstStillRatio"].get<double>(),
+                          q.value("secondHalfStillRatio", double(NAN)), q["stillFrames"].get<int>());
             ratio = buf;
         }
         std::snprintf(buf, sizeof buf, "| %s | %s | %s | %s | %d | %d | %.3f | %.4f | %.4f | %.4f | %.4f | %s |\n",

@@ -366,7 +366,7 @@ BenchRow pathRow(const BenchConfig& config, const BenchSetting& s, const std::st
     std::snprintf(stem, sizeof stem, "%03zu-%s-%s", index, sceneName.c_str(), s.technique.c_str());
     nlohmann::json frames = nlohmann::json::array();
     ComparedFrame previous;
-    std::vector<double> errors, secondHalf, flickers, ratios;
+    std::vector<double> errors, secondHalf, flickers, ratios, stillSecondHalf;
     double sumMs = 0.0;
     std::size_t nonFinite = 0;
     core::Progress progress("path " + s.technique, double(path.frames), "frames");
@@ -404,6 +404,7 @@ BenchRow pathRow(const BenchConfig& config, const BenchSetting& s, const std::st
                     core::blanked(core::boxDownsample(still.image(), rw, rh), m), core::blanked(c.reference, m));
                 record["stillRelativeRmse"] = stillError;
                 ratios.push_back(e / stillError);
+                if (2 * fi >= path.frames) stillSecondHalf.push_back(stillError);
             }
             if (!out.empty()) {
                 char frameStem[300];
@@ -458,6 +459,12 @@ BenchRow pathRow(const BenchConfig& config, const BenchSetting& s, const std::st
     if (!ratios.empty()) {
         sequence["meanStillRatio"] = mean(ratios);
         sequence["worstStillRatio"] = *std::max_element(ratios.begin(), ratios.end());
+    }
+    // Issue 58's figure: the second half's mean moving error over the mean still error at the second half's
+    // frames iK (each still image stands for its pair iK, iK+1).
+    if (!stillSecondHalf.empty()) {
+        sequence["secondHalfStillRelativeRmse"] = mean(stillSecondHalf);
+        sequence["secondHalfStillRatio"] = mean(secondHalf) / mean(stillSecondHalf);
     }
     row.record["sequence"] = sequence;
     row.record["command"] = pathCommand(config, s, sceneName);

@@ -522,7 +522,8 @@
     part.append(el('p', {}, `relative RMSE (${r.lightPaths}) over frames iK and iK+1, K = ${q.every}: mean ` +
       `${fmt(num(q.meanRelativeRmse))}, second half ${fmt(num(q.secondHalfMeanRelativeRmse))}, worst ` +
       `${fmt(num(q.worstRelativeRmse))}; flicker ${fmt(num(q.flicker))}` +
-      (q.meanStillRatio !== undefined ? `; moving / still (${q.stillFrames} still frames) ${fmt(num(q.meanStillRatio))}` : '') +
+      (q.meanStillRatio !== undefined ? `; moving / still (${q.stillFrames} still frames) ${fmt(num(q.meanStillRatio))}` +
+        (q.secondHalfStillRatio !== undefined ? `, second half ${fmt(num(q.secondHalfStillRatio))}` : '') : '') +
       `; ${fmt(num(q.meanMs))} ms per frame`));
     const error = sequencePlot(frames, q.frameCount, 'relativeRmse', 'relative RMSE', PALETTE[0]);
     const ms = sequencePlot(frames, q.frameCount, 'ms', 'GPU ms', PALETTE[1]);

@@ -241,8 +241,10 @@ double flickerOf(const bounce::core::Image& a, const bounce::core::Image& ra, co
 // `bounce bench` with a "path" run (issue 58, "Sequences"), its figures computed again here by other
 // commands: each measured frame (iK and iK+1, K = 2, so all 4 here) is the frame `bounce render --path`
 // writes, compared with `bounce reference` at that frame's camera; the row's error is their mean; the
-// flicker is that of the pairs (0, 1) and (2, 3) only, from the formula above. cornell-spot shows no
-// emitter, so no pixel is masked. A key at every frame gives cameras the command line can name exactly.
+// flicker is that of the pairs (0, 1) and (2, 3) only, from the formula above; with "stillFrames" 2,
+// frames 0 and 2 are also rendered still (`bounce render --camera C --warmup 0 --frames 2`), and the
+// second half's ratio is that of the mean of frames 2 and 3 to frame 2's still error. cornell-spot shows
+// no emitter, so no pixel is masked. A key at every frame gives cameras the command line can name exactly.
 TEST(RenderPath, BenchPathRunMeasuresEachFrameAgainstItsOwnReference)
 {
     const fs::path d = outDir("bench");
@@ -256,7 +258,7 @@ TEST(RenderPath, BenchPathRunMeasuresEachFrameAgainstItsOwnReference)
     const fs::path path = writePath(d, "path.json", R"({"frames": 4, "keys": [)" + keys + "]}");
     std::ofstream(d / "config.json") << R"({"size": "16x16", "reference": {"spp": 64}, "scenes": ["cornell-spot"],
         "runs": [{"technique": "direct", "path": ")"
-                                     << path.string() << R"(", "every": 2}]})";
+                                     << path.string() << R"(", "every": 2, "stillFrames": 2}]})";
     const std::string cache = (d / "cache").string();
     const CommandRun bench =
         bounce::testing::runBounce("bench --backend " + testBackend() + " --config " + (d / "config.json").string() +
@@ -273,6 +275,7 @@ TEST(RenderPath, BenchPathRunMeasuresEachFrameAgainstItsOwnReference)
                                    "BOUNCE_PROGRESS=0 ");
     ASSERT_EQ(frames.status, 0) << frames.output;
     std::vector<bounce::core::Image> image, reference;
+    std::vector<double> error;
     double sum = 0.0;
     for (std::size_t f = 0; f < cameras.size(); ++f) {
         char name[32];
@@ -285,6 +288,7 @@ TEST(RenderPath, BenchPathRunMeasuresEachFrameAgainstItsOwnReference)
         ASSERT_EQ(r.status, 0) << r.output;
         reference.push_back(bounce::core::readImage(ref.string()));
         const double e = relativeRmseOf(image[f], reference[f]);
+        error.push_back(e);
         sum += e;
         const nlohmann::json& fr = q["frames"][f];
         EXPECT_NEAR(fr.at("relativeRmse").get<double>(), e, 1e-4 * e) << "frame " << f;
@@ -294,5 +298,21 @@ TEST(RenderPath, BenchPathRunMeasuresEachFrameAgainstItsOwnReference)
     const double flicker = 0.5 * (flickerOf(image[0], reference[0], image[1], reference[1]) +
                                   flickerOf(image[2], reference[2], image[3], reference[3]));
     EXPECT_NEAR(q.at("flicker").get<double>(), flicker, 1e-4 * flicker);
+
+    std::vector<double> still(cameras.size(), 0.0);
+    for (std::size_t f = 0; f < cameras.size(); f += 2) {
+        const fs::path at = d / ("still-" + std::to_string(f) + ".exr");
+        const CommandRun r = bounce::testing::runBounce(
+            "render --scene cornell-spot --technique direct --size 16x16 --backend " + testBackend() + " --camera " +
+                cameras[f] + " --warmup 0 --frames 2 --out " + at.string(),
+            "BOUNCE_PROGRESS=0 ");
+        ASSERT_EQ(r.status, 0) << r.output;
+        still[f] = relativeRmseOf(bounce::core::readImage(at.string()), reference[f]);
+        EXPECT_NEAR(q["frames"][f].at("stillRelativeRmse").get<double>(), still[f], 1e-4 * still[f]) << "frame " << f;
+    }
+    const double ratio = 0.5 * (error[0] / still[0] + error[2] / still[2]);
+    EXPECT_NEAR(q.at("meanStillRatio").get<double>(), ratio, 1e-4 * ratio);
+    const double secondHalf = 0.5 * (error[2] + error[3]) / still[2];
+    EXPECT_NEAR(q.at("secondHalfStillRatio").get<double>(), secondHalf, 1e-4 * secondHalf);
     std::printf("[ measured ] direct along 4 frames: mean relative RMSE %.4g, flicker %.4g\n", sum / 4.0, flicker);
 }
