@@ -63,17 +63,24 @@ void Renderer::reuseDirectLight()
     if (frame_->version().lights != temporalDirectLights_) temporalDirect_.reset();
     temporalDirectLights_ = frame_->version().lights;
     temporalDirect_.settings.alpha = frame_->settings().temporalAlpha;
-    // Unclamped: every pixel of a frame takes its shadows from the same point on each emitter, so one frame's
-    // 3x3 neighbourhood holds that point's shadow only, and a clamp to it kept the penumbrae from averaging
-    // (cornell-area along bench/paths/cornell-orbit.json: 40% with the clamp against 15% without).
-    temporalDirect_.settings.clamp = false;
     // With emitting triangles, only the share of their exact light that reaches each pixel is averaged
-    // (Frame::areaRatioDrawn): the rest of the light is exact in every frame.
+    // (Frame::areaRatioDrawn): the rest of the light is exact in every frame. Unclamped: every pixel of a
+    // frame takes its shadows from the same point on each emitter, so one frame's 3x3 neighbourhood holds
+    // that point's shadow only, and a clamp to it kept the penumbrae from averaging (cornell-area along
+    // bench/paths/cornell-orbit.json: 40% with the clamp against 15% without).
     if (frame_->areaRatioDrawn()) {
+        temporalDirect_.settings.clamp = false;
         temporalDirect_.apply(*frame_, {&frame_->areaVisibility()}, timers_);
         frame_->resolveAreaRatio(timers_);
         return;
     }
+    // Point, spot and directional lights with shadow rays: every frame's light is exact at its pixels'
+    // centres, nothing stochastic to average, so the history only antialiases and is clamped as temporal
+    // antialiasing clamps (temporal.clamp). Unclamped, the bilinear resampling of each frame spread a shadow
+    // edge that moves over the screen into a trail a few pixels wide (the Sponza walk, 128x128: frame 40
+    // read 29.5% unclamped and 22.8% clamped). Shifted shadow maps (shadow.still=maps) keep it unclamped:
+    // their shift is one per frame, as the emitters' point is.
+    temporalDirect_.settings.clamp = frame_->settings().temporalClamp && frame_->settings().stillRayShadows;
     temporalDirect_.apply(*frame_, {&frame_->direct()}, timers_);
 }
 

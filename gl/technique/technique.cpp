@@ -115,9 +115,10 @@ const std::vector<ParamDecl>& frameParams()
          "point on each emitter every frame; emitting triangles give their exact unshadowed light times the "
          "visible share, whose sums alone are blended with their reprojected history (the ratio estimator, "
          "gl/frame/README.md), and a scene with no emitter blends its whole direct light (pixel centres, "
-         "as every moving frame); unclamped (the emitters' point is one for the whole frame, so one frame's "
-         "neighbourhood "
-         "holds one point's shadow); a light change drops that history"},
+         "as every moving frame), clamped as temporal.clamp says when its shadows are rays (shadow.still); "
+         "the emitters' share and shifted shadow maps unclamped (one point on each emitter, one shift, for "
+         "the whole frame, so one frame's neighbourhood holds one point's shadow); a light change drops that "
+         "history"},
         choiceParam("gbuffer.fragment", {"material", "constant"}, 0,
                     "profiling: constant writes the G-buffer without reading materials or textures (wrong images)"),
     };

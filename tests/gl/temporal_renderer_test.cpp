@@ -180,5 +180,54 @@ TEST_F(TemporalRendererTest, DirectLightReuseOfAStillViewIsTheMeanOfTheStillFram
     EXPECT_LT(relative, 0.03);
 }
 
+// A moving camera over a point light's shadows (cornell-point): every moving frame's direct light is exact
+// at its pixels' centres (shadow rays), so the reuse only antialiases, and its history is clamped to the
+// current frame's 3x3 neighbourhood as temporal antialiasing clamps it. Against an independent path, a
+// fresh renderer at the last camera, whose one frame is that frame's own light: after 16 frames along a
+// sideways move of about half a pixel a frame, every pixel lies within its 3x3 neighbourhood there (to
+// float rounding). Unclamped, the history resampled every frame trails the moving silhouettes and shadow
+// edges (measured: 1,015 of the 12,288 values outside, by up to 0.126 where the lit floor reads 0.204).
+TEST_F(TemporalRendererTest, DirectLightReuseOfPunctualLightsStaysWithinTheCurrentNeighbourhood)
+{
+    const core::Scene scene = core::makeCornell("cornell-point");
+    const gl::ParamValues t(gl::findTechnique("direct").params);
+    gl::ParamValues v = frameValues(true, 0.1);
+    v.setValue("temporal.direct", 1);
+    gl::Renderer moving(scene, "direct", v, t, 64, 64);
+    core::Camera camera = scene.camera;
+    for (int k = 0; k < 16; ++k) {
+        camera.position.x += 0.0075f; // about half a pixel at the back wall
+        moving.frame().setCamera(camera);
+        moving.renderFrame(false);
+    }
+    gl::Renderer fresh(scene, "direct", v, t, 64, 64);
+    fresh.frame().setCamera(camera);
+    fresh.renderFrame(false);
+    const core::Image a = moving.image(), c = fresh.image();
+    int outside = 0;
+    float worst = 0.0f;
+    for (int y = 0; y < 64; ++y)
+        for (int x = 0; x < 64; ++x)
+            for (int ch = 0; ch < 3; ++ch) {
+                float lo = INFINITY, hi = -INFINITY;
+                for (int dy = -1; dy <= 1; ++dy)
+                    for (int dx = -1; dx <= 1; ++dx) {
+                        const float n = c.at(std::clamp(x + dx, 0, 63), std::clamp(y + dy, 0, 63))[ch];
+                        lo = std::min(lo, n);
+                        hi = std::max(hi, n);
+                    }
+                const float u = a.at(x, y)[ch], slack = 1e-5f * std::max(hi, 1.0f);
+                if (u < lo - slack || u > hi + slack) {
+                    ++outside;
+                    worst = std::max(worst, std::max(lo - u, u - hi));
+                }
+            }
+    const float floorLight = c.at(32, 60).x;
+    std::printf("[ measured ] values outside the current 3x3 neighbourhood: %d of %d, worst %.3g (floor %.3g)\n",
+                outside, 64 * 64 * 3, worst, floorLight);
+    EXPECT_EQ(outside, 0);
+    EXPECT_GT(relativeChange(a, c), 0.0) << "the history took no part: the test saw no reuse";
+}
+
 } // namespace
 } // namespace bounce
