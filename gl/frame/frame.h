@@ -78,6 +78,11 @@ public:
     // it from Technique::carriesEmittersLight() before every frame. Off, the emitters' shadow cubes are not
     // rendered either unless keepAreaShadowMaps (Technique::readsAreaShadowMaps).
     void setAreaLightsInDirect(bool on, bool keepAreaShadowMaps = true);
+    // Whether the technique reads the shadow maps (Technique::readsShadowMaps; the Renderer sets it before
+    // every frame). False: renderShadowMaps() draws none in the frames whose direct pass reads none either
+    // (the still form with shadow rays, shadow.still=rays: still frames, and moving frames with the reuse of
+    // the direct light), and the frame's shadow counters read 0 there.
+    void setShadowMapsRead(bool read) { shadowMapsRead_ = read; }
     bool areaLightsInDirect() const { return areaLightsInDirect_; }
     void resize(int width, int height);
 
@@ -247,6 +252,7 @@ private:
     void allocateAreaRatio();
     bool compositeUsed_ = true;
     bool areaLightsInDirect_ = true;
+    bool shadowMapsRead_ = true;     // setShadowMapsRead
     bool accumulatedResult_ = false; // result() is accumulated_
     FrameSampler sampler_;
     FrameVersion version_;

@@ -61,11 +61,14 @@ public:
     // Whether render() draws the emitting meshes' cubes (on by default). Off while nothing reads them: a
     // technique that carries the emitters' light itself and samples none (Frame::setAreaLightsInDirect).
     void setAreaViews(bool on) { areaViews_ = on; }
+    // Whether render() draws anything this frame (on by default). Off while nothing reads the maps
+    // (Frame::setShadowMapsRead): the maps then hold whatever an earlier frame drew.
+    void setRendered(bool on) { rendered_ = on; }
     // Whether render() draws view i this frame: a cascade in still frames only, an emitter's cube unless
     // setAreaViews(false).
     bool renders(std::size_t i) const
     {
-        return !(views_[i].cascade && still_ == 0) && (areaViews_ || views_[i].areaCount == 0);
+        return rendered_ && !(views_[i].cascade && still_ == 0) && (areaViews_ || views_[i].areaCount == 0);
     }
     // The views each ShadowMaps' views() that render() draws this frame.
     int renderedViewCount() const;
@@ -103,6 +106,7 @@ private:
     core::Bounds bounds_;
     int still_ = 0;
     bool areaViews_ = true;
+    bool rendered_ = true;
     ViewFit fit_;
     bool fitted_ = false; // fit_.camera has been set
     int height_ = 0;      // the image fit_ is for, in pixels

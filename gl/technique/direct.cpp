@@ -6,6 +6,7 @@ namespace {
 class Direct final : public Technique {
 public:
     void render(Frame&, PassTimers&) override {} // the frame's indirect texture stays zero
+    bool readsShadowMaps() const override { return false; }
 };
 } // namespace
 

@@ -229,5 +229,35 @@ TEST_F(TemporalRendererTest, DirectLightReuseOfPunctualLightsStaysWithinTheCurre
     EXPECT_GT(relativeChange(a, c), 0.0) << "the history took no part: the test saw no reuse";
 }
 
+// The frame's shadow pass draws only what a pass reads (Frame::setShadowMapsRead): `direct` reads no map
+// of its own, and its still form with shadow rays (still frames; moving frames with the reuse of the direct
+// light) reads none either, so those frames draw none; its moving form reads the emitter's cube, and a
+// technique that does not say otherwise (photon) keeps every map in every frame. The images these frames
+// make are checked elsewhere against closed forms (StillFramesTest: the ratio estimator, the soft shadow).
+TEST_F(TemporalRendererTest, ShadowPassDrawsOnlyWhatSomethingReads)
+{
+    const core::Scene scene = core::makeCornell("cornell-area");
+    const auto texels = [](const gl::Renderer& r) {
+        for (const gl::Counter& c : r.frameCounters())
+            if (c.name == "shadow.texels") return c.value;
+        return -1.0;
+    };
+    const gl::ParamValues direct(gl::findTechnique("direct").params);
+    gl::ParamValues reuse = frameValues(true, 0.1), still = frameValues(false);
+    reuse.setValue("temporal.direct", 1);
+    still.setValue("accumulate", 1);
+    gl::Renderer reused(scene, "direct", reuse, direct, kW, kH),
+        moving(scene, "direct", frameValues(false), direct, kW, kH),
+        accumulated(scene, "direct", still, direct, kW, kH), photon(scene, "photon", reuse, photonValues(), kW, kH);
+    for (gl::Renderer* r : {&reused, &moving, &accumulated, &photon}) r->renderFrame(false);
+    EXPECT_EQ(texels(reused), 0.0) << "the ratio estimator casts shadow rays";
+    EXPECT_GT(texels(moving), 0.0) << "the moving form reads the emitter's cube";
+    EXPECT_GT(texels(accumulated), 0.0) << "still frame 0 is a moving frame";
+    EXPECT_GT(texels(photon), 0.0) << "photon says nothing: every map is drawn";
+    accumulated.renderFrame(false);
+    ASSERT_EQ(accumulated.frame().sampler().stillIndex(), 1);
+    EXPECT_EQ(texels(accumulated), 0.0) << "still frames cast shadow rays";
+}
+
 } // namespace
 } // namespace bounce
