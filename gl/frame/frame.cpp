@@ -368,10 +368,10 @@ PassCost shadowCost(const GpuScene& scene, const ShadowMaps& shadows)
 
 void Frame::renderShadowMaps(PassTimers& timers)
 {
-    // The direct pass reads no map in its still form with shadow rays (renderDirect: a frame with a sample
-    // index of its own, RAY_SHADOWS): where the technique reads none either, none is drawn. On cornell-area
-    // at 256x256 the emitter's cube took 10-13 ms of the direct light's 27-42 ms frame (llvmpipe).
-    const bool directReads = !(sampler_.sampleIndex() > 0 && directStillProgram_ && settings_.stillRayShadows);
+    // The direct pass reads no map in its still form with shadow rays (RAY_SHADOWS): where the technique
+    // reads none either, none is drawn. On cornell-area at 256x256 the emitter's cube took 6.85 ms of
+    // direct's 16.7 ms still frame (llvmpipe).
+    const bool directReads = !(directPassStill() && settings_.stillRayShadows);
     shadows_.setRendered(shadowMapsRead_ || directReads);
     shadows_.fitTo(camera_, settings_.width, settings_.height);
     shadows_.setStill(sampler_.sampleIndex());
@@ -510,7 +510,7 @@ void Frame::renderDirect(PassTimers& timers)
     PassState::fullscreen(t.directFbo, t.width, t.height).apply();
     bindGBuffer();
     bindSceneData();
-    const bool still = sampler_.sampleIndex() > 0 && directStillProgram_;
+    const bool still = directPassStill();
     // A moving frame with the reuse of its direct light, at the frame's own size: the ratio estimator's form.
     const bool ratio = still && sampler_.stillIndex() == 0 && directRatioProgram_ && !coarseActive_;
     if (!coarseActive_) areaRatioDrawn_ = ratio;

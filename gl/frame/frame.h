@@ -250,6 +250,8 @@ private:
     AreaRatio areaRatio_;
     bool areaRatioDrawn_ = false;
     void allocateAreaRatio();
+    // Whether this frame's own direct pass runs its still form (renderDirect; the shadow pass asks too).
+    bool directPassStill() const { return sampler_.sampleIndex() > 0 && directStillProgram_; }
     bool compositeUsed_ = true;
     bool areaLightsInDirect_ = true;
     bool shadowMapsRead_ = true;     // setShadowMapsRead
