@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <cstddef>
 #include <cstdio>
 
+#include "core/adjacency.h"
 #include "gl/frame/bindings.h"
 #include "gl/gl.h"
 
@@ -329,6 +331,25 @@ void GpuScene::draw(Meshes which) const
     if (r.counts.empty()) return;
     vao_.bind();
     glMultiDrawElements(GL_TRIANGLES, r.counts.data(), GL_UNSIGNED_INT, r.offsets.data(), GLsizei(r.counts.size()));
+}
+
+void GpuScene::drawWithAdjacency() const
+{
+    if (!adjacency_) {
+        const std::vector<Vertex> vertices = vertices_.download<Vertex>();
+        std::vector<glm::vec3> positions(vertices.size());
+        for (std::size_t i = 0; i < vertices.size(); ++i) positions[i] = vertices[i].position;
+        adjacency_ = Buffer::fromVector("scene.adjacency",
+                                        core::triangleAdjacency(positions, indices_.download<std::uint32_t>()));
+        adjacencyVao_ = VertexArray("scene.adjacency");
+        glVertexArrayVertexBuffer(adjacencyVao_.id(), 0, vertices_.id(), 0, sizeof(Vertex));
+        glEnableVertexArrayAttrib(adjacencyVao_.id(), 0);
+        glVertexArrayAttribFormat(adjacencyVao_.id(), 0, 3, GL_FLOAT, GL_FALSE, GLuint(offsetof(Vertex, position)));
+        glVertexArrayAttribBinding(adjacencyVao_.id(), 0, 0);
+        glVertexArrayElementBuffer(adjacencyVao_.id(), adjacency_.id());
+    }
+    adjacencyVao_.bind();
+    glDrawElements(GL_TRIANGLES_ADJACENCY, GLsizei(indexCount_ * 2), GL_UNSIGNED_INT, nullptr);
 }
 
 } // namespace bounce::gl

@@ -87,6 +87,11 @@ public:
     void bindGeometry() const;
     int emissiveTriangleCount() const { return emissiveCount_; }
     void drawPositionsOnly() const { draw(); }
+    // Every triangle with its neighbours (GL_TRIANGLES_ADJACENCY, core/adjacency.h: after each edge the far
+    // corner of the triangle across it, or the triangle's own opposite corner at a boundary), positions only
+    // (attribute 0). The adjacency is built from the vertex buffer at the first call: the topology, which
+    // moveVertices does not change.
+    void drawWithAdjacency() const;
     const Buffer& materials() const { return materials_; }
     const Texture& baseColorTextures() const { return textures_; }
     bool hasTextures() const { return hasTextures_; }
@@ -122,6 +127,8 @@ private:
     using Vertex = GpuVertex;
     VertexArray vao_;
     Buffer vertices_, indices_, materials_, emissive_;
+    mutable VertexArray adjacencyVao_; // drawWithAdjacency's, made at its first call
+    mutable Buffer adjacency_;
     int emissiveCount_ = 0;
     Buffer tangents_;
     std::vector<int> normalLayerOf_; // scene texture -> layer of normalTextures_, -1 when not a normal map
