@@ -113,6 +113,7 @@ int cmdDemo(const Args& args)
     gl::setKnownCeilings(cachedCeilings(context->info().renderer));
     std::printf("GL renderer: %s (%s)\n", context->info().renderer.c_str(), context->info().platform.c_str());
     std::printf("%s\n", chooseDemoTemporal(settings.frameValues, o.all("set"), gl::softwareRasterizer()).c_str());
+    std::printf("%s\n", chooseDemoEdgeAA(settings.frameValues, o.all("set"), gl::softwareRasterizer()).c_str());
     Demo demo(*context, std::move(settings));
     return demo.run();
 }

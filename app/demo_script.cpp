@@ -61,6 +61,17 @@ std::string chooseDemoTemporal(gl::ParamValues& frameValues, const std::vector<s
     return "temporal reuse: on (moving frames average the direct and indirect light of the frames before)";
 }
 
+std::string chooseDemoEdgeAA(gl::ParamValues& frameValues, const std::vector<std::string>& sets,
+                             bool softwareRasterizer)
+{
+    for (const std::string& kv : sets)
+        if (kv.substr(0, kv.find('=')) == "edgeAA") return "edge antialiasing: as --set says";
+    if (softwareRasterizer)
+        return "edge antialiasing of moving frames: off on a software rasterizer (--set edgeAA=1 turns it on)";
+    frameValues.setValue("edgeAA", 1.0);
+    return "edge antialiasing of moving frames: on (pixels an edge crosses take each side's light by area)";
+}
+
 std::vector<DemoStep> parseDemoScript(const std::string& text, const std::string& initialTechnique)
 {
     // The technique that a set: applies to is the one selected at that point of the script, so the

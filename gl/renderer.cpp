@@ -126,6 +126,7 @@ void Renderer::renderFrame(bool keepTimings)
     frame_->endIndirect(timers_);
     // A technique that claims only direct light adds nothing: no composite pass, the result is the direct light.
     frame_->composite(timers_, info_->lightPaths != core::LightPaths::Direct);
+    frame_->antialiasEdges(timers_);
     frame_->accumulate(timers_, info_->progressive);
     timers_.endFrame(keepTimings);
 }

@@ -347,6 +347,15 @@ void Frame::accumulate(PassTimers& timers, bool progressive)
     accumulatedResult_ = !progressive;
 }
 
+void Frame::antialiasEdges(PassTimers& timers)
+{
+    edgeAAUsed_ = false;
+    if (!settings_.edgeAntialias || sampler_.stillIndex() != 0) return;
+    if (!edgeAA_) edgeAA_ = std::make_unique<EdgeAntialias>();
+    edgeAA_->run(*this, result(), timers);
+    edgeAAUsed_ = true;
+}
+
 // What the frame's passes do per invocation (PassCost, timer.h), counted from their shaders. Bytes are
 // render-target and G-buffer traffic; material blocks and uniforms stay in cache and are not counted.
 namespace {

@@ -11,6 +11,7 @@
 
 #include "core/image.h"
 #include "core/scene.h"
+#include "gl/frame/edge_antialias.h"
 #include "gl/frame/frame_sampler.h"
 #include "gl/frame/gpu_scene.h"
 #include "gl/frame/ray_caster.h"
@@ -41,6 +42,7 @@ struct FrameSettings {
     float temporalAlpha = 0.2f;   //   its weight of the new frame (TemporalReuseSettings::alpha)
     bool temporalClamp = true;    //   its neighbourhood clamp (TemporalReuseSettings::clamp)
     bool temporalDirect = false;  //   with it, the direct light's reuse in moving frames (gl/renderer.h)
+    bool edgeAntialias = false;   // moving frames: edges antialiased by their lines (gl/frame/edge_antialias.h)
     int textureSize = 512;        // base-colour textures are resampled to this size (normal maps keep theirs)
     bool normalMaps = true;       // the G-buffer's normals bent by the scene's normal maps (NORMAL_MAPS)
     // Profiling only (bench/sponza-gbuffer.json): the G-buffer pass with a fragment shader that writes
@@ -123,6 +125,11 @@ public:
     // position in the pixel) gets the mean of the direct light plus the mean of its indirect light with
     // frame n weighing n^3, so that its early frames fade. Still frame 0: nothing, result() is this frame's.
     void accumulate(PassTimers& timers, bool progressive);
+    // After composite(), before accumulate(): in a frame that is not a still frame (still index 0), with the
+    // frame parameter edgeAA, result() becomes the composited light with its geometric edges antialiased
+    // (gl/frame/edge_antialias.h). Still frames average jittered pixels instead; their result() is left as
+    // it is.
+    void antialiasEdges(PassTimers& timers);
     void clearIndirect();
 
     // Binds the G-buffer (glsl/common/gbuffer.glsl): its textures at UNIT_G_*, a 1x1 black texture for a
@@ -194,7 +201,10 @@ public:
     void resolveAreaRatio(PassTimers& timers);
     const Texture& result() const
     {
-        return accumulatedResult_ ? accumulated_ : compositeUsed_ ? composite_ : full_.direct;
+        return accumulatedResult_ ? accumulated_
+               : edgeAAUsed_      ? edgeAA_->result()
+               : compositeUsed_   ? composite_
+                                  : full_.direct;
     }
 
     // Reads an RGBA32F texture back as an RGB image, row 0 at the top.
@@ -230,6 +240,8 @@ private:
     bool coarseActive_ = false; // inside beginIndirect(scale > 1)
     int scale_ = 1;
     std::unique_ptr<JointUpsample> upsample_;
+    std::unique_ptr<EdgeAntialias> edgeAA_; // made by the first frame that antialiases its edges
+    bool edgeAAUsed_ = false;               // result() is edgeAA_'s
     Targets& targets() { return coarseActive_ ? coarse_ : full_; }
     const Targets& targets() const { return coarseActive_ ? coarse_ : full_; }
     Texture composite_;

@@ -64,6 +64,10 @@ const std::vector<PassDecl>& framePasses()
          "the indirect light of a technique that declares temporalReuse, and with temporal.direct the frame's "
          "direct light in moving frames, blended with their reprojected histories (gl/frame/temporal_reuse.h)",
          "frame parameter temporal on"},
+        {"edge-aa.lines", "the nearest edge of the triangle each pixel sees, as a line in screen space",
+         "frame parameter edgeAA on, not a still frame"},
+        {"edge-aa", "the composited light mixed across those edges by the area each side covers",
+         "frame parameter edgeAA on, not a still frame"},
     };
     return p;
 }
@@ -119,6 +123,10 @@ const std::vector<ParamDecl>& frameParams()
          "the emitters' share and shifted shadow maps unclamped (one point on each emitter, one shift, for "
          "the whole frame, so one frame's neighbourhood holds one point's shadow); a light change drops that "
          "history"},
+        {"edgeAA", ParamType::Bool, 0, 0, 1,
+         "moving frames (not still frames, which average jittered pixels): each pixel that an edge of the "
+         "geometry crosses takes the light of the surface beyond the edge over the area it covers there, from "
+         "the edge's line in screen space (distance-to-edge antialiasing, gl/frame/edge_antialias.h)"},
         choiceParam("gbuffer.fragment", {"material", "constant"}, 0,
                     "profiling: constant writes the G-buffer without reading materials or textures (wrong images)"),
     };
@@ -142,6 +150,7 @@ FrameSettings frameSettingsFrom(const ParamValues& v, int width, int height)
     s.temporalAlpha = float(v.get("temporal.alpha"));
     s.temporalClamp = v.getBool("temporal.clamp");
     s.temporalDirect = v.getBool("temporal.direct");
+    s.edgeAntialias = v.getBool("edgeAA");
     s.areaPcss = v.getChoice(frameParams(), "shadow.area") == "pcss";
     s.stillRayShadows = v.getChoice(frameParams(), "shadow.still") == "rays";
     s.gbufferConstantFragment = v.getChoice(frameParams(), "gbuffer.fragment") == "constant";

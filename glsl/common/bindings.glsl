@@ -54,6 +54,9 @@
 #define UNIT_TEMPORAL_HISTORY_LENGTH 35   // frames that history averages (R32F)
 #define UNIT_TEMPORAL_PREVIOUS_GEOMETRY 36 // a copy of the previous frame's gGeometry (common/gbuffer.glsl)
 #define UNIT_NORMAL_MAP 37        // common/normal_map.glsl (NORMAL_MAPS): the scene's normal textures, one layer each
+// Moving frames' edge antialiasing (frame/edge_aa.frag, gl/frame/edge_antialias.h) reads the G-buffer too.
+#define UNIT_EDGE_IMAGE 38        // the frame's image as composited
+#define UNIT_EDGE_LINES 39        // frame/edges.frag: each pixel's nearest edge of the triangle it sees
 
 // Uniform buffers (glBindBufferBase(GL_UNIFORM_BUFFER, slot)). Slot 0 and slots 2 and up belong to the
 // technique that binds them.

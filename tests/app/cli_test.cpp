@@ -872,7 +872,8 @@ TEST(Cli, ListJsonIsTheWholeRegistry)
         }
     }
     EXPECT_TRUE(sawRsm);
-    EXPECT_EQ(j["frame"]["passes"].size(), 6u); // shadow, gbuffer, direct, composite, accumulate, temporal
+    // shadow, gbuffer, direct, composite, accumulate, temporal, edge-aa.lines, edge-aa
+    EXPECT_EQ(j["frame"]["passes"].size(), 8u);
 }
 
 // --reference puts the error against a reference in the record; one whose size does not divide the

@@ -13,6 +13,7 @@
 
 namespace {
 
+using bounce::app::chooseDemoEdgeAA;
 using bounce::app::chooseDemoTemporal;
 using bounce::app::parseDemoScript;
 using bounce::app::UsageError;
@@ -108,6 +109,23 @@ TEST(DemoScript, TemporalReuseDefaultFollowsTheRendererUnlessSet)
     EXPECT_NE(chooseDemoTemporal(set, {"temporal=1"}, true).find("--set"), std::string::npos);
     EXPECT_TRUE(set.getBool("temporal"));
     EXPECT_FALSE(set.getBool("temporal.direct"));
+}
+
+// The moving frames' edge antialiasing likewise: on for a hardware renderer, off for a software rasterizer,
+// and a --set of it leaves it as the command line made it.
+TEST(DemoScript, EdgeAntialiasingDefaultFollowsTheRendererUnlessSet)
+{
+    const auto choose = [](const std::vector<std::string>& sets, bool software, bool before = false) {
+        gl::ParamValues v(gl::frameParams());
+        v.setValue("edgeAA", before ? 1.0 : 0.0);
+        chooseDemoEdgeAA(v, sets, software);
+        return v.getBool("edgeAA");
+    };
+    EXPECT_TRUE(choose({}, false)) << "a GPU";
+    EXPECT_FALSE(choose({}, true)) << "llvmpipe";
+    EXPECT_TRUE(choose({"temporal=0"}, false)) << "another parameter";
+    EXPECT_FALSE(choose({"edgeAA=0"}, false)) << "the user's edgeAA=0 on a GPU";
+    EXPECT_TRUE(choose({"edgeAA=1"}, true, true)) << "the user's edgeAA=1 on llvmpipe";
 }
 
 } // namespace

@@ -93,10 +93,11 @@ double softShadowRadiance(double x, double z)
 
 // The direct frame after `frames` frames of a still view.
 core::Image stillImage(const core::Scene& scene, int w, int h, int frames, int shadowSize, bool accumulate = true,
-                       const char* areaShadows = "hard")
+                       const char* areaShadows = "hard", bool edgeAA = true)
 {
     gl::ParamValues frameValues(gl::frameParams());
     frameValues.setValue("shadow.size", shadowSize);
+    frameValues.setValue("edgeAA", edgeAA ? 1 : 0);
     frameValues.setValue("accumulate", accumulate ? 1 : 0);
     frameValues.set(gl::frameParams(), "shadow.area", areaShadows);
     gl::Renderer r(scene, "direct", frameValues, gl::ParamValues(), w, h);
@@ -304,9 +305,12 @@ TEST_F(StillFramesTest, StillFramesAverageToBoxFilteredPixels)
         EXPECT_NEAR(img.at(kW / 2 + 1, y).x, 0.0f, 1e-5f) << "row " << y;
     }
     std::printf("[ measured ] half-covered pixel after %d still frames: %.4f\n", kFrames - 1, img.at(kW / 2, 0).x);
-    // Without them the pixel centre decides: all or nothing.
-    const core::Image one = stillImage(s, kW, kH, 2, 64, false);
+    // Without them the pixel centre decides: all or nothing. The moving frames' edge antialiasing (edgeAA,
+    // gl/frame/edge_antialias.h) gives the half-covered pixel its half from the first frame: one straight edge.
+    const core::Image one = stillImage(s, kW, kH, 2, 64, false, "hard", false);
     EXPECT_TRUE(one.at(kW / 2, 0).x < 0.01f || one.at(kW / 2, 0).x > 0.99f);
+    const core::Image antialiased = stillImage(s, kW, kH, 2, 64, false);
+    for (int y = 0; y < kH; ++y) EXPECT_NEAR(antialiased.at(kW / 2, y).x, 0.5f, 0.01f) << "row " << y << ", edgeAA";
 }
 
 // A jittered frame rebuilds each pixel's position along the ray through its jittered sample, the very ray
