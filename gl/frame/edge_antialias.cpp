@@ -48,8 +48,10 @@ void EdgeAntialias::run(const Frame& frame, const Texture& image, PassTimers& ti
         edges_.use();
         scene.drawWithAdjacency();
     }
-    PassCost cost; // edge_aa.frag per pixel: its line and light, where an edge crosses it a neighbour's and both
-    cost.flops = 30;                                      // pixels' G-buffer
+    // edge_aa.frag per pixel: its line and light, and where an edge crosses it a neighbour's light and both
+    // pixels' G-buffer.
+    PassCost cost;
+    cost.flops = 30;
     cost.fetches = 3;
     cost.bytesRead = 16 + 16;
     cost.bytesWritten = 16;

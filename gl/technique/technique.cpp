@@ -64,7 +64,9 @@ const std::vector<PassDecl>& framePasses()
          "the indirect light of a technique that declares temporalReuse, and with temporal.direct the frame's "
          "direct light in moving frames, blended with their reprojected histories (gl/frame/temporal_reuse.h)",
          "frame parameter temporal on"},
-        {"edge-aa.lines", "the nearest edge of the triangle each pixel sees, as a line in screen space",
+        {"edge-aa.lines",
+         "the edges that bound a surface on screen (boundaries, silhouettes, creases) drawn as strips, each "
+         "pixel keeping the nearest one's line",
          "frame parameter edgeAA on, not a still frame"},
         {"edge-aa", "the composited light mixed across those edges by the area each side covers",
          "frame parameter edgeAA on, not a still frame"},
@@ -126,7 +128,7 @@ const std::vector<ParamDecl>& frameParams()
         {"edgeAA", ParamType::Bool, 0, 0, 1,
          "moving frames (not still frames, which average jittered pixels): each pixel that an edge of the "
          "geometry crosses takes the light of the surface beyond the edge over the area it covers there, from "
-         "the edge's line in screen space (distance-to-edge antialiasing, gl/frame/edge_antialias.h)"},
+         "the edge's line in screen space (geometric post-process antialiasing, gl/frame/edge_antialias.h)"},
         choiceParam("gbuffer.fragment", {"material", "constant"}, 0,
                     "profiling: constant writes the G-buffer without reading materials or textures (wrong images)"),
     };

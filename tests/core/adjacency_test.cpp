@@ -13,7 +13,10 @@ namespace bounce::core {
 namespace {
 
 // Triangle t's slot after edge k: the far corner across the edge from corner k to corner k + 1.
-std::uint32_t across(const std::vector<std::uint32_t>& adjacency, int t, int k) { return adjacency[6 * t + 2 * k + 1]; }
+std::uint32_t across(const std::vector<std::uint32_t>& adjacency, int t, int k)
+{
+    return adjacency[6 * t + 2 * k + 1];
+}
 
 TEST(Adjacency, TwoTrianglesOfAQuadSeeEachOtherAcrossTheDiagonal)
 {

@@ -22,7 +22,7 @@ constexpr float kSquareAlbedo = 0.8f;
 constexpr float kWallAlbedo = 0.2f;
 
 core::Mesh quad(const char* name, std::vector<glm::vec3> corners, std::uint32_t material,
-               glm::vec3 normal = glm::vec3(0, 0, 1))
+                glm::vec3 normal = glm::vec3(0, 0, 1))
 {
     core::Mesh m;
     m.name = name;
@@ -96,8 +96,9 @@ core::Scene squareScene(float half, float turn, bool wall)
 core::Scene floorScene()
 {
     core::Scene s = squareScene(0.6f, 0.0f, false);
-    s.meshes[0] = quad("floor", {{-0.7f, -0.5f, 6.0f}, {0.9f, -0.5f, 5.0f}, {1.1f, -0.5f, -1.3f}, {-0.5f, -0.5f, -0.7f}},
-                       0, glm::vec3(0, 1, 0));
+    s.meshes[0] =
+        quad("floor", {{-0.7f, -0.5f, 6.0f}, {0.9f, -0.5f, 5.0f}, {1.1f, -0.5f, -1.3f}, {-0.5f, -0.5f, -0.7f}}, 0,
+             glm::vec3(0, 1, 0));
     s.lights[0].direction = glm::normalize(glm::vec3(0.0f, -1.0f, -1.0f));
     return s;
 }
@@ -117,7 +118,8 @@ std::vector<glm::dvec2> projectedQuad(const core::Scene& scene, const std::vecto
         if ((da >= 0.0) != (db >= 0.0)) kept.push_back(a + (b - a) * (da / (da - db)));
     }
     std::vector<glm::dvec2> poly;
-    for (const glm::dvec4& c : kept) poly.push_back({(c.x / c.w * 0.5 + 0.5) * width, (c.y / c.w * 0.5 + 0.5) * height});
+    for (const glm::dvec4& c : kept)
+        poly.push_back({(c.x / c.w * 0.5 + 0.5) * width, (c.y / c.w * 0.5 + 0.5) * height});
     return poly;
 }
 
