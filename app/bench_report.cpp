@@ -215,9 +215,10 @@ void pathTable(std::ostringstream& md, const std::vector<const nlohmann::json*>&
 {
     md << "\n### camera paths\n\nOne frame per step, no still frames; frames iK and iK+1 against path-tracer "
           "references of their own camera (the technique's light paths); flicker: the RMS of the change of the "
-          "error image from frame iK to iK+1 over the references' mean.\n\n| technique | parameters | size | "
-          "path | indirect scale | frames | ms per frame | rel. RMSE mean | second half | worst | flicker | "
-          "moving / still |\n|---|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+          "error image from frame iK to iK+1 over the references' mean (the pairs' mean, and that of the pairs "
+          "in the path's second half).\n\n| technique | parameters | size | path | indirect scale | frames | "
+          "ms per frame | rel. RMSE mean | second half | worst | flicker | second half | moving / still |\n"
+          "|---|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
     for (const nlohmann::json* r : recs) {
         const nlohmann::json& q = (*r)["sequence"];
         std::string ratio = "-";
@@ -228,12 +229,14 @@ void pathTable(std::ostringstream& md, const std::vector<const nlohmann::json*>&
                           q.value("secondHalfStillRatio", double(NAN)), q["stillFrames"].get<int>());
             ratio = buf;
         }
-        std::snprintf(buf, sizeof buf, "| %s | %s | %s | %s | %d | %d | %.3f | %.4f | %.4f | %.4f | %.4f | %s |\n",
+        std::snprintf(buf, sizeof buf,
+                      "| %s | %s | %s | %s | %d | %d | %.3f | %.4f | %.4f | %.4f | %.4f | %.4f | %s |\n",
                       (*r)["technique"].get<std::string>().c_str(), (*r)["settings"].get<std::string>().c_str(),
                       (*r)["size"].get<std::string>().c_str(), q["path"].get<std::string>().c_str(),
                       q["indirectScale"].get<int>(), q["frameCount"].get<int>(), q["meanMs"].get<double>(),
                       q["meanRelativeRmse"].get<double>(), q["secondHalfMeanRelativeRmse"].get<double>(),
-                      q["worstRelativeRmse"].get<double>(), q["flicker"].get<double>(), ratio.c_str());
+                      q["worstRelativeRmse"].get<double>(), q["flicker"].get<double>(),
+                      q.value("secondHalfFlicker", double(NAN)), ratio.c_str());
         md << buf;
     }
 }

@@ -366,7 +366,7 @@ BenchRow pathRow(const BenchConfig& config, const BenchSetting& s, const std::st
     std::snprintf(stem, sizeof stem, "%03zu-%s-%s", index, sceneName.c_str(), s.technique.c_str());
     nlohmann::json frames = nlohmann::json::array();
     ComparedFrame previous;
-    std::vector<double> errors, secondHalf, flickers, ratios, stillSecondHalf;
+    std::vector<double> errors, secondHalf, flickers, secondHalfFlickers, ratios, stillSecondHalf;
     double sumMs = 0.0;
     std::size_t nonFinite = 0;
     core::Progress progress("path " + s.technique, double(path.frames), "frames");
@@ -395,6 +395,8 @@ BenchRow pathRow(const BenchConfig& config, const BenchSetting& s, const std::st
             if (fi > 0 && (fi - 1) % s.every == 0 && previous.frame == fi - 1) {
                 record["flicker"] = pairFlicker(previous, c);
                 flickers.push_back(record["flicker"].get<double>());
+                // A pair counts for the second half as its error does, by its first frame iK (2 iK >= frames).
+                if (2 * (fi - 1) >= path.frames) secondHalfFlickers.push_back(flickers.back());
             }
             if (s.stillFrames > 0 && fi % s.every == 0) {
                 gl::Renderer still(at, s.technique, f, t, w, h);
@@ -454,6 +456,9 @@ BenchRow pathRow(const BenchConfig& config, const BenchSetting& s, const std::st
         {"secondHalfMeanRelativeRmse", mean(secondHalf)},
         {"worstRelativeRmse", errors.empty() ? double(NAN) : *std::max_element(errors.begin(), errors.end())},
         {"flicker", row.flicker},
+        // Without the pairs that follow a history's start (frames 0 and 1: the first blend takes half of
+        // each), the figure beside the second half's error.
+        {"secondHalfFlicker", mean(secondHalfFlickers)},
         {"meanMs", row.totalMs},
         {"frames", frames}};
     if (!ratios.empty()) {

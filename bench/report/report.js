@@ -522,6 +522,7 @@
     part.append(el('p', {}, `relative RMSE (${r.lightPaths}) over frames iK and iK+1, K = ${q.every}: mean ` +
       `${fmt(num(q.meanRelativeRmse))}, second half ${fmt(num(q.secondHalfMeanRelativeRmse))}, worst ` +
       `${fmt(num(q.worstRelativeRmse))}; flicker ${fmt(num(q.flicker))}` +
+      (q.secondHalfFlicker !== undefined ? `, second half ${fmt(num(q.secondHalfFlicker))}` : '') +
       (q.meanStillRatio !== undefined ? `; moving / still (${q.stillFrames} still frames) ${fmt(num(q.meanStillRatio))}` +
         (q.secondHalfStillRatio !== undefined ? `, second half ${fmt(num(q.secondHalfStillRatio))}` : '') : '') +
       `; ${fmt(num(q.meanMs))} ms per frame`));

@@ -241,7 +241,8 @@ double flickerOf(const bounce::core::Image& a, const bounce::core::Image& ra, co
 // `bounce bench` with a "path" run (issue 58, "Sequences"), its figures computed again here by other
 // commands: each measured frame (iK and iK+1, K = 2, so all 4 here) is the frame `bounce render --path`
 // writes, compared with `bounce reference` at that frame's camera; the row's error is their mean; the
-// flicker is that of the pairs (0, 1) and (2, 3) only, from the formula above; with "stillFrames" 2,
+// flicker is that of the pairs (0, 1) and (2, 3) only, from the formula above, the second half's that of
+// (2, 3); with "stillFrames" 2,
 // frames 0 and 2 are also rendered still (`bounce render --camera C --warmup 0 --frames 2`), and the
 // second half's ratio is that of the mean of frames 2 and 3 to frame 2's still error. cornell-spot shows
 // no emitter, so no pixel is masked. A key at every frame gives cameras the command line can name exactly.
@@ -298,6 +299,9 @@ TEST(RenderPath, BenchPathRunMeasuresEachFrameAgainstItsOwnReference)
     const double flicker = 0.5 * (flickerOf(image[0], reference[0], image[1], reference[1]) +
                                   flickerOf(image[2], reference[2], image[3], reference[3]));
     EXPECT_NEAR(q.at("flicker").get<double>(), flicker, 1e-4 * flicker);
+    // The second half's pairs: (2, 3) alone, the pair after the history's start left out.
+    const double secondHalfFlicker = flickerOf(image[2], reference[2], image[3], reference[3]);
+    EXPECT_NEAR(q.at("secondHalfFlicker").get<double>(), secondHalfFlicker, 1e-4 * secondHalfFlicker);
 
     std::vector<double> still(cameras.size(), 0.0);
     for (std::size_t f = 0; f < cameras.size(); f += 2) {
