@@ -39,13 +39,13 @@ public:
     // frame must be at its full size (outside beginIndirect).
     void run(const Frame& frame, const Texture& image, PassTimers& timers);
     const Texture& result() const { return result_; }
-    // The edges pass's target (RGBA32F: the nearest bounding edge's unit normal out of its triangle, the
-    // signed distance of the pixel's centre from it, positive on the triangle's side, and 1 where written).
-    const Texture& lines() const { return lines_; }
 
 private:
     Program edges_, resolve_;
     Framebuffer edgesFbo_{"edge-aa.lines.fbo"}, resolveFbo_{"edge-aa.fbo"};
+    // lines_: the edges pass's target (RGBA32F: the nearest bounding edge's unit normal out of its triangle,
+    // the signed distance of the pixel's centre from it, positive on the triangle's side, and 1 where
+    // written); linesDepth_ its depth test's.
     Texture lines_, linesDepth_, result_;
 };
 
