@@ -63,6 +63,7 @@ void Renderer::reuseDirectLight()
     if (frame_->version().lights != temporalDirectLights_) temporalDirect_.reset();
     temporalDirectLights_ = frame_->version().lights;
     temporalDirect_.settings.alpha = frame_->settings().temporalAlpha;
+    temporalDirect_.settings.catmullRom = frame_->settings().temporalCatmullRom;
     // With emitting triangles, only the share of their exact light that reaches each pixel is averaged
     // (Frame::areaRatioDrawn): the rest of the light is exact in every frame. Unclamped: every pixel of a
     // frame takes its shadows from the same point on each emitter, so one frame's 3x3 neighbourhood holds
@@ -121,6 +122,7 @@ void Renderer::renderFrame(bool keepTimings)
     if (temporalReuse()) {
         temporal_.settings.alpha = frame_->settings().temporalAlpha;
         temporal_.settings.clamp = frame_->settings().temporalClamp;
+        temporal_.settings.catmullRom = frame_->settings().temporalCatmullRom;
         temporal_.apply(*frame_, {&frame_->indirect()}, timers_);
     }
     frame_->endIndirect(timers_);

@@ -31,20 +31,21 @@ struct FrameSettings {
     int width = 512;
     int height = 512;
     int shadowMapSize = 1024;
-    int shadowCascades = 3;       // a directional light's views fitted to the camera, beside its whole-scene view
-    float shadowFootprint = 4.0f; // a spot's or point light's texels per screen pixel (ShadowMaps; 0: shadowMapSize)
-    int pcfRadius = 1;            // 0: one hard tap per pixel
-    bool pcfLinear = true;        // hardware 2x2 bilinear comparison
-    bool accumulate = true;       // still frames jitter the pixel centre and are averaged (gl/renderer.h)
-    bool areaPcss = false;        // moving frames: area lights' penumbrae estimated by PCSS (else hard, centroid)
-    bool stillRayShadows = true;  // still frames: shadow rays through the BVH (RAY_SHADOWS), not the shadow maps
-    bool temporal = false;        // temporal reuse of the technique's indirect light (gl/renderer.h)
-    float temporalAlpha = 0.2f;   //   its weight of the new frame (TemporalReuseSettings::alpha)
-    bool temporalClamp = true;    //   its neighbourhood clamp (TemporalReuseSettings::clamp)
-    bool temporalDirect = false;  //   with it, the direct light's reuse in moving frames (gl/renderer.h)
-    bool edgeAntialias = false;   // moving frames: edges antialiased by their lines (gl/frame/edge_antialias.h)
-    int textureSize = 512;        // base-colour textures are resampled to this size (normal maps keep theirs)
-    bool normalMaps = true;       // the G-buffer's normals bent by the scene's normal maps (NORMAL_MAPS)
+    int shadowCascades = 3;         // a directional light's views fitted to the camera, beside its whole-scene view
+    float shadowFootprint = 4.0f;   // a spot's or point light's texels per screen pixel (ShadowMaps; 0: shadowMapSize)
+    int pcfRadius = 1;              // 0: one hard tap per pixel
+    bool pcfLinear = true;          // hardware 2x2 bilinear comparison
+    bool accumulate = true;         // still frames jitter the pixel centre and are averaged (gl/renderer.h)
+    bool areaPcss = false;          // moving frames: area lights' penumbrae estimated by PCSS (else hard, centroid)
+    bool stillRayShadows = true;    // still frames: shadow rays through the BVH (RAY_SHADOWS), not the shadow maps
+    bool temporal = false;          // temporal reuse of the technique's indirect light (gl/renderer.h)
+    float temporalAlpha = 0.2f;     //   its weight of the new frame (TemporalReuseSettings::alpha)
+    bool temporalClamp = true;      //   its neighbourhood clamp (TemporalReuseSettings::clamp)
+    bool temporalDirect = false;    //   with it, the direct light's reuse in moving frames (gl/renderer.h)
+    bool temporalCatmullRom = true; // its history resampled by Catmull-Rom (TemporalReuseSettings::catmullRom)
+    bool edgeAntialias = false;     // moving frames: edges antialiased by their lines (gl/frame/edge_antialias.h)
+    int textureSize = 512;          // base-colour textures are resampled to this size (normal maps keep theirs)
+    bool normalMaps = true;         // the G-buffer's normals bent by the scene's normal maps (NORMAL_MAPS)
     // Profiling only (bench/sponza-gbuffer.json): the G-buffer pass with a fragment shader that writes
     // constants, to tell fragment work from vertex work and triangle setup. The images are wrong.
     bool gbufferConstantFragment = false;

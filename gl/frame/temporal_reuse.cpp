@@ -22,9 +22,19 @@ void copyTexture(const Texture& from, const Texture& to)
 TemporalReuse::TemporalReuse() : TemporalReuse(TemporalReuseSettings{})
 {}
 
-TemporalReuse::TemporalReuse(const TemporalReuseSettings& s)
-    : settings(s), program_(Program::graphics("temporal", "frame/fullscreen.vert", "frame/temporal_reuse.frag"))
+TemporalReuse::TemporalReuse(const TemporalReuseSettings& s) : settings(s)
 {}
+
+Program& TemporalReuse::program()
+{
+    Program& p = programs_[settings.catmullRom ? 1 : 0];
+    if (!p) {
+        std::vector<Define> defines;
+        if (settings.catmullRom) defines.push_back({"CATMULL_ROM", "1"});
+        p = Program::graphics("temporal", "frame/fullscreen.vert", "frame/temporal_reuse.frag", defines);
+    }
+    return p;
+}
 
 void TemporalReuse::reset()
 {
@@ -66,26 +76,31 @@ void TemporalReuse::apply(const Frame& frame, const std::vector<Texture*>& signa
     // G-buffer copied for the next frame.
     const double pixels = double(w) * double(h);
     const bool clamp = settings.clamp;
+    // With catmullRom, where the four are all kept (most pixels), the twelve texels around them: each one's
+    // G-buffer texel against this pixel's own surface and its history (about 20 flops), and the cubic's
+    // weights (about 40).
+    const int outer = settings.catmullRom ? 12 : 0;
     PassCost cost;
     // The neighbourhood test: eight more G-buffer texels, nine points projected with their screen motion
     // (about 34 flops each) and each tap's depth, normal and motion against nine (about 16 flops each).
-    cost.flops = 120 + 9 * 34 + 4 * 9 * 16 + (clamp ? 9 * 6 : 0);
-    cost.fetches = 2 + 8 + 4 * 3 + (clamp ? 8 : 0);
-    cost.bytesRead = 8 + 16 + 8 * 8 + 4 * (8 + 16 + 4) + (clamp ? 8 * 16 : 0);
+    cost.flops = 120 + 9 * 34 + 4 * 9 * 16 + (clamp ? 9 * 6 : 0) + (outer ? 40 + outer * 20 : 0);
+    cost.fetches = 2 + 8 + 4 * 3 + (clamp ? 8 : 0) + outer * 2;
+    cost.bytesRead = 8 + 16 + 8 * 8 + 4 * (8 + 16 + 4) + (clamp ? 8 * 16 : 0) + outer * (8 + 16);
     cost.bytesWritten = 16 + 4;
     cost.bytesFixed = pixels * (2 * 16 * (valid_ ? double(signals.size()) : 0.0) + 2 * 8);
     auto scope = timers.scope("temporal", cost);
 
     frame.bindGBuffer();
     previousGeometry_.bind(UNIT_TEMPORAL_PREVIOUS_GEOMETRY);
-    program_.set("previousViewProjection", previousViewProjection_);
-    program_.set("currentJitter", frame.sampler().jitter());
-    program_.set("hasHistory", valid_ ? 1 : 0);
-    program_.set("alpha", settings.alpha);
-    program_.set("clampHistory", clamp ? 1 : 0);
-    program_.set("depthTolerance", settings.depthTolerance);
-    program_.set("normalTolerance", settings.normalTolerance);
-    program_.use();
+    Program& p = program();
+    p.set("previousViewProjection", previousViewProjection_);
+    p.set("currentJitter", frame.sampler().jitter());
+    p.set("hasHistory", valid_ ? 1 : 0);
+    p.set("alpha", settings.alpha);
+    p.set("clampHistory", clamp ? 1 : 0);
+    p.set("depthTolerance", settings.depthTolerance);
+    p.set("normalTolerance", settings.normalTolerance);
+    p.use();
     fbo_.setDrawBuffers({GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1});
     for (std::size_t i = 0; i < signals.size(); ++i) {
         History& history = histories_[i];

@@ -12,7 +12,9 @@
 // border, background then) the pixel takes the current value and its history restarts. The history, clamped
 // to the current signal's 3x3 neighbourhood (min/max, against ghosting; `clamp`), is blended with weight
 // max(alpha, 1/n) on the new value, n the frames the history holds, so that the first frames after a
-// restart average equally until n reaches 1/alpha. Background pixels pass the current value.
+// restart average equally until n reaches 1/alpha. Background pixels pass the current value. With
+// `catmullRom` the history is resampled by Catmull-Rom's cubic over the 4x4 texels around the point where
+// all sixteen are kept.
 // A fragment pass per signal (frame/temporal_reuse.frag), timed as "temporal"; gl/frame/README.md has its
 // cost and where it departs from SVGF.
 #pragma once
@@ -34,6 +36,10 @@ struct TemporalReuseSettings {
     bool clamp = true;            // clamp the history to the current 3x3 neighbourhood's min/max
     float depthTolerance = 0.05f; // |previous eye depth - reprojected eye depth| / reprojected eye depth
     float normalTolerance = 0.1f; // 1 - cos of the angle between the two normals
+    // The history resampled by Catmull-Rom's cubic where its 4x4 texels are all kept (else the bilinear
+    // blend): a camera moving by fractions of a pixel resamples it every frame, and the bilinear blend blurs
+    // it each time.
+    bool catmullRom = false;
 };
 
 class TemporalReuse {
@@ -61,7 +67,7 @@ private:
         Texture length[2]; // R32F: frames each texel's value averages (0: background)
         int latest = 0;    // which of the two the last apply() wrote
     };
-    Program program_;
+    Program programs_[2]; // bilinear, Catmull-Rom: compiled when first used
     Framebuffer fbo_{"temporal.fbo"};
     std::vector<History> histories_; // one per signal
     Texture previousGeometry_;       // RG32UI: a copy of the previous frame's gGeometry
@@ -69,6 +75,7 @@ private:
     int width_ = 0, height_ = 0;
     bool valid_ = false;
     void allocate(int width, int height, std::size_t signals);
+    Program& program();
 };
 
 } // namespace bounce::gl

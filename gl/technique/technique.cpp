@@ -116,6 +116,11 @@ const std::vector<ParamDecl>& frameParams()
          "clamp the history to the current frame's 3x3 neighbourhood (against ghosting after a light or "
          "object moves; off: such changes fade over about 1/alpha frames, and noise that flips whole regions "
          "at once averages out, which one frame's neighbourhood clamps away)"},
+        choiceParam("temporal.filter", {"catmull-rom", "bilinear"}, 0,
+                    "how temporal reuse resamples its history at the point's previous position: Catmull-Rom's "
+                    "cubic over the 4x4 texels around it where all sixteen are the pixel's surface (else the "
+                    "bilinear blend of the four nearest), or always the bilinear blend, which blurs the history "
+                    "a little at every frame the camera moves"),
         {"temporal.direct", ParamType::Bool, 0, 0, 1,
          "with temporal on, the frame's direct light too: moving frames sample a new shadow-map shift and "
          "point on each emitter every frame; emitting triangles give their exact unshadowed light times the "
@@ -152,6 +157,7 @@ FrameSettings frameSettingsFrom(const ParamValues& v, int width, int height)
     s.temporalAlpha = float(v.get("temporal.alpha"));
     s.temporalClamp = v.getBool("temporal.clamp");
     s.temporalDirect = v.getBool("temporal.direct");
+    s.temporalCatmullRom = v.getChoice(frameParams(), "temporal.filter") == "catmull-rom";
     s.edgeAntialias = v.getBool("edgeAA");
     s.areaPcss = v.getChoice(frameParams(), "shadow.area") == "pcss";
     s.stillRayShadows = v.getChoice(frameParams(), "shadow.still") == "rays";

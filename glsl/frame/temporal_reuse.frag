@@ -4,7 +4,8 @@
 // bilinear weights, each kept only on this point's surface by the previous G-buffer) is clamped to the
 // current signal's 3x3 neighbourhood and blended with the current value by an exponential moving average
 // whose weight is 1/n over the first n frames of a history (Schied et al. 2017, "Spatiotemporal
-// Variance-Guided Filtering", sec. 4.1; its variance and a-trous filter are not here).
+// Variance-Guided Filtering", sec. 4.1; its variance and a-trous filter are not here). CATMULL_ROM: the
+// history resampled by Catmull-Rom's cubic where its 16 texels are all kept.
 #include "common/bindings.glsl"
 #include "common/gbuffer.glsl"
 
@@ -41,6 +42,7 @@ const float kMotionPixels = 0.15;
 const float kMinHistoryWeight = 0.01;
 
 bool isFinite(vec4 v) { return !any(isnan(v)) && !any(isinf(v)); }
+
 
 // The current signal's range over the 3x3 pixels around px (inside the viewport).
 void neighbourhood(ivec2 px, ivec2 size, out vec3 lo, out vec3 hi)
@@ -89,6 +91,56 @@ Neighbour neighbourAt(ivec2 px, ivec2 size)
     return n;
 }
 
+// Whether the previous frame's texel t is this pixel's history (the test above, against the neighbours
+// around), and its value and length there.
+bool historyTap(ivec2 t, vec2 q, ivec2 px, Neighbour around[9], ivec2 size, out vec4 h, out float n)
+{
+    h = vec4(0.0);
+    n = 0.0;
+    if (any(lessThan(t, ivec2(0))) || any(greaterThanEqual(t, size))) return false; // off screen
+    uvec2 g = texelFetch(previousGeometry, t, 0).xy;
+    if (g.x == 0u) return false; // the previous frame saw background there
+    float tapDepth = uintBitsToFloat(g.x);
+    vec3 tapNormal = unpackUnitVector(g.y);
+    // The depths of the neighbours with the tap's normal span what a sample anywhere in this pixel sees
+    // of their surfaces (at a grazing angle one pixel spans more depth than the tolerance).
+    float lo = 1e30, hi = 0.0;
+    for (int k = 0; k < 9; ++k)
+        if (around[k].depth > 0.0 && dot(tapNormal, around[k].normal) >= 1.0 - normalTolerance &&
+            all(lessThanEqual(abs(around[k].motion - (q - vec2(px))), vec2(kMotionPixels)))) {
+            lo = min(lo, around[k].depth);
+            hi = max(hi, around[k].depth);
+        }
+    if (tapDepth < lo * (1.0 - depthTolerance) || tapDepth > hi * (1.0 + depthTolerance)) return false;
+    h = texelFetch(history, t, 0);
+    n = texelFetch(historyLength, t, 0).r;
+    return isFinite(h) && n >= 1.0; // a NaN or infinity in the history is dropped, not spread
+}
+
+// Whether the previous frame's texel t saw this pixel's own surface (eye depth `depth` in the previous
+// camera, normal `normal`) and holds a finite history there, and that history: the test of the texels
+// around the four, cheaper than theirs (one surface, not the nine around), and stricter.
+bool ownSurfaceTap(ivec2 t, float depth, vec3 normal, ivec2 size, out vec3 h)
+{
+    h = vec3(0.0);
+    if (any(lessThan(t, ivec2(0))) || any(greaterThanEqual(t, size))) return false;
+    uvec2 g = texelFetch(previousGeometry, t, 0).xy;
+    if (g.x == 0u || abs(uintBitsToFloat(g.x) - depth) > depthTolerance * depth ||
+        dot(unpackUnitVector(g.y), normal) < 1.0 - normalTolerance)
+        return false;
+    // A texel with geometry holds a history of at least one frame: its length is not read.
+    vec4 v = texelFetch(history, t, 0);
+    h = v.rgb;
+    return isFinite(v);
+}
+
+// Catmull-Rom's weights of the four texels at -1, 0, 1, 2 from the texel below a point at fraction t.
+vec4 catmullRomWeights(float t)
+{
+    float t2 = t * t, t3 = t2 * t;
+    return vec4(-0.5 * t3 + t2 - 0.5 * t, 1.5 * t3 - 2.5 * t2 + 1.0, -1.5 * t3 + 2.0 * t2 + 0.5 * t, 0.5 * t3 - 0.5 * t2);
+}
+
 void main()
 {
     ivec2 px = ivec2(gl_FragCoord.xy);
@@ -109,37 +161,50 @@ void main()
     Neighbour around[9];
     for (int i = 0; i < 9; ++i) around[i] = neighbourAt(px + ivec2(i % 3 - 1, i / 3 - 1), size);
 
-    vec3 sum = vec3(0.0);
+    vec3 sum = vec3(0.0), tapLo = vec3(1e30), tapHi = vec3(-1e30), inner[4];
     float lengthSum = 0.0, weightSum = 0.0;
     for (int i = 0; i < 4; ++i) {
+        inner[i] = vec3(0.0);
         ivec2 o = ivec2(i & 1, i >> 1);
         float w = (o.x == 1 ? f.x : 1.0 - f.x) * (o.y == 1 ? f.y : 1.0 - f.y);
-        ivec2 t = base + o;
-        if (w <= 0.0 || any(lessThan(t, ivec2(0))) || any(greaterThanEqual(t, size))) continue; // off screen
-        uvec2 g = texelFetch(previousGeometry, t, 0).xy;
-        if (g.x == 0u) continue; // the previous frame saw background there
-        float tapDepth = uintBitsToFloat(g.x);
-        vec3 tapNormal = unpackUnitVector(g.y);
-        // The depths of the neighbours with the tap's normal span what a sample anywhere in this pixel sees
-        // of their surfaces (at a grazing angle one pixel spans more depth than the tolerance).
-        float lo = 1e30, hi = 0.0;
-        for (int k = 0; k < 9; ++k)
-            if (around[k].depth > 0.0 && dot(tapNormal, around[k].normal) >= 1.0 - normalTolerance &&
-                all(lessThanEqual(abs(around[k].motion - (q - vec2(px))), vec2(kMotionPixels)))) {
-                lo = min(lo, around[k].depth);
-                hi = max(hi, around[k].depth);
-            }
-        if (tapDepth < lo * (1.0 - depthTolerance) || tapDepth > hi * (1.0 + depthTolerance)) continue;
-        vec4 h = texelFetch(history, t, 0);
-        float n = texelFetch(historyLength, t, 0).r;
-        if (!isFinite(h) || !(n >= 1.0)) continue; // a NaN or infinity in the history is dropped, not spread
+        vec4 h;
+        float n;
+        if (w <= 0.0 || !historyTap(base + o, q, px, around, size, h, n)) continue;
+        inner[i] = h.rgb;
         sum += w * h.rgb;
         lengthSum += w * n;
         weightSum += w;
+        tapLo = min(tapLo, h.rgb);
+        tapHi = max(tapHi, h.rgb);
     }
     if (weightSum < kMinHistoryWeight) return; // disoccluded: the history restarts here
 
     vec3 previous = sum / weightSum;
+#ifdef CATMULL_ROM
+    // Where the four texels are all kept and the twelve around them (those of nonzero weight) saw this
+    // pixel's own surface, Catmull-Rom's cubic in place of the bilinear blend: a camera that moves by
+    // fractions of a pixel resamples the history every frame, and the bilinear tent blurs it each time (the
+    // detail of a texture or a shadow's edge fades over the frames the history averages); the cubic keeps it.
+    // Clamped to the four texels' range, against the cubic's overshoot. A linear signal comes back as the
+    // bilinear blend gives it.
+    if (weightSum >= 1.0 - 1e-6) {
+        vec4 wx = catmullRomWeights(f.x), wy = catmullRomWeights(f.y);
+        vec3 cubic = vec3(0.0);
+        bool kept = true;
+        for (int i = 0; i < 16 && kept; ++i) {
+            ivec2 o = ivec2(i & 3, i >> 2);
+            float w = wx[o.x] * wy[o.y];
+            if (w == 0.0) continue;
+            vec3 h;
+            if (all(greaterThanEqual(o, ivec2(1))) && all(lessThanEqual(o, ivec2(2))))
+                h = inner[(o.x - 1) + 2 * (o.y - 1)]; // kept above
+            else
+                kept = ownSurfaceTap(base + o - 1, clip.w, s.normal, size, h);
+            cubic += w * h;
+        }
+        if (kept) previous = clamp(cubic, tapLo, tapHi);
+    }
+#endif
     if (clampHistory != 0) {
         vec3 lo, hi;
         neighbourhood(px, size, lo, hi);

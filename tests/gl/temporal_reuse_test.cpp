@@ -312,6 +312,65 @@ TEST_F(TemporalReuseTest, SubPixelMoveReprojectsALinearSignal)
     EXPECT_LT(worst, 0.01f * slope);
 }
 
+// A signal quadratic in the world's x along the plane (so in the screen's x: the plane faces the camera),
+// rising over the whole view: 10 + (x + 5)^2 in every channel, background 7.
+std::vector<float> quadraticSignal(const std::vector<float>& positions)
+{
+    std::vector<float> s(positions.size());
+    for (std::size_t i = 0; i < positions.size(); i += 4) {
+        const float u = positions[i] + 5.0f;
+        const float v = positions[i + 3] != 0.0f ? 10.0f + u * u : 7.0f;
+        s[i] = s[i + 1] = s[i + 2] = v;
+        s[i + 3] = 1.0f;
+    }
+    return s;
+}
+
+// The same fraction of a pixel (0.37) with a signal of curvature: the bilinear blend reads a quadratic
+// between texel centres off by its second difference times f (1 - f) / 2, a blur it adds at every frame of
+// a moving camera; Catmull-Rom's cubic (Keys' a = -1/2) reproduces quadratics, so with temporal.filter's
+// catmull-rom twice the output must be frame 2's own signal to float rounding wherever the 4x4 texels around
+// the point all lie on the plane. The bilinear blend must read off here, or this test could not tell the
+// two apart.
+TEST_F(TemporalReuseTest, SubPixelMoveWithCatmullRomReprojectsAQuadraticSignal)
+{
+    constexpr int w = 37, h = 23;
+    const float pixel = pixelOnPlane(h);
+    const float secondDifference = 2.0f * pixel * pixel; // of the signal from one pixel to the next
+    for (const bool catmullRom : {true, false}) {
+        PlaneHistory p(w, h);
+        upload(p.t, quadraticSignal(p.frame.readPositions()));
+        p.reuse.reset();
+        p.reuse.apply(p.frame, {&p.t}, p.timers);
+        p.reuse.settings.catmullRom = catmullRom;
+        renderGeometry(p.frame, planeCamera(-0.37f * pixel), p.timers);
+        const std::vector<float> positions = p.frame.readPositions();
+        const std::vector<float> want = quadraticSignal(positions);
+        upload(p.t, constantSignal(positions, 0.0f, 7.0f));
+        p.reuse.apply(p.frame, {&p.t}, p.timers);
+        const std::vector<float> out = p.t.readFloats(0, 4);
+        int compared = 0;
+        float worst = 0.0f;
+        for (int y = 2; y + 2 < h; ++y)
+            for (int x = 2; x + 2 < w; ++x) { // the point lies left of the centre: texels x - 2 .. x + 1
+                bool plane = true;
+                for (int dy = -2; dy <= 2; ++dy)
+                    for (int dx = -2; dx <= 2; ++dx) plane = plane && positions[at(x + dx, y + dy, w) + 3] != 0.0f;
+                if (!plane) continue;
+                ++compared;
+                const std::size_t i = at(x, y, w);
+                for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(2.0f * out[i + c] - want[i + c]));
+            }
+        std::printf("[ measured ] %s: %d pixels, largest difference %.3g (%.3g of the second difference)\n",
+                    catmullRom ? "catmull-rom" : "bilinear", compared, worst, worst / secondDifference);
+        EXPECT_GT(compared, w * h / 3);
+        if (catmullRom)
+            EXPECT_LT(worst, 0.01f * secondDifference);
+        else
+            EXPECT_GT(worst, 0.05f * secondDifference) << "the bilinear blend's blur (0.117 of it at f = 0.37)";
+    }
+}
+
 // 3. An occluder in front of the plane goes away (frame 2 renders the scene without it, same camera): the
 // pixels it covered now see the plane, which the previous G-buffer has at another depth (1 m against 2 m),
 // and take no history (output: the current value, 1); every other plane pixel blends its history (5) with
