@@ -67,7 +67,7 @@ private:
         Texture length[2]; // R32F: frames each texel's value averages (0: background)
         int latest = 0;    // which of the two the last apply() wrote
     };
-    Program programs_[2]; // bilinear, Catmull-Rom: compiled when first used
+    Program programs_[4]; // bilinear, Catmull-Rom, each without and with the clamp: compiled when first used
     Framebuffer fbo_{"temporal.fbo"};
     std::vector<History> histories_; // one per signal
     Texture previousGeometry_;       // RG32UI: a copy of the previous frame's gGeometry

@@ -2,10 +2,10 @@
 // Temporal reuse of one signal (gl/frame/temporal_reuse.h): this pixel's surface point, rebuilt from the
 // G-buffer, projected through the previous frame's camera; the previous output there (four texels,
 // bilinear weights, each kept only on this point's surface by the previous G-buffer) is clamped to the
-// current signal's 3x3 neighbourhood and blended with the current value by an exponential moving average
-// whose weight is 1/n over the first n frames of a history (Schied et al. 2017, "Spatiotemporal
-// Variance-Guided Filtering", sec. 4.1; its variance and a-trous filter are not here). CATMULL_ROM: the
-// history resampled by Catmull-Rom's cubic where its 16 texels are all kept.
+// current signal's 3x3 neighbourhood (CLAMP_HISTORY) and blended with the current value by an exponential
+// moving average whose weight is 1/n over the first n frames of a history (Schied et al. 2017,
+// "Spatiotemporal Variance-Guided Filtering", sec. 4.1; its variance and a-trous filter are not here).
+// CATMULL_ROM: the history resampled by Catmull-Rom's cubic where its 16 texels are all kept.
 #include "common/bindings.glsl"
 #include "common/gbuffer.glsl"
 
@@ -19,7 +19,6 @@ uniform mat4 previousViewProjection; // world to the previous frame's clip space
 uniform vec2 currentJitter;          // this frame's sample offset from the pixel centre (pixels)
 uniform int hasHistory;              // 0: the first frame after a reset or a resize
 uniform float alpha;                 // the new sample's weight once the history is 1/alpha frames long
-uniform int clampHistory;            // 1: the history is clamped to the current 3x3 neighbourhood
 uniform float depthTolerance;        // relative eye depth
 uniform float normalTolerance;       // 1 - cos
 
@@ -42,6 +41,10 @@ const float kMotionPixels = 0.15;
 const float kMinHistoryWeight = 0.01;
 
 bool isFinite(vec4 v) { return !any(isnan(v)) && !any(isinf(v)); }
+
+// Whether texel p lies inside the viewport (a negative coordinate wraps to a large unsigned one: one test
+// per axis instead of two).
+bool inside(ivec2 p, ivec2 size) { return all(lessThan(uvec2(p), uvec2(size))); }
 
 
 // The current signal's range over the 3x3 pixels around px (inside the viewport).
@@ -80,7 +83,7 @@ vec2 previousPixel(vec4 clip, ivec2 size) { return (clip.xy / clip.w * 0.5 + 0.5
 Neighbour neighbourAt(ivec2 px, ivec2 size)
 {
     Neighbour n = Neighbour(0.0, vec3(0.0), vec2(0.0));
-    if (any(lessThan(px, ivec2(0))) || any(greaterThanEqual(px, size))) return n;
+    if (!inside(px, size)) return n;
     uvec2 g = texelFetch(gGeometry, px, 0).xy;
     if (g.x == 0u) return n;
     vec4 clip = previousViewProjection * vec4(gbufferPositionAt(px, uintBitsToFloat(g.x)), 1.0);
@@ -92,12 +95,12 @@ Neighbour neighbourAt(ivec2 px, ivec2 size)
 }
 
 // Whether the previous frame's texel t is this pixel's history (the test above, against the neighbours
-// around), and its value and length there.
+// around), and its value and length there (zero where it is not).
 bool historyTap(ivec2 t, vec2 q, ivec2 px, Neighbour around[9], ivec2 size, out vec4 h, out float n)
 {
     h = vec4(0.0);
     n = 0.0;
-    if (any(lessThan(t, ivec2(0))) || any(greaterThanEqual(t, size))) return false; // off screen
+    if (!inside(t, size)) return false; // off screen
     uvec2 g = texelFetch(previousGeometry, t, 0).xy;
     if (g.x == 0u) return false; // the previous frame saw background there
     float tapDepth = uintBitsToFloat(g.x);
@@ -114,25 +117,39 @@ bool historyTap(ivec2 t, vec2 q, ivec2 px, Neighbour around[9], ivec2 size, out 
     if (tapDepth < lo * (1.0 - depthTolerance) || tapDepth > hi * (1.0 + depthTolerance)) return false;
     h = texelFetch(history, t, 0);
     n = texelFetch(historyLength, t, 0).r;
-    return isFinite(h) && n >= 1.0; // a NaN or infinity in the history is dropped, not spread
+    bool kept = isFinite(h) && n >= 1.0; // a NaN or infinity in the history is dropped, not spread
+    h = kept ? h : vec4(0.0);
+    n = kept ? n : 0.0;
+    return kept;
 }
 
 // Whether the previous frame's texel t saw this pixel's own surface (eye depth `depth` in the previous
-// camera, normal `normal`) and holds a finite history there, and that history: the test of the texels
-// around the four, cheaper than theirs (one surface, not the nine around), and stricter.
+// camera, normal `normal`) and holds a finite history there, and that history (zero where not): the test of
+// the texels around the four, cheaper than theirs (one surface, not the nine around), and stricter.
 bool ownSurfaceTap(ivec2 t, float depth, vec3 normal, ivec2 size, out vec3 h)
 {
     h = vec3(0.0);
-    if (any(lessThan(t, ivec2(0))) || any(greaterThanEqual(t, size))) return false;
+    if (!inside(t, size)) return false;
     uvec2 g = texelFetch(previousGeometry, t, 0).xy;
     if (g.x == 0u || abs(uintBitsToFloat(g.x) - depth) > depthTolerance * depth ||
         dot(unpackUnitVector(g.y), normal) < 1.0 - normalTolerance)
         return false;
     // A texel with geometry holds a history of at least one frame: its length is not read.
     vec4 v = texelFetch(history, t, 0);
-    h = v.rgb;
+    h = isFinite(v) ? v.rgb : vec3(0.0);
     return isFinite(v);
 }
+
+// One of the twelve texels around the four: kept where it saw this pixel's own surface, or where it carries
+// no weight (`needed` false: Catmull-Rom gives the outer texels of an axis weight 0 where the fraction along
+// it is 0).
+bool outerTap(ivec2 t, bool needed, float depth, vec3 normal, ivec2 size, out vec3 h)
+{
+    return ownSurfaceTap(t, depth, normal, size, h) || !needed;
+}
+
+// The weighted sum of one row (or column) of four texels.
+vec3 weighted(vec4 w, vec3 a, vec3 b, vec3 c, vec3 d) { return w.x * a + w.y * b + w.z * c + w.w * d; }
 
 // Catmull-Rom's weights of the four texels at -1, 0, 1, 2 from the texel below a point at fraction t.
 vec4 catmullRomWeights(float t)
@@ -161,25 +178,27 @@ void main()
     Neighbour around[9];
     for (int i = 0; i < 9; ++i) around[i] = neighbourAt(px + ivec2(i % 3 - 1, i / 3 - 1), size);
 
-    vec3 sum = vec3(0.0), tapLo = vec3(1e30), tapHi = vec3(-1e30), inner[4];
-    float lengthSum = 0.0, weightSum = 0.0;
-    for (int i = 0; i < 4; ++i) {
-        inner[i] = vec3(0.0);
-        ivec2 o = ivec2(i & 1, i >> 1);
-        float w = (o.x == 1 ? f.x : 1.0 - f.x) * (o.y == 1 ? f.y : 1.0 - f.y);
-        vec4 h;
-        float n;
-        if (w <= 0.0 || !historyTap(base + o, q, px, around, size, h, n)) continue;
-        inner[i] = h.rgb;
-        sum += w * h.rgb;
-        lengthSum += w * n;
-        weightSum += w;
-        tapLo = min(tapLo, h.rgb);
-        tapHi = max(tapHi, h.rgb);
-    }
+    // The four texels around q, written out tap by tap as the twelve below: llvmpipe keeps a loop over taps
+    // whose bodies hold loops of their own as a loop, with its indexing into arrays, at twice the cost.
+    vec4 bilinear = vec4((1.0 - f.x) * (1.0 - f.y), f.x * (1.0 - f.y), (1.0 - f.x) * f.y, f.x * f.y);
+    vec4 h00, h10, h01, h11, tapLength;
+    bvec4 valid = bvec4(historyTap(base, q, px, around, size, h00, tapLength.x),
+                        historyTap(base + ivec2(1, 0), q, px, around, size, h10, tapLength.y),
+                        historyTap(base + ivec2(0, 1), q, px, around, size, h01, tapLength.z),
+                        historyTap(base + ivec2(1, 1), q, px, around, size, h11, tapLength.w));
+    vec4 w = mix(vec4(0.0), bilinear, valid);
+    float weightSum = w.x + w.y + w.z + w.w;
     if (weightSum < kMinHistoryWeight) return; // disoccluded: the history restarts here
 
-    vec3 previous = sum / weightSum;
+    vec3 previous = weighted(w, h00.rgb, h10.rgb, h01.rgb, h11.rgb) / weightSum;
+    float historyFrames = dot(w, tapLength) / weightSum;
+    // The range of the texels that carry weight.
+    vec3 tapLo = vec3(1e30), tapHi = vec3(-1e30);
+    vec3 taps[4] = vec3[4](h00.rgb, h10.rgb, h01.rgb, h11.rgb);
+    for (int i = 0; i < 4; ++i) {
+        tapLo = w[i] > 0.0 ? min(tapLo, taps[i]) : tapLo;
+        tapHi = w[i] > 0.0 ? max(tapHi, taps[i]) : tapHi;
+    }
 #ifdef CATMULL_ROM
     // Where the four texels are all kept and the twelve around them (those of nonzero weight) saw this
     // pixel's own surface, Catmull-Rom's cubic in place of the bilinear blend: a camera that moves by
@@ -189,28 +208,33 @@ void main()
     // bilinear blend gives it.
     if (weightSum >= 1.0 - 1e-6) {
         vec4 wx = catmullRomWeights(f.x), wy = catmullRomWeights(f.y);
-        vec3 cubic = vec3(0.0);
-        bool kept = true;
-        for (int i = 0; i < 16 && kept; ++i) {
-            ivec2 o = ivec2(i & 3, i >> 2);
-            float w = wx[o.x] * wy[o.y];
-            if (w == 0.0) continue;
-            vec3 h;
-            if (all(greaterThanEqual(o, ivec2(1))) && all(lessThanEqual(o, ivec2(2))))
-                h = inner[(o.x - 1) + 2 * (o.y - 1)]; // kept above
-            else
-                kept = ownSurfaceTap(base + o - 1, clip.w, s.normal, size, h);
-            cubic += w * h;
-        }
-        if (kept) previous = clamp(cubic, tapLo, tapHi);
+        bool nx = f.x > 0.0, ny = f.y > 0.0;
+        vec3 below[4], above[4], left[2], right[2]; // rows -1 and 2, columns -1 and 2 of rows 0 and 1
+        bvec4 rowBelow = bvec4(outerTap(base + ivec2(-1, -1), nx && ny, clip.w, s.normal, size, below[0]),
+                               outerTap(base + ivec2(0, -1), ny, clip.w, s.normal, size, below[1]),
+                               outerTap(base + ivec2(1, -1), ny, clip.w, s.normal, size, below[2]),
+                               outerTap(base + ivec2(2, -1), nx && ny, clip.w, s.normal, size, below[3]));
+        bvec4 rowAbove = bvec4(outerTap(base + ivec2(-1, 2), nx && ny, clip.w, s.normal, size, above[0]),
+                               outerTap(base + ivec2(0, 2), ny, clip.w, s.normal, size, above[1]),
+                               outerTap(base + ivec2(1, 2), ny, clip.w, s.normal, size, above[2]),
+                               outerTap(base + ivec2(2, 2), nx && ny, clip.w, s.normal, size, above[3]));
+        bvec4 sides = bvec4(outerTap(base + ivec2(-1, 0), nx, clip.w, s.normal, size, left[0]),
+                            outerTap(base + ivec2(-1, 1), nx, clip.w, s.normal, size, left[1]),
+                            outerTap(base + ivec2(2, 0), nx, clip.w, s.normal, size, right[0]),
+                            outerTap(base + ivec2(2, 1), nx, clip.w, s.normal, size, right[1]));
+        vec3 cubic = wy.x * weighted(wx, below[0], below[1], below[2], below[3]) +
+                     wy.y * weighted(wx, left[0], h00.rgb, h10.rgb, right[0]) +
+                     wy.z * weighted(wx, left[1], h01.rgb, h11.rgb, right[1]) +
+                     wy.w * weighted(wx, above[0], above[1], above[2], above[3]);
+        if (all(rowBelow) && all(rowAbove) && all(sides)) previous = clamp(cubic, tapLo, tapHi);
     }
 #endif
-    if (clampHistory != 0) {
-        vec3 lo, hi;
-        neighbourhood(px, size, lo, hi);
-        previous = clamp(previous, lo, hi);
-    }
-    float n = min(lengthSum / weightSum + 1.0, 1.0 / alpha);
+#ifdef CLAMP_HISTORY
+    vec3 lo, hi;
+    neighbourhood(px, size, lo, hi);
+    previous = clamp(previous, lo, hi);
+#endif
+    float n = min(historyFrames + 1.0, 1.0 / alpha);
     float weight = max(alpha, 1.0 / n);
     // previous + (now - previous) w rather than mix(): equal inputs give that value exactly.
     outSignal = vec4(previous + (now.rgb - previous) * weight, now.a);

@@ -529,16 +529,19 @@ TEST_F(TemporalReuseTest, ClampPullsAFarHistoryIntoTheNeighbourhood)
 // pixels (the pass passes them through: no history yet); the camera then moves by 1.5 pixels, so that every
 // pixel's history is two taps and both bad texels lie in two pixels' footprints. Every output is finite:
 // a bad tap is dropped and the other tap taken alone. Clamp on and off: the clamp must not be what hides
-// them.
+// them. Bilinear and Catmull-Rom: the cubic's rows above and below the taps carry no weight on this move
+// (it is horizontal), and a bad texel there must not enter it as 0 times NaN.
 TEST_F(TemporalReuseTest, NanInHistoryNeverSpreads)
 {
     const core::Scene scene = planeScene(false);
-    for (bool clamp : {true, false}) {
-        SCOPED_TRACE(clamp ? "clamp" : "no clamp");
+    for (int variant = 0; variant < 4; ++variant) {
+        const bool clamp = variant & 1, catmullRom = variant & 2;
+        SCOPED_TRACE(std::string(clamp ? "clamp" : "no clamp") + (catmullRom ? ", catmull-rom" : ", bilinear"));
         gl::Frame frame(scene, smallFrame(64, 32));
         gl::PassTimers timers;
         gl::TemporalReuseSettings settings;
         settings.clamp = clamp;
+        settings.catmullRom = catmullRom;
         gl::TemporalReuse reuse(settings);
         gl::Texture t = makeSignal(64, 32);
         renderGeometry(frame, planeCamera(0.0f), timers);
@@ -560,9 +563,17 @@ TEST_F(TemporalReuseTest, NanInHistoryNeverSpreads)
         // Frame 2's pixel (18 or 19, 10) reads frame 1's (20, 10) as one of its two taps: the other tap
         // alone is its history, worldSignal at frame 1's (21, 10) or (19, 10) (no clamp: exactly that).
         if (!clamp) {
-            const float current = worldSignal(positions, 0.0f)[at(19, 10, 64)];
-            const float history = first[at(21, 10, 64)];
-            EXPECT_FLOAT_EQ(out[at(19, 10, 64)], 0.5f * (current + history));
+            const std::vector<float> now = worldSignal(positions, 0.0f);
+            EXPECT_FLOAT_EQ(out[at(19, 10, 64)], 0.5f * (now[at(19, 10, 64)] + first[at(21, 10, 64)]));
+            // The pixels around it whose two taps are finite blend the midpoint of those taps (the signal is
+            // linear: the cubic reads what the bilinear blend reads), the bad texel among their outer
+            // texels or not.
+            for (int y = 8; y <= 12; ++y)
+                for (int x = 15; x <= 21; ++x) {
+                    const float a = first[at(x + 1, y, 64)], b = first[at(x + 2, y, 64)];
+                    if (!std::isfinite(a) || !std::isfinite(b)) continue;
+                    EXPECT_NEAR(out[at(x, y, 64)], 0.5f * (now[at(x, y, 64)] + 0.5f * (a + b)), 1e-4f) << x << "," << y;
+                }
         }
     }
 }
