@@ -178,8 +178,8 @@ void main()
     Neighbour around[9];
     for (int i = 0; i < 9; ++i) around[i] = neighbourAt(px + ivec2(i % 3 - 1, i / 3 - 1), size);
 
-    // The four texels around q, written out tap by tap as the twelve below: llvmpipe keeps a loop over taps
-    // whose bodies hold loops of their own as a loop, with its indexing into arrays, at twice the cost.
+    // The four texels around q, written out tap by tap as the twelve below are: llvmpipe kept the loop over
+    // the sixteen as a loop, with its indexing into arrays, and the pass took 1.3 times as long.
     vec4 bilinear = vec4((1.0 - f.x) * (1.0 - f.y), f.x * (1.0 - f.y), (1.0 - f.x) * f.y, f.x * f.y);
     vec4 h00, h10, h01, h11, tapLength;
     bvec4 valid = bvec4(historyTap(base, q, px, around, size, h00, tapLength.x),
