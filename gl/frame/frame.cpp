@@ -45,6 +45,16 @@ bool areaLightsLit(const GpuScene& gpu, bool areaLights)
     return areaLights && int(gpu.lights().size()) > gpu.punctualLightCount();
 }
 
+// Shadow rays (common/shadow.glsl, RAY_SHADOWS) where the frame casts them (shadow.still=rays, a scene with
+// lights): the BVH's walk, which skips the masks' holes (ALPHA_MASK).
+std::vector<Define> shadowRayDefines(const GpuScene& gpu, const FrameSettings& settings)
+{
+    if (!settings.stillRayShadows || gpu.lights().empty()) return {};
+    std::vector<Define> d{{"RAY_SHADOWS", "1"}};
+    if (gpu.hasAlphaMask()) d.push_back({"ALPHA_MASK", "1"});
+    return d;
+}
+
 // The defines of the frame's direct-light estimator (glsl/common/lighting.glsl, addDirectLight) for the kinds
 // of light the scene has: a loop over a kind the scene lacks still costs a masked pass through its body on a
 // SIMD rasteriser (llvmpipe), the polygon form factor of the emitting triangles most of all.
@@ -61,10 +71,9 @@ std::vector<Define> directLightKinds(const GpuScene& gpu, const FrameSettings& s
     if (still && area) kinds.push_back({"AREA_SAMPLED", "1"});
     if (still && cascades) kinds.push_back({"SHADOW_CASCADES", "1"});
     if (!still && area && settings.areaPcss) kinds.push_back({"SHADOW_PCSS", "1"});
-    // Still frames' shadow rays (common/shadow.glsl): the BVH's walk, which skips the masks' holes.
-    if (still && settings.stillRayShadows && !gpu.lights().empty()) {
-        kinds.push_back({"RAY_SHADOWS", "1"});
-        if (gpu.hasAlphaMask()) kinds.push_back({"ALPHA_MASK", "1"});
+    if (still) {
+        const std::vector<Define> rays = shadowRayDefines(gpu, settings);
+        kinds.insert(kinds.end(), rays.begin(), rays.end());
     }
     return kinds;
 }
@@ -461,6 +470,11 @@ bool Frame::directLightStill() const
 std::vector<Define> Frame::directLightDefines(bool still) const
 {
     return directLightKinds(gpu_, settings_, still, true);
+}
+
+std::vector<Define> Frame::shadowRayDefines() const
+{
+    return bounce::gl::shadowRayDefines(gpu_, settings_);
 }
 
 void Frame::setDirectLightUniforms(Program& program) const

@@ -151,6 +151,10 @@ public:
     // meets.
     bool directLightStill() const;
     std::vector<Define> directLightDefines(bool still) const;
+    // The still frames' shadow rays' defines (RAY_SHADOWS, and ALPHA_MASK where the scene has masks) where the
+    // frame casts them (shadow.still=rays, a scene with lights), else none; the bound scene data
+    // (bindSceneData) carries the BVH they walk.
+    std::vector<Define> shadowRayDefines() const;
     void setDirectLightUniforms(Program& program) const;
     bool hasSpecularTarget() const { return bool(full_.specular); }
     bool hasEmissionTarget() const { return bool(full_.emission); }

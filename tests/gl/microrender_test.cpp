@@ -29,6 +29,7 @@ namespace bounce {
 namespace {
 
 using testing::allFiniteNonNegative;
+using testing::halfToFloat;
 using testing::interiorOf;
 using testing::meanOver;
 using testing::PointRender;
@@ -37,13 +38,6 @@ using testing::versus;
 using testing::Versus;
 
 class MicrorenderTest : public GlTest {};
-
-float halfToFloat(std::uint32_t h)
-{
-    const std::uint32_t s = (h >> 15) & 1u, e = (h >> 10) & 31u, m = h & 1023u;
-    float v = e == 0 ? std::ldexp(float(m), -24) : (e == 31 ? INFINITY : std::ldexp(float(m | 1024u), int(e) - 25));
-    return s ? -v : v;
-}
 
 // An 8 x 8 frame of `scene` with its shadow maps, and the point cloud of `points` points lit through them
 // with its hierarchy built.
@@ -199,13 +193,7 @@ TEST_F(MicrorenderTest, GlossyLobesAtThePointsAndNodesMatchTheEmittersClosedForm
     const gl::PointHierarchy& hierarchy = lit.hierarchy;
     ASSERT_TRUE(cloud.glossy());
 
-    struct Surfel {
-        glm::vec3 position;
-        float areaM2;
-        glm::vec3 normal;
-        std::uint32_t diffuse;
-    };
-    const std::vector<Surfel> surfels = cloud.surfels().download<Surfel>();
+    const std::vector<testing::PointSurfel> surfels = cloud.surfels().download<testing::PointSurfel>();
     const std::vector<glm::uvec4> lobes = cloud.glossyLobes().download<glm::uvec4>();
     ASSERT_EQ(surfels.size(), lobes.size());
     const auto irradiance = [](const glm::uvec4& g) {
@@ -245,7 +233,7 @@ TEST_F(MicrorenderTest, GlossyLobesAtThePointsAndNodesMatchTheEmittersClosedForm
     double worst = 0.0;
     float roughest = 0.0f, smoothest = 1.0f;
     for (std::size_t i = 0; i < surfels.size(); ++i) {
-        const Surfel& s = surfels[i];
+        const testing::PointSurfel& s = surfels[i];
         const glm::vec3 e = irradiance(lobes[i]);
         if ((s.diffuse >> 24) == 0u) { // weight 0: a diffuse wall
             ++walls;

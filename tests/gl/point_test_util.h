@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <stdexcept>
 #include <string>
@@ -31,6 +32,23 @@ struct PointRender {
     std::vector<gl::Counter> counters;
     double counter(const std::string& name) const;
 };
+
+// std430 mirror of point_cloud.glsl's PointSurfel, as the tests download the cloud's surfels.
+struct PointSurfel {
+    glm::vec3 position;
+    float areaM2;
+    glm::vec3 normal;
+    std::uint32_t diffuse; // c_diff as unorm 8-bit RGB
+};
+static_assert(sizeof(PointSurfel) == 32, "point_cloud.glsl's PointSurfel");
+
+// An IEEE half float (the low 16 bits of h), as the point buffers pack radiance and lobes (packHalf2x16).
+inline float halfToFloat(std::uint32_t h)
+{
+    const std::uint32_t s = (h >> 15) & 1u, e = (h >> 10) & 31u, m = h & 1023u;
+    float v = e == 0 ? std::ldexp(float(m), -24) : (e == 31 ? INFINITY : std::ldexp(float(m | 1024u), int(e) - 25));
+    return s ? -v : v;
+}
 
 // The furnace: a closed box, every surface albedo rho emitting L_e. One bounce of indirect light is
 // exactly rho^2 L_e everywhere (every point reflects rho L_e, and every direction sees a point).

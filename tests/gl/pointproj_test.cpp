@@ -142,16 +142,10 @@ TEST_F(PointprojTest, DeformedGeometryReclustersThePoints)
         gl::Frame frame(scene, fs);
         gl::PointCloud cloud(frame, 4096, 1, false);
         gl::PassTimers timers;
-        struct Surfel {
-            glm::vec3 position;
-            float areaM2;
-            glm::vec3 normal;
-            std::uint32_t diffuse;
-        };
-        static_assert(sizeof(Surfel) == 32, "point_cloud.glsl's PointSurfel");
         const auto positions = [&] {
             std::vector<glm::vec3> p;
-            for (const Surfel& s : cloud.surfels().download<Surfel>()) p.push_back(s.position);
+            for (const testing::PointSurfel& s : cloud.surfels().download<testing::PointSurfel>())
+                p.push_back(s.position);
             return p;
         };
         const auto sorted = [](std::vector<glm::vec3> p) {

@@ -82,7 +82,14 @@ GpuPointSample toGpuPointSample(const core::SurfacePoint& p, double triangleArea
 
 std::vector<Define> pointLightDefines(const Frame& frame)
 {
-    return frame.directLightDefines(false);
+    std::vector<Define> d = frame.directLightDefines(false);
+    // Point, spot and directional lights alone: their visibility by one shadow ray towards the light, as
+    // deterministic as the map and without its texel (point_light.glsl says what the map cost).
+    if (int(frame.gpuScene().lights().size()) == frame.gpuScene().punctualLightCount()) {
+        const std::vector<Define> rays = frame.shadowRayDefines();
+        d.insert(d.end(), rays.begin(), rays.end());
+    }
+    return d;
 }
 
 int lightKinds(const GpuScene& scene)
