@@ -152,6 +152,11 @@ vec2 sceneTriangleUv(uint triangle, vec2 b)
 }
 #endif
 
+// How far a ray leaves a surface point p along its normal so that it does not hit p's own triangle again:
+// 2e-4 of p's largest coordinate (float rounding grows with it), at least 0.2 mm. The frame's shadow rays
+// (common/shadow.glsl) and micro-rendering's gather point (technique/microrender/gather.comp) take it.
+float surfaceRayOffset(vec3 p) { return 2e-4 * max(max(abs(p.x), abs(p.y)), max(abs(p.z), 1.0)); }
+
 // Cube face of a direction, in the order +x, -x, +y, -y, +z, -z (the order of shadow layers).
 int cubeFace(vec3 d)
 {

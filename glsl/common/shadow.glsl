@@ -181,7 +181,7 @@ float percentageCloserAt(int layer, vec3 p, vec3 n)
 // least 0.2 mm), so that contact shadows converge as the still frames accumulate (issue 59).
 float rayVisibility(Light l, vec3 p, vec3 n)
 {
-    float offset = 2e-4 * max(max(abs(p.x), abs(p.y)), max(abs(p.z), 1.0));
+    float offset = surfaceRayOffset(p);
     vec3 origin = p + n * offset;
     if (l.type == kLightDirectional) return anyHit(origin, -l.direction, 0.0, 3.0e38) ? 0.0 : 1.0;
     vec3 d = l.position - origin;

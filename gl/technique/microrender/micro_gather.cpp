@@ -140,7 +140,7 @@ Program MicroGather::makeProgram(Frame& frame, const PointHierarchy& hierarchy, 
                             "technique/microrender/gather.comp", d);
 }
 
-void MicroGather::setUniforms(Program& program, Frame& frame, const PointCloud& cloud, const PointHierarchy& hierarchy)
+void MicroGather::setUniforms(Program& program, Frame& frame, const PointHierarchy& hierarchy)
 {
     const core::Bounds& b = frame.gpuScene().bounds();
     const float diagonal = std::max(glm::length(b.extent()), 1e-6f);
@@ -148,8 +148,6 @@ void MicroGather::setUniforms(Program& program, Frame& frame, const PointCloud& 
     program.set("leafCount", unsigned(hierarchy.leafCount()));
     program.set("cutScale", settings_.cut);
     program.set("depthScale", depthMax / (1.01f * diagonal));
-    // Half a point's disc radius: the gather point's own surface sinks under its horizon.
-    program.set("gatherOffset", 0.5f * cloud.discRadius());
     program.set("warpCosSteps", int(cpuTables_.cosThetaO.size()));
     program.set("warpAlphaCount", int(cpuTables_.alphas.size()));
     for (std::size_t i = 0; i < cpuTables_.alphas.size() && i < 16; ++i)
@@ -182,7 +180,7 @@ void MicroGather::gatherPixels(Frame& frame, PixelGather& targets, const PointCl
         t.expectComputes(perTargetInvocations(targets.count(), kGroup));
         bindCommon(frame, cloud, hierarchy, caster);
         targets.bindForGather(frame, pixels_);
-        setUniforms(pixels_, frame, cloud, hierarchy);
+        setUniforms(pixels_, frame, hierarchy);
         dispatchPerTarget(pixels_, targets.count(), kGroup);
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT |
                         GL_BUFFER_UPDATE_BARRIER_BIT);
@@ -202,7 +200,7 @@ void MicroGather::gatherPoints(Frame& frame, const PointCloud& cloud, const Poin
     t.expectComputes(perTargetInvocations(count, kGroup));
     bindCommon(frame, cloud, hierarchy, caster);
     gathered.bindBase(GL_SHADER_STORAGE_BUFFER, SSBO_POINT_GATHERED);
-    setUniforms(points_, frame, cloud, hierarchy);
+    setUniforms(points_, frame, hierarchy);
     points_.set("gatherStride", unsigned(stride));
     points_.set("targetCount", unsigned(count));
     dispatchPerTarget(points_, count, kGroup);

@@ -79,7 +79,7 @@ private:
     Buffer tables_, statsBuffer_;
     Program pixels_, points_;
     MicroStats stats_;
-    void setUniforms(Program& program, Frame& frame, const PointCloud& cloud, const PointHierarchy& hierarchy);
+    void setUniforms(Program& program, Frame& frame, const PointHierarchy& hierarchy);
     void bindCommon(Frame& frame, const PointCloud& cloud, const PointHierarchy& hierarchy, const RayCaster& caster);
     bool atPoints_ = false;
     int lightKinds_ = 0; // of the programs (lightKinds), which the ray-cast micro-pixels' shading is built for
