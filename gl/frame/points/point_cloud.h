@@ -5,7 +5,7 @@
 // clusters at once), on the GPU (glsl/frame/points/point_cloud.glsl). Passes:
 //   "point-update"  every point's position, normal and diffuse colour from (triangle, barycentrics) on the
 //                   scene as it is now (point_update.comp)
-//   "point-light"   direct light at every point from the frame's shadow maps, half floats (point_light.comp);
+//   "point-light"   direct light at every point by the frame's estimator, half floats (point_light.comp);
 //                   in a scene with a glossy material, what each point's glossy lobe needs as well
 //                   (point_cloud.glsl's `glossy`, compiled in with GLOSSY_POINTS)
 //   "relight"       direct + the diffuse light gathered at the points' representatives (bounces > 1)
@@ -91,7 +91,8 @@ private:
 };
 
 // The defines of glsl/frame/points/point_light.glsl: the frame's direct-light estimator in the moving frame's
-// form in every frame (Frame::directLightDefines; point_light.glsl says why); its uniforms are
+// form in every frame (Frame::directLightDefines; point_light.glsl says why), with the frame's shadow rays
+// (Frame::shadowRayDefines) where its lights are point, spot and directional lights alone; its uniforms are
 // Frame::setDirectLightUniforms'.
 std::vector<Define> pointLightDefines(const Frame& frame);
 // The kinds of light a scene has as bits (1: punctual, 2: area): a program built with pointLightDefines is
