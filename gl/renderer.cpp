@@ -107,7 +107,7 @@ void Renderer::renderFrame(bool keepTimings)
     if (frame_->width() != techniqueWidth_ || frame_->height() != techniqueHeight_) make(*info_, techniqueValues_);
     advanceStill(); // beginFrame, still or moving
     frame_->setAreaLightsInDirect(!technique_->carriesEmittersLight(), technique_->readsAreaShadowMaps());
-    frame_->setShadowMapsRead(technique_->readsShadowMaps());
+    frame_->setShadowMapsRead(technique_->readsShadowMaps(*frame_));
     frame_->renderShadowMaps(timers_);
     frame_->renderGBuffer(timers_);
     frame_->renderDirect(timers_);

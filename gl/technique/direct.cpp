@@ -6,7 +6,7 @@ namespace {
 class Direct final : public Technique {
 public:
     void render(Frame&, PassTimers&) override {} // the frame's indirect texture stays zero
-    bool readsShadowMaps() const override { return false; }
+    bool readsShadowMaps(const Frame& /*frame*/) const override { return false; }
 };
 } // namespace
 

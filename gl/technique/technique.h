@@ -50,8 +50,9 @@ public:
     virtual bool readsAreaShadowMaps() const { return true; }
     // Whether any of the technique's passes reads the frame's shadow maps (a point cloud's light, a ray hit's
     // direct light in the moving form, ...). False lets the frame skip its shadow pass in the frames whose
-    // own direct pass reads none either (Frame::setShadowMapsRead). True unless a technique says otherwise.
-    virtual bool readsShadowMaps() const { return true; }
+    // own direct pass reads none either (Frame::setShadowMapsRead). Asked before every frame's shadow pass,
+    // of the frame's lights as they are then. True unless a technique says otherwise.
+    virtual bool readsShadowMaps(const Frame& /*frame*/) const { return true; }
     // False when the technique's work at the camera's pixels is a lookup of what it built apart from the
     // camera (grb's display of its atlases without the final glossy bounce): a coarser indirect resolution
     // (Renderer::setIndirectScale) would save next to nothing and lose detail, and the Renderer then draws

@@ -259,5 +259,38 @@ TEST_F(TemporalRendererTest, ShadowPassDrawsOnlyWhatSomethingReads)
     EXPECT_EQ(texels(accumulated), 0.0) << "still frames cast shadow rays";
 }
 
+// The point gathers read no shadow map where shadow rays light their points and hits (pointLightDefines:
+// punctual lights, shadow.still=rays), so that their still frames draw none; the emitting triangles' cube,
+// which lights the points of cornell-area, and shadow.still=maps keep them. Frame 0 is a moving frame, whose
+// direct pass reads the maps. The images are checked elsewhere (ContactShadowTest: the points against the
+// closed form with the rays).
+TEST_F(TemporalRendererTest, PointGathersDrawNoShadowMapWhereRaysLightThePoints)
+{
+    const auto texels = [](const gl::Renderer& r) {
+        for (const gl::Counter& c : r.frameCounters())
+            if (c.name == "shadow.texels") return c.value;
+        return -1.0;
+    };
+    // The shadow texels of still frame 1 of `technique` on `scene`.
+    const auto stillTexels = [&](const char* sceneName, const char* technique, const char* still) {
+        gl::ParamValues frame = frameValues(false), values(gl::findTechnique(technique).params);
+        frame.setValue("accumulate", 1);
+        frame.set(gl::frameParams(), "shadow.still", still);
+        values.setValue("points", 1024);
+        const core::Scene scene = core::makeCornell(sceneName); // the Renderer keeps a reference
+        gl::Renderer r(scene, technique, frame, values, kW, kH);
+        r.renderFrame(false);
+        EXPECT_GT(texels(r), 0.0) << technique << ": frame 0 is a moving frame";
+        r.renderFrame(false);
+        EXPECT_EQ(r.frame().sampler().stillIndex(), 1);
+        return texels(r);
+    };
+    // Both techniques ask pointLightReadsShadowMaps; its cases on one of them.
+    EXPECT_EQ(stillTexels("cornell-spot", "pointproj", "rays"), 0.0) << "rays light the points";
+    EXPECT_EQ(stillTexels("cornell-spot", "microrender", "rays"), 0.0) << "rays light the points";
+    EXPECT_GT(stillTexels("cornell-spot", "microrender", "maps"), 0.0) << "the maps light them";
+    EXPECT_GT(stillTexels("cornell-area", "microrender", "rays"), 0.0) << "the emitter's cube lights them";
+}
+
 } // namespace
 } // namespace bounce

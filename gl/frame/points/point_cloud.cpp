@@ -80,16 +80,31 @@ GpuPointSample toGpuPointSample(const core::SurfacePoint& p, double triangleArea
     return {p.triangle, share, glm::vec2(b1, 1.0f - b0 - b1)};
 }
 
+namespace {
+
+// Point, spot and directional lights alone, and a frame that casts shadow rays: the points' visibility is
+// one ray towards each light, as deterministic as the map and without its texel (point_light.glsl says what
+// the map cost). Emitting triangles keep the moving form's cube.
+std::vector<Define> pointShadowRayDefines(const Frame& frame)
+{
+    const GpuScene& scene = frame.gpuScene();
+    if (int(scene.lights().size()) != scene.punctualLightCount()) return {};
+    return frame.shadowRayDefines();
+}
+
+} // namespace
+
 std::vector<Define> pointLightDefines(const Frame& frame)
 {
     std::vector<Define> d = frame.directLightDefines(false);
-    // Point, spot and directional lights alone: their visibility by one shadow ray towards the light, as
-    // deterministic as the map and without its texel (point_light.glsl says what the map cost).
-    if (int(frame.gpuScene().lights().size()) == frame.gpuScene().punctualLightCount()) {
-        const std::vector<Define> rays = frame.shadowRayDefines();
-        d.insert(d.end(), rays.begin(), rays.end());
-    }
+    const std::vector<Define> rays = pointShadowRayDefines(frame);
+    d.insert(d.end(), rays.begin(), rays.end());
     return d;
+}
+
+bool pointLightReadsShadowMaps(const Frame& frame)
+{
+    return !frame.gpuScene().lights().empty() && pointShadowRayDefines(frame).empty();
 }
 
 int lightKinds(const GpuScene& scene)

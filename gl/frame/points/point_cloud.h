@@ -95,6 +95,10 @@ private:
 // (Frame::shadowRayDefines) where its lights are point, spot and directional lights alone; its uniforms are
 // Frame::setDirectLightUniforms'.
 std::vector<Define> pointLightDefines(const Frame& frame);
+// Whether a program built with pointLightDefines for the frame's lights as they are now reads the frame's
+// shadow maps: not where shadow rays light the points, nor in a scene without lights. What a technique
+// whose points and hits are lit by them alone says in Technique::readsShadowMaps.
+bool pointLightReadsShadowMaps(const Frame& frame);
 // The kinds of light a scene has as bits (1: punctual, 2: area): a program built with pointLightDefines is
 // built again where they change (Frame::setLights, an area light flattened by Frame::moveVertices).
 int lightKinds(const GpuScene& scene);

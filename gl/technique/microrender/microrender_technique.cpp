@@ -55,6 +55,9 @@ public:
         targets_.upsample(frame, timers);
     }
 
+    // The points, and the hits of the ray-cast micro-pixels, are lit by pointLightDefines' programs alone.
+    bool readsShadowMaps(const Frame& frame) const override { return pointLightReadsShadowMaps(frame); }
+
     void setUniforms(const ParamValues& values) override
     {
         targets_.setThresholds(float(values.get("depthThreshold")), float(values.get("normalThreshold")));
@@ -102,7 +105,9 @@ TechniqueInfo microrenderTechniqueInfo()
                    "the leaves too large for a micro-pixel";
     info.passes = {
         {"point-update", "surface points from (triangle, barycentrics) on the scene as it is", ""},
-        {"point-light", "direct light at every point from the shadow maps, half floats", ""},
+        {"point-light",
+         "direct light at every point: a shadow ray per light, or the shadow maps with emitting triangles; half floats",
+         ""},
         {"hierarchy", "the point hierarchy rebuilt bottom-up: spheres, normal cones, radiance", ""},
         {"bounce-gather", "micro-rendering at the representatives of one hierarchy level", "bounces > 1"},
         {"relight", "the points' radiance: direct + the gathered bounce", "bounces > 1"},

@@ -71,6 +71,9 @@ public:
         stats_ = gather_.stats();
     }
 
+    // The points, and the hole rays' hits, are lit by pointLightDefines' programs alone.
+    bool readsShadowMaps(const Frame& frame) const override { return pointLightReadsShadowMaps(frame); }
+
     void setUniforms(const ParamValues& values) override
     {
         pixels_.setThresholds(float(values.get("epsilon")), float(values.get("lambda")));
@@ -128,7 +131,9 @@ TechniqueInfo pointprojTechniqueInfo()
                    "with image-space adaptive sampling";
     info.passes = {
         {"point-update", "surface points from (triangle, barycentrics) on the scene as it is", ""},
-        {"point-light", "direct light at every point from the shadow maps, half floats", ""},
+        {"point-light",
+         "direct light at every point: a shadow ray per light, or the shadow maps with emitting triangles; half floats",
+         ""},
         {"recluster",
          "§4's re-clustering on the GPU: the points sorted along x, y and z, then a median partition per level",
          "the scene's geometry moved"},

@@ -1,5 +1,6 @@
 #version 450 core
-// "point-light": direct light at every point from the frame's shadow maps, stored as half floats
+// "point-light": direct light at every point by the frame's estimator (a shadow ray per light where the lights are
+// punctual and the frame casts rays, point_light.glsl; the shadow maps otherwise), stored as half floats
 // (micro-rendering §4, "One-Bounce Indirect Illumination": "directly lighting the point hierarchy, e.g.
 // using shadow mapping techniques"; point projection §4, "Primary Lights"). With bounces > 1 the direct
 // part is kept apart too, for point_relight.comp to add gathered light to. GLOSSY_POINTS: what the glossy
