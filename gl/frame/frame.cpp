@@ -222,7 +222,7 @@ void Frame::beginIndirect(int scale, PassTimers& timers, bool withDirect)
     const int w = (settings_.width + scale - 1) / scale, h = (settings_.height + scale - 1) / scale;
     if (coarse_.width != w || coarse_.height != h) allocate(coarse_, w, h, ".coarse");
     coarseActive_ = true;
-    renderGBuffer(timers);
+    renderGBuffer(timers); // the coarse targets' own, from the same camera
     if (withDirect) renderDirect(timers);
     clearIndirect();
 }
@@ -518,6 +518,13 @@ void Frame::drawFullscreen() const
 
 void Frame::renderDirect(PassTimers& timers)
 {
+    drawDirect(timers);
+    if (directSubsamplesPending_ > 1 && !coarseActive_) runDirectSamples(timers, true, false);
+    directSubsamplesPending_ = 0;
+}
+
+void Frame::drawDirect(PassTimers& timers)
+{
     Targets& t = targets();
     // direct.frag per pixel: two to four G-buffer texels (the targets the scene has), one target, and the
     // loop over the lights.
@@ -546,6 +553,44 @@ void Frame::renderDirect(PassTimers& timers)
     setDirectLightUniforms(program);
     program.use();
     drawFullscreen();
+}
+
+void Frame::renderDirectSubsamples(PassTimers& timers)
+{
+    directSubsamplesPending_ = 0;
+    const int n = settings_.stillDirectSamples;
+    if (n < 2 || sampler_.stillIndex() < 1 || coarseActive_) return;
+    if (!directSum_ || directSum_.width() != full_.width || directSum_.height() != full_.height)
+        directSum_ = Texture::create2D("direct.sum", GL_RGBA32F, full_.width, full_.height);
+    for (int k = 1; k < n; ++k) {
+        sampler_.setDirectSubsample(k, n);
+        renderGBuffer(timers);
+        drawDirect(timers);
+        runDirectSamples(timers, false, k == 1);
+    }
+    sampler_.setDirectSubsample(0, n); // the frame's own point, where the technique gathers
+    directSubsamplesPending_ = n;
+}
+
+void Frame::runDirectSamples(PassTimers& timers, bool resolve, bool first)
+{
+    Program& program = resolve ? directMeanProgram_ : directSumProgram_;
+    if (!program)
+        program = Program::compute(resolve ? "direct.samples.mean" : "direct.samples.sum", "frame/direct_samples.comp",
+                                   resolve ? std::vector<Define>{{"RESOLVE", "1"}} : std::vector<Define>{});
+    PassCost cost;
+    cost.flops = 4;
+    cost.bytesRead = first && !resolve ? 16 : 32;
+    cost.bytesWritten = 16;
+    auto t = timers.scope("direct.samples", cost);
+    t.expectComputes(computeInvocations({full_.width, full_.height, 1}, {8, 8, 1}));
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
+    full_.direct.bindImage(0, resolve ? GL_READ_WRITE : GL_READ_ONLY);
+    directSum_.bindImage(1, resolve ? GL_READ_ONLY : GL_READ_WRITE);
+    program.set("first", first ? 1 : 0);
+    program.set("scale", 1.0f / float(std::max(directSubsamplesPending_, 1)));
+    dispatchCompute(program, glm::ivec3(full_.width, full_.height, 1), glm::ivec3(8, 8, 1));
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
 }
 
 void Frame::allocateAreaRatio()

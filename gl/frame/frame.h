@@ -31,17 +31,18 @@ struct FrameSettings {
     int width = 512;
     int height = 512;
     int shadowMapSize = 1024;
-    int shadowCascades = 3;         // a directional light's views fitted to the camera, beside its whole-scene view
-    float shadowFootprint = 4.0f;   // a spot's or point light's texels per screen pixel (ShadowMaps; 0: shadowMapSize)
-    int pcfRadius = 1;              // 0: one hard tap per pixel
-    bool pcfLinear = true;          // hardware 2x2 bilinear comparison
-    bool accumulate = true;         // still frames jitter the pixel centre and are averaged (gl/renderer.h)
-    bool areaPcss = false;          // moving frames: area lights' penumbrae estimated by PCSS (else hard, centroid)
-    bool stillRayShadows = true;    // still frames: shadow rays through the BVH (RAY_SHADOWS), not the shadow maps
-    bool temporal = false;          // temporal reuse of the technique's indirect light (gl/renderer.h)
-    float temporalAlpha = 0.2f;     //   its weight of the new frame (TemporalReuseSettings::alpha)
-    bool temporalClamp = true;      //   its neighbourhood clamp (TemporalReuseSettings::clamp)
-    bool temporalDirect = false;    //   with it, the direct light's reuse in moving frames (gl/renderer.h)
+    int shadowCascades = 3;       // a directional light's views fitted to the camera, beside its whole-scene view
+    float shadowFootprint = 4.0f; // a spot's or point light's texels per screen pixel (ShadowMaps; 0: shadowMapSize)
+    int pcfRadius = 1;            // 0: one hard tap per pixel
+    bool pcfLinear = true;        // hardware 2x2 bilinear comparison
+    bool accumulate = true;       // still frames jitter the pixel centre and are averaged (gl/renderer.h)
+    bool areaPcss = false;        // moving frames: area lights' penumbrae estimated by PCSS (else hard, centroid)
+    bool stillRayShadows = true;  // still frames: shadow rays through the BVH (RAY_SHADOWS), not the shadow maps
+    int stillDirectSamples = 1;  // still frames: points in the pixel the direct light averages (renderDirectSubsamples)
+    bool temporal = false;       // temporal reuse of the technique's indirect light (gl/renderer.h)
+    float temporalAlpha = 0.2f;  //   its weight of the new frame (TemporalReuseSettings::alpha)
+    bool temporalClamp = true;   //   its neighbourhood clamp (TemporalReuseSettings::clamp)
+    bool temporalDirect = false; //   with it, the direct light's reuse in moving frames (gl/renderer.h)
     bool temporalCatmullRom = true; // its history resampled by Catmull-Rom (TemporalReuseSettings::catmullRom)
     bool edgeAntialias = false;     // moving frames: edges antialiased by their lines (gl/frame/edge_antialias.h)
     int textureSize = 512;          // base-colour textures are resampled to this size (normal maps keep theirs)
@@ -99,6 +100,13 @@ public:
     void renderShadowMaps(PassTimers& timers);
     void renderGBuffer(PassTimers& timers);
     void renderDirect(PassTimers& timers);
+    // Before renderGBuffer in a still frame with still.directSamples N > 1: the G-buffer and the direct
+    // light at the frame's N - 1 further points in the pixel (FrameSampler::setDirectSubsample), summed
+    // ("direct.samples"); the renderDirect that follows at the frame's own point, whose G-buffer the
+    // technique reads, leaves the mean of all N in direct(). The still frames' mean then averages N points
+    // per frame of the direct light (the emitters' points and shadow-map shifts stay one per frame).
+    // Nothing in a moving frame, at a coarser indirect scale, or with N = 1.
+    void renderDirectSubsamples(PassTimers& timers);
     // direct + indirect into result(). withIndirect false (a technique that claims only direct light): no
     // pass at all, result() is the direct texture itself.
     void composite(PassTimers& timers, bool withIndirect = true);
@@ -265,6 +273,11 @@ private:
         Program resolve;
     };
     AreaRatio areaRatio_;
+    Texture directSum_; // renderDirectSubsamples' sum, allocated at its first use
+    Program directSumProgram_, directMeanProgram_;
+    int directSubsamplesPending_ = 0; // N where renderDirect is to leave the mean of N points, else 0
+    void runDirectSamples(PassTimers& timers, bool resolve, bool first);
+    void drawDirect(PassTimers& timers); // renderDirect's pass, without the mean of renderDirectSubsamples
     bool areaRatioDrawn_ = false;
     void allocateAreaRatio();
     // Whether this frame's own direct pass runs its still form (renderDirect; the shadow pass asks too).

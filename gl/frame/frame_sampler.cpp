@@ -31,6 +31,8 @@ const std::vector<SampleStreamInfo>& FrameSampler::streams()
         {SampleStream::BundleJitter, "bundle jitter", SampleSequence::Halton, 2, 0, "grb bundleJitter"},
         {SampleStream::AtlasAreaRotation, "atlas area rotation", SampleSequence::Halton, 6, 0,
          "grb RadianceAtlases::transfer", "area glossy rotation"},
+        {SampleStream::DirectSubsample, "direct sub-sample", SampleSequence::Sobol, 0, 2u,
+         "Frame::renderDirectSubsamples"},
     };
     return table;
 }
@@ -62,6 +64,18 @@ void FrameSampler::advance(bool still)
     sampleIndex_ = stillIndex_ > 0 ? stillIndex_ : movingSamples_ ? int(frameIndex_ % 0x40000000u) + 1 : 0;
     jitter_ =
         stillIndex_ > 0 ? sample2(SampleStream::PixelJitter, std::uint64_t(sampleIndex_)) - 0.5f : glm::vec2(0.0f);
+    frameJitter_ = jitter_;
+}
+
+void FrameSampler::setDirectSubsample(int sample, int perFrame)
+{
+    if (sample <= 0 || stillIndex_ < 1 || perFrame < 2) {
+        jitter_ = frameJitter_;
+        return;
+    }
+    const std::uint64_t index =
+        std::uint64_t(stillIndex_ - 1) * std::uint64_t(perFrame - 1) + std::uint64_t(sample - 1);
+    jitter_ = sample2(SampleStream::DirectSubsample, index) - 0.5f;
 }
 
 } // namespace bounce::gl

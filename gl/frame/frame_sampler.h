@@ -25,6 +25,7 @@ enum class SampleStream {
     BundleDirection,    // a global ray-bundle's direction (grb: bundleDirection)
     BundleJitter,       // a bundle's sub-texel offset (grb: bundleJitter)
     AtlasAreaRotation,  // the emitters' points of an atlas transfer (grb: RadianceAtlases)
+    DirectSubsample,    // a still frame's further points in the pixel for its direct light (still.directSamples)
 };
 
 enum class SampleSequence { Halton, Sobol };
@@ -64,6 +65,11 @@ public:
     int sampleIndex() const { return sampleIndex_; }
     // The frame's offset from the pixel's centre, each component in [-0.5, 0.5) (0 in a moving frame).
     glm::vec2 jitter() const { return jitter_; }
+    // Still frames with `perFrame` > 1 samples of the direct light (Frame::renderDirectSubsamples): the
+    // jitter of sample `sample` of this frame, 1 .. perFrame - 1 from the stream DirectSubsample (drawn at
+    // (stillIndex - 1) (perFrame - 1) + sample - 1), 0 the frame's own (PixelJitter) again, which the
+    // technique's G-buffer keeps.
+    void setDirectSubsample(int sample, int perFrame);
     // A seed of a shader's hashed random numbers (glsl/common/random.glsl) for this frame: `base` in a moving
     // frame (still frame 0), so that its image stays what it was; base mixed with the still index after, so
     // that each still frame draws new numbers and the still frames' mean converges. With fresh moving seeds
@@ -85,6 +91,7 @@ private:
     bool freshMovingSeeds_ = false;
     bool movingSamples_ = false;
     glm::vec2 jitter_{0.0f};
+    glm::vec2 frameJitter_{0.0f}; // the frame's own, which setDirectSubsample(0, ...) restores
 };
 
 } // namespace bounce::gl

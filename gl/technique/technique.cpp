@@ -60,6 +60,9 @@ const std::vector<PassDecl>& framePasses()
         {"direct", "emission and direct light with shadow maps", ""},
         {"composite", "direct + the technique's indirect light", "the technique adds indirect light"},
         {"accumulate", "the mean of the still frames (jittered pixel centres)", "the view was still last frame"},
+        {"direct.samples",
+         "the direct light of the still frame's further points in the pixel summed, then averaged with its own",
+         "a still frame with still.directSamples > 1"},
         {"temporal",
          "the indirect light of a technique that declares temporalReuse, and with temporal.direct the frame's "
          "direct light in moving frames, blended with their reprojected histories (gl/frame/temporal_reuse.h)",
@@ -102,6 +105,11 @@ const std::vector<ParamDecl>& frameParams()
                     "frame's point on the light (converges to the path tracer's, contacts included), or the "
                     "shadow maps with a shifted tap per frame (a bias that scales with the texel stays); moving "
                     "frames read the shadow maps either way"),
+        {"still.directSamples", ParamType::Int, 1, 1, 64,
+         "still frames: the direct light's points in the pixel per frame, the frame's own (where the technique "
+         "gathers) and N - 1 more, each a G-buffer and direct pass of its own, averaged: the direct light "
+         "converges N times as fast in frames, for what those passes cost (worth it where a technique's "
+         "frame costs far more than they do)"},
         {"accumulate", ParamType::Bool, 1, 0, 1,
          "while the view is still, sample each frame at another point inside the pixel and show the mean of "
          "the frames (converges to box-filtered pixels; the area lights' shadows to soft ones)"},
@@ -161,6 +169,7 @@ FrameSettings frameSettingsFrom(const ParamValues& v, int width, int height)
     s.edgeAntialias = v.getBool("edgeAA");
     s.areaPcss = v.getChoice(frameParams(), "shadow.area") == "pcss";
     s.stillRayShadows = v.getChoice(frameParams(), "shadow.still") == "rays";
+    s.stillDirectSamples = v.getInt("still.directSamples");
     s.gbufferConstantFragment = v.getChoice(frameParams(), "gbuffer.fragment") == "constant";
     return s;
 }

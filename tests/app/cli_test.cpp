@@ -872,8 +872,8 @@ TEST(Cli, ListJsonIsTheWholeRegistry)
         }
     }
     EXPECT_TRUE(sawRsm);
-    // shadow, gbuffer, direct, composite, accumulate, temporal, edge-aa.lines, edge-aa
-    EXPECT_EQ(j["frame"]["passes"].size(), 8u);
+    // shadow, gbuffer, direct, composite, accumulate, direct.samples, temporal, edge-aa.lines, edge-aa
+    EXPECT_EQ(j["frame"]["passes"].size(), 9u);
 }
 
 // --reference puts the error against a reference in the record; one whose size does not divide the
