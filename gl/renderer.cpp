@@ -109,7 +109,7 @@ void Renderer::renderFrame(bool keepTimings)
     frame_->setAreaLightsInDirect(!technique_->carriesEmittersLight(), technique_->readsAreaShadowMaps());
     frame_->setShadowMapsRead(technique_->readsShadowMaps(*frame_));
     frame_->renderShadowMaps(timers_);
-    frame_->renderDirectSubsamples(timers_); // still.directSamples > 1: the further points' direct light
+    frame_->renderDirectSubsamples(timers_); // *.directSamples > 1: the further points' direct light
     frame_->renderGBuffer(timers_);
     frame_->renderDirect(timers_);
     if (frame_->settings().temporal && frame_->settings().temporalDirect && frame_->sampler().stillIndex() == 0)

@@ -558,8 +558,8 @@ void Frame::drawDirect(PassTimers& timers)
 void Frame::renderDirectSubsamples(PassTimers& timers)
 {
     directSubsamplesPending_ = 0;
-    const int n = settings_.stillDirectSamples;
-    if (n < 2 || sampler_.stillIndex() < 1 || coarseActive_) return;
+    const int n = sampler_.stillIndex() >= 1 ? settings_.stillDirectSamples : settings_.movingDirectSamples;
+    if (n < 2 || coarseActive_) return;
     if (!directSum_ || directSum_.width() != full_.width || directSum_.height() != full_.height)
         directSum_ = Texture::create2D("direct.sum", GL_RGBA32F, full_.width, full_.height);
     for (int k = 1; k < n; ++k) {

@@ -39,6 +39,7 @@ struct FrameSettings {
     bool areaPcss = false;          // moving frames: area lights' penumbrae estimated by PCSS (else hard, centroid)
     bool stillRayShadows = true;    // still frames: shadow rays through the BVH (RAY_SHADOWS), not the shadow maps
     int stillDirectSamples = 1;     // still frames: the direct light's points per pixel (renderDirectSubsamples)
+    int movingDirectSamples = 1;    // moving frames: the same (renderDirectSubsamples)
     bool temporal = false;          // temporal reuse of the technique's indirect light (gl/renderer.h)
     float temporalAlpha = 0.2f;     //   its weight of the new frame (TemporalReuseSettings::alpha)
     bool temporalClamp = true;      //   its neighbourhood clamp (TemporalReuseSettings::clamp)
@@ -100,12 +101,14 @@ public:
     void renderShadowMaps(PassTimers& timers);
     void renderGBuffer(PassTimers& timers);
     void renderDirect(PassTimers& timers);
-    // Before renderGBuffer in a still frame with still.directSamples N > 1: the G-buffer and the direct
-    // light at the frame's N - 1 further points in the pixel (FrameSampler::setDirectSubsample), summed
-    // ("direct.samples"); the renderDirect that follows at the frame's own point, whose G-buffer the
-    // technique reads, leaves the mean of all N in direct(). The still frames' mean then averages N points
-    // per frame of the direct light (the emitters' points and shadow-map shifts stay one per frame).
-    // Nothing in a moving frame, at a coarser indirect scale, or with N = 1.
+    // Before renderGBuffer in a frame with N > 1 points of its direct light (still.directSamples in a still
+    // frame, moving.directSamples in a moving one): the G-buffer and the direct light at the frame's N - 1
+    // further points in the pixel (FrameSampler::setDirectSubsample), summed ("direct.samples"); the
+    // renderDirect that follows at the frame's own point, whose G-buffer the technique reads (a moving
+    // frame's: the pixel centres, where the reuse reprojects), leaves the mean of all N in direct(). The
+    // emitters' points and shadow-map shifts stay one per frame, and so does the emitters' share of the
+    // moving frames' ratio estimator (areaVisibility: the frame's own point's). Nothing at a coarser
+    // indirect scale or with N = 1.
     void renderDirectSubsamples(PassTimers& timers);
     // direct + indirect into result(). withIndirect false (a technique that claims only direct light): no
     // pass at all, result() is the direct texture itself.

@@ -69,12 +69,12 @@ void FrameSampler::advance(bool still)
 
 void FrameSampler::setDirectSubsample(int sample, int perFrame)
 {
-    if (sample <= 0 || stillIndex_ < 1 || perFrame < 2) {
+    if (sample <= 0 || perFrame < 2) {
         jitter_ = frameJitter_;
         return;
     }
     const std::uint64_t index =
-        std::uint64_t(stillIndex_ - 1) * std::uint64_t(perFrame - 1) + std::uint64_t(sample - 1);
+        std::uint64_t(std::max(sampleIndex_, 1) - 1) * std::uint64_t(perFrame - 1) + std::uint64_t(sample - 1);
     jitter_ = sample2(SampleStream::DirectSubsample, index) - 0.5f;
 }
 

@@ -25,7 +25,7 @@ enum class SampleStream {
     BundleDirection,    // a global ray-bundle's direction (grb: bundleDirection)
     BundleJitter,       // a bundle's sub-texel offset (grb: bundleJitter)
     AtlasAreaRotation,  // the emitters' points of an atlas transfer (grb: RadianceAtlases)
-    DirectSubsample,    // a still frame's further points in the pixel for its direct light (still.directSamples)
+    DirectSubsample,    // a frame's further points in the pixel for its direct light (*.directSamples)
 };
 
 enum class SampleSequence { Halton, Sobol };
@@ -65,10 +65,11 @@ public:
     int sampleIndex() const { return sampleIndex_; }
     // The frame's offset from the pixel's centre, each component in [-0.5, 0.5) (0 in a moving frame).
     glm::vec2 jitter() const { return jitter_; }
-    // Still frames with `perFrame` > 1 samples of the direct light (Frame::renderDirectSubsamples): the
-    // jitter of sample `sample` of this frame, 1 .. perFrame - 1 from the stream DirectSubsample (drawn at
-    // (stillIndex - 1) (perFrame - 1) + sample - 1), 0 the frame's own (PixelJitter) again, which the
-    // technique's G-buffer keeps.
+    // Frames with `perFrame` > 1 samples of the direct light (Frame::renderDirectSubsamples): the jitter of
+    // sample `sample` of this frame, 1 .. perFrame - 1 from the stream DirectSubsample (drawn at
+    // (max(sampleIndex, 1) - 1) (perFrame - 1) + sample - 1: still frames and moving frames with moving
+    // samples draw new points every frame, other moving frames the same ones), 0 the frame's own
+    // (PixelJitter, a moving frame's pixel centre) again, which the technique's G-buffer keeps.
     void setDirectSubsample(int sample, int perFrame);
     // A seed of a shader's hashed random numbers (glsl/common/random.glsl) for this frame: `base` in a moving
     // frame (still frame 0), so that its image stays what it was; base mixed with the still index after, so

@@ -62,7 +62,7 @@ const std::vector<PassDecl>& framePasses()
         {"accumulate", "the mean of the still frames (jittered pixel centres)", "the view was still last frame"},
         {"direct.samples",
          "the direct light of the still frame's further points in the pixel summed, then averaged with its own",
-         "a still frame with still.directSamples > 1"},
+         "still.directSamples > 1 in a still frame, moving.directSamples in a moving one"},
         {"temporal",
          "the indirect light of a technique that declares temporalReuse, and with temporal.direct the frame's "
          "direct light in moving frames, blended with their reprojected histories (gl/frame/temporal_reuse.h)",
@@ -110,6 +110,11 @@ const std::vector<ParamDecl>& frameParams()
          "gathers) and N - 1 more, each a G-buffer and direct pass of its own, averaged: the direct light "
          "converges N times as fast in frames, for what those passes cost (worth it where a technique's "
          "frame costs far more than they do)"},
+        {"moving.directSamples", ParamType::Int, 1, 1, 64,
+         "moving frames: the direct light's points in the pixel per frame, its centre (where the technique "
+         "gathers and the reuse reprojects) and N - 1 more, each a G-buffer and direct pass of its own, "
+         "averaged: the moving frame's shadow edges, thin geometry and textures antialiased, for N times what "
+         "those passes cost; with temporal.direct the reuse blends the mean"},
         {"accumulate", ParamType::Bool, 1, 0, 1,
          "while the view is still, sample each frame at another point inside the pixel and show the mean of "
          "the frames (converges to box-filtered pixels; the area lights' shadows to soft ones)"},
@@ -170,6 +175,7 @@ FrameSettings frameSettingsFrom(const ParamValues& v, int width, int height)
     s.areaPcss = v.getChoice(frameParams(), "shadow.area") == "pcss";
     s.stillRayShadows = v.getChoice(frameParams(), "shadow.still") == "rays";
     s.stillDirectSamples = v.getInt("still.directSamples");
+    s.movingDirectSamples = v.getInt("moving.directSamples");
     s.gbufferConstantFragment = v.getChoice(frameParams(), "gbuffer.fragment") == "constant";
     return s;
 }

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -227,6 +228,47 @@ TEST_F(TemporalRendererTest, DirectLightReuseOfPunctualLightsStaysWithinTheCurre
                 outside, 64 * 64 * 3, worst, floorLight);
     EXPECT_EQ(outside, 0);
     EXPECT_GT(relativeChange(a, c), 0.0) << "the history took no part: the test saw no reuse";
+}
+
+// moving.directSamples (Frame::renderDirectSubsamples in a moving frame): the moving frame's direct light
+// averaged over N points in the pixel, its centre and N - 1 more, antialiases what the pixel centres alone
+// alias (shadow edges, silhouettes). cornell-point's moving frames (with temporal.direct their shadows are
+// rays, exact at each point; alpha 1: no history), 30x22 (not a power of two), against an independent path:
+// 256 still frames of one point each, the box-filtered pixels. One moving frame of 16 points lies far closer
+// to it than one of the centres alone (measured: 0.0467 against 0.2838). The technique's G-buffer stays at
+// the pixel centres, to the bit.
+TEST_F(TemporalRendererTest, MovingDirectSamplesAntialiasTheMovingFrame)
+{
+    const core::Scene scene = core::makeCornell("cornell-point");
+    constexpr int kSmallW = 30, kSmallH = 22;
+    const gl::ParamValues t(gl::findTechnique("direct").params);
+    struct Run {
+        core::Image image;
+        std::vector<float> positions;
+    };
+    const auto moving = [&](int samples) {
+        gl::ParamValues v = frameValues(true, 1.0);
+        v.setValue("temporal.direct", 1);
+        v.setValue("moving.directSamples", samples);
+        gl::Renderer r(scene, "direct", v, t, kSmallW, kSmallH);
+        r.renderFrame(false);
+        r.renderFrame(false);
+        EXPECT_EQ(r.frame().sampler().stillIndex(), 0);
+        EXPECT_EQ(r.frame().sampler().jitter(), glm::vec2(0.0f)) << "the frame's own point left the pixel centre";
+        return Run{r.image(), r.frame().readPositions()};
+    };
+    gl::ParamValues s = frameValues(false);
+    s.setValue("accumulate", 1);
+    gl::Renderer still(scene, "direct", s, t, kSmallW, kSmallH);
+    for (int i = 0; i <= 256; ++i) still.renderFrame(false);
+    ASSERT_EQ(still.stillFrames(), 256);
+    const Run sixteen = moving(16), one = moving(1);
+    const double e16 = core::relativeRmse(sixteen.image, still.image());
+    const double e1 = core::relativeRmse(one.image, still.image());
+    std::printf("[ measured ] one moving frame against 256 still frames: 16 points %.4f, the centres alone %.4f\n", e16,
+                e1);
+    EXPECT_LT(e16, 0.5 * e1);
+    EXPECT_EQ(sixteen.positions, one.positions) << "the technique's G-buffer moved off the pixel centres";
 }
 
 // The frame's shadow pass draws only what a pass reads (Frame::setShadowMapsRead): `direct` reads no map
