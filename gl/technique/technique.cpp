@@ -61,7 +61,7 @@ const std::vector<PassDecl>& framePasses()
         {"composite", "direct + the technique's indirect light", "the technique adds indirect light"},
         {"accumulate", "the mean of the still frames (jittered pixel centres)", "the view was still last frame"},
         {"direct.samples",
-         "the direct light of the still frame's further points in the pixel summed, then averaged with its own",
+         "the direct light of the frame's further points in the pixel summed, then averaged with its own",
          "still.directSamples > 1 in a still frame, moving.directSamples in a moving one"},
         {"temporal",
          "the indirect light of a technique that declares temporalReuse, and with temporal.direct the frame's "
