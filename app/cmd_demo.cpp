@@ -40,12 +40,15 @@ const std::string kUsage =
         "               so follow it with wait:N to see them), budget:MS (the frame budget), quit\n"
         "  --frame-log  a CSV of every frame, written when the demo ends: seconds since start, frame_ms (since\n"
         "               the last frame), render_ms (the renderers alone), indirect_scale (1: full resolution),\n"
-        "               moving, technique, passes (the left renderer's: name=ms;...)\n"
+        "               direct_samples (moving frames' points of the direct light), moving, technique, passes\n"
+        "               (the left renderer's: name=ms;...)\n"
         "\n"
         "Frame budget (panel, 100 ms by default): while the camera or the light moves and frames take longer\n"
         "than the budget, indirect light is computed at 1/2, 1/4 or 1/8 of the resolution and upsampled\n"
         "(joint bilateral); once still for a quarter of a second it is full resolution again, and\n"
-        "progressive techniques accumulate. The same technique keeps its state at every scale.\n"
+        "progressive techniques accumulate. The same technique keeps its state at every scale. Moving\n"
+        "frames under a quarter of the budget at full resolution take 2, 4, then 8 points of the direct\n"
+        "light per pixel instead (moving.directSamples, unless --set names it); over budget those go first.\n"
         "Temporal reuse (the frame parameters temporal and temporal.direct): moving frames blend their direct\n"
         "light, and the indirect light of a technique that draws new samples each frame, with the frames\n"
         "before, reprojected (gl/frame/README.md, \"Moving frames\"). On by default on a GPU; off on a software\n"
@@ -114,6 +117,8 @@ int cmdDemo(const Args& args)
     std::printf("GL renderer: %s (%s)\n", context->info().renderer.c_str(), context->info().platform.c_str());
     std::printf("%s\n", chooseDemoTemporal(settings.frameValues, o.all("set"), gl::softwareRasterizer()).c_str());
     std::printf("%s\n", chooseDemoEdgeAA(settings.frameValues, o.all("set"), gl::softwareRasterizer()).c_str());
+    for (const std::string& kv : o.all("set"))
+        if (kv.substr(0, kv.find('=')) == "moving.directSamples") settings.budgetDirectSamples = false;
     Demo demo(*context, std::move(settings));
     return demo.run();
 }

@@ -149,8 +149,9 @@ int Demo::run()
 {
     double last = glfwGetTime();
     const double start = last;
+    // frame_ms: since the last frame; render_ms: the renderers alone (cmd_demo.cpp's --help)
     if (!s_.frameLog.empty())
-        frameLog_ = "seconds,frame_ms,render_ms,indirect_scale,moving,technique,passes\n"; // frame_ms: since the last
+        frameLog_ = "seconds,frame_ms,render_ms,indirect_scale,direct_samples,moving,technique,passes\n";
     while (!glfwWindowShouldClose(window_)) {
         glfwPollEvents();
         const double now = glfwGetTime();
@@ -158,8 +159,9 @@ int Demo::run()
         last = now;
         if (!s_.frameLog.empty() && now > start) {
             char row[256];
-            std::snprintf(row, sizeof row, "%.4f,%.3f,%.3f,%d,%d,%s,", now - start, 1e3 * double(dt), frameMs_,
-                          indirectScale_, movingForLog_ ? 1 : 0, s_.technique.c_str());
+            std::snprintf(row, sizeof row, "%.4f,%.3f,%.3f,%d,%d,%d,%s,", now - start, 1e3 * double(dt), frameMs_,
+                          budget_.indirectScale, left_->frame().settings().movingDirectSamples, movingForLog_ ? 1 : 0,
+                          s_.technique.c_str());
             frameLog_ += row;
             std::string passes; // the left renderer's passes of the frame before: name=ms;...
             for (const gl::PassStat& p : left_->timers().lastFrame()) {
@@ -219,8 +221,14 @@ std::unique_ptr<gl::Renderer> Demo::makeRenderer(const std::string& name, const 
     auto r = std::make_unique<gl::Renderer>(s_.scene, name, s_.frameValues, values, viewW_, viewH_);
     r->frame().setLights(lights_);
     r->frame().setCamera(fly_.camera());
-    r->setIndirectScale(indirectScale_);
+    applyBudgetTo(*r);
     return r;
+}
+
+void Demo::applyBudgetTo(gl::Renderer& r) const
+{
+    r.setIndirectScale(budget_.indirectScale);
+    if (s_.budgetDirectSamples) r.frame().setMovingDirectSamples(budget_.directSamples);
 }
 
 void Demo::setTechnique(const std::string& name)
@@ -245,6 +253,7 @@ void Demo::compareWith(const std::string& name)
 void Demo::applySet(const std::string& keyValue)
 {
     applySets({keyValue}, left_->technique(), s_.frameValues, s_.techniqueValues);
+    if (keyValue.substr(0, keyValue.find('=')) == "moving.directSamples") s_.budgetDirectSamples = false;
     if (isFrameParam(keyValue.substr(0, keyValue.find('='))))
         rebuildRenderers();
     else
@@ -308,22 +317,24 @@ void Demo::applyBudget(double now)
     movedThisFrame_ = false;
     const bool moving = now - lastMoveTime_ < kStillSeconds;
     movingForLog_ = moving;
-    int scale = indirectScale_;
     // A technique drawn at full resolution at every scale (gl::Renderer::indirectScales) gains nothing from it.
     const bool scales = left_->indirectScales() || (right_ && right_->indirectScales());
-    if (!budgetOn_ || !moving || !scales)
-        scale = 1;
-    else if (frameMs_ > budgetMs_ && scale < 8)
-        scale *= 2; // the last frame was over budget: a quarter of the indirect pixels
-    else if (frameMs_ < 0.25 * budgetMs_ && scale > 1)
-        scale /= 2; // well under: finer again while still moving
-    if (scale == indirectScale_) return;
-    indirectScale_ = scale;
-    left_->setIndirectScale(scale);
-    if (right_) right_->setIndirectScale(scale);
-    if (scale == 1)
+    const FrameBudgetState next =
+        budgetOn_ ? nextFrameBudget(budget_, moving, frameMs_, double(budgetMs_), scales, s_.budgetDirectSamples)
+                  : FrameBudgetState{1, s_.frameValues.getInt("moving.directSamples")};
+    const bool points = next.directSamples != budget_.directSamples;
+    const bool rescaled = next.indirectScale != budget_.indirectScale;
+    if (!points && !rescaled) return;
+    budget_ = next;
+    for (gl::Renderer* r : {left_.get(), right_.get()})
+        if (r) applyBudgetTo(*r);
+    if (points)
+        std::printf("budget: %d points of the direct light per moving frame, %.0f ms against a %.0f ms budget\n",
+                    budget_.directSamples, frameMs_, double(budgetMs_));
+    const int scale = budget_.indirectScale;
+    if (rescaled && scale == 1)
         std::printf("budget: full resolution (still)\n");
-    else
+    else if (rescaled)
         std::printf("budget: indirect light at 1/%d resolution (%dx%d) while moving, %.0f ms over a %.0f ms budget\n",
                     scale, left_->indirectWidth(), left_->indirectHeight(), frameMs_, double(budgetMs_));
     std::fflush(stdout);
@@ -366,10 +377,12 @@ void Demo::panel()
     ImGui::DragFloat(id.c_str(), &speed_, 0.01f, 0.01f, 100.f);
     if (ImGui::CollapsingHeader("frame budget", ImGuiTreeNodeFlags_DefaultOpen)) {
         ImGui::Text("%.1f frames/s (%.0f ms)", frameMs_ > 0 ? 1000.0 / frameMs_ : 0.0, frameMs_);
-        ImGui::Checkbox("coarser indirect light while moving", &budgetOn_);
+        ImGui::Checkbox("coarser indirect light (or more direct points) while moving", &budgetOn_);
         id = labelAbove("budget (ms)");
         ImGui::DragFloat(id.c_str(), &budgetMs_, 1.0f, 1.0f, 10000.0f, "%.0f");
-        ImGui::Text("indirect light: %dx%d (1/%d)", left_->indirectWidth(), left_->indirectHeight(), indirectScale_);
+        ImGui::Text("indirect light: %dx%d (1/%d)", left_->indirectWidth(), left_->indirectHeight(),
+                    budget_.indirectScale);
+        ImGui::Text("direct light: %d points per moving frame", left_->frame().settings().movingDirectSamples);
     }
     if (ImGui::CollapsingHeader("passes (GPU ms)", ImGuiTreeNodeFlags_DefaultOpen)) {
         double total = 0;

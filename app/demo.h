@@ -24,6 +24,7 @@ struct DemoSettings {
     core::Image reference;                        // empty: none
     std::vector<DemoStep> script;                 // checked by parseDemoScript
     std::string frameLog;                         // CSV of every frame's times (empty: none), checked writable
+    bool budgetDirectSamples = true;              // the budget sets moving.directSamples (the command line did not)
 };
 
 class Demo {
@@ -76,11 +77,13 @@ private:
     // The frame budget (panel): while the camera or a light moves and a frame takes longer than the
     // budget, indirect light drops to a coarser resolution (gl::Renderer::setIndirectScale: 2, 4, 8) and
     // comes back to full resolution once the view has been still for kStillSeconds, where progressive
-    // techniques accumulate again.
+    // techniques accumulate again; a moving frame well under the budget takes more points of the direct
+    // light instead (nextFrameBudget).
     static constexpr double kStillSeconds = 0.25;
     bool budgetOn_ = true;
     float budgetMs_ = 100.0f;
-    int indirectScale_ = 1;
+    FrameBudgetState budget_;
+    void applyBudgetTo(gl::Renderer& r) const;
     double lastMoveTime_ = -1e30, frameMs_ = 0.0;
     std::string frameLog_; // the CSV rows so far, written at exit through a temporary name
     bool movingForLog_ = false;

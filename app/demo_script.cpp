@@ -114,4 +114,24 @@ std::vector<DemoStep> parseDemoScript(const std::string& text, const std::string
     return steps;
 }
 
+FrameBudgetState nextFrameBudget(FrameBudgetState s, bool moving, double frameMs, double budgetMs, bool scales,
+                                 bool addPoints)
+{
+    if (!moving) {
+        s.indirectScale = 1;
+    } else if (frameMs > budgetMs) {
+        if (addPoints && s.directSamples > 1)
+            s.directSamples /= 2;
+        else if (scales && s.indirectScale < 8)
+            s.indirectScale *= 2;
+    } else if (frameMs < 0.25 * budgetMs) {
+        if (s.indirectScale > 1)
+            s.indirectScale /= 2;
+        else if (addPoints && s.directSamples < kBudgetMaxDirectSamples)
+            s.directSamples *= 2;
+    }
+    if (!scales) s.indirectScale = 1;
+    return s;
+}
+
 } // namespace bounce::app

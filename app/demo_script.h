@@ -38,4 +38,24 @@ std::string chooseDemoTemporal(gl::ParamValues& frameValues, const std::vector<s
 std::string chooseDemoEdgeAA(gl::ParamValues& frameValues, const std::vector<std::string>& sets,
                              bool softwareRasterizer);
 
+// The frame budget's two settings for moving frames: the indirect light's scale (gl::Renderer::
+// setIndirectScale: 1, 2, 4, 8) and the direct light's points per pixel (frame parameter
+// moving.directSamples: 1, 2, 4, 8; gl/frame/README.md, "Moving frames").
+struct FrameBudgetState {
+    int indirectScale = 1;
+    int directSamples = 1;
+};
+inline constexpr int kBudgetMaxDirectSamples = 8; // the Sponza walk: 5.8% at 8 points, 9.3% at 1 (README)
+
+// One step of the demo's frame budget after a frame of `frameMs` against `budgetMs`. Still (not
+// `moving`): full resolution, the points left as they are (still frames take still.directSamples). Moving
+// and over budget: first the points the budget added go (halved down to 1), then the indirect light
+// coarsens (doubling its scale up to 8, where `scales`: a technique that a coarser scale does not speed up
+// stays at 1). Moving and under a quarter of the budget: the other way, the indirect light back to full
+// resolution first, then more points of the direct light (doubling up to kBudgetMaxDirectSamples, where
+// `addPoints`: the command line did not set moving.directSamples). Doubling from under a quarter stays
+// under half the budget, so the two directions do not alternate.
+FrameBudgetState nextFrameBudget(FrameBudgetState state, bool moving, double frameMs, double budgetMs, bool scales,
+                                 bool addPoints);
+
 } // namespace bounce::app

@@ -189,6 +189,9 @@ public:
     // The lights as the shaders read them (gl/frame/frame_lights.h), bound by bindSceneData().
     const FrameLights& lights() const { return lights_; }
     const FrameSettings& settings() const { return settings_; }
+    // Moving frames' points of the direct light from the next frame on (FrameSettings::movingDirectSamples,
+    // at least 1): the demo's frame budget sets it without rebuilding the frame (app/demo_script.h).
+    void setMovingDirectSamples(int n) { settings_.movingDirectSamples = n > 1 ? n : 1; }
     const core::Camera& camera() const { return camera_; }
     glm::mat4 view() const { return camera_.view(); }
     // The camera's projection, offset by the still frame's sub-pixel jitter (sampler().jitter()).

@@ -9,7 +9,11 @@
 #include <iterator>
 #include <limits>
 #include <map>
+#include <set>
+#include <sstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -793,18 +797,51 @@ TEST(Cli, DemoFrameBudgetCoarsensWhileMovingAndReturnsWhenStill)
     std::ifstream in(log);
     std::string line;
     ASSERT_TRUE(std::getline(in, line));
-    EXPECT_EQ(line, "seconds,frame_ms,render_ms,indirect_scale,moving,technique,passes");
+    EXPECT_EQ(line, "seconds,frame_ms,render_ms,indirect_scale,direct_samples,moving,technique,passes");
     int rows = 0, coarseMoving = 0;
     std::string last;
     while (std::getline(in, line)) {
         ++rows;
         last = line;
-        if (line.find(",1,rsm,") != std::string::npos && line.find(",1,1,rsm,") == std::string::npos) ++coarseMoving;
+        if (line.find(",1,1,rsm,") != std::string::npos && line.find(",1,1,1,rsm,") == std::string::npos)
+            ++coarseMoving;
     }
     EXPECT_GE(rows, 60) << "the moves run during the waits: 60 frames at least";
     EXPECT_GT(coarseMoving, 0) << "no moving frame at a coarser scale";
-    EXPECT_NE(last.find(",1,0,rsm,"), std::string::npos) << "the last frame is not still at full resolution: " << last;
+    EXPECT_NE(last.find(",1,1,0,rsm,"), std::string::npos)
+        << "the last frame is not still at full resolution: " << last;
     EXPECT_NE(last.find("gather="), std::string::npos) << last;
+}
+
+// The frame budget's other direction: moving frames far under a budget of 100 s take 2, 4, then 8 points
+// of the direct light (the frame log's direct_samples, what the frame renders), unless the command line
+// sets moving.directSamples, which then stays as set.
+TEST(Cli, DemoFrameBudgetAddsDirectPointsWhereMovingFramesHaveRoom)
+{
+    if (!std::getenv("DISPLAY")) GTEST_SKIP() << "no DISPLAY: the suite runs under xvfb-run in CI (test.sh)";
+    const fs::path d = outDir("demo-budget-points");
+    const auto pointsLogged = [&](const std::string& sets) {
+        const std::string log = (d / "frames.csv").string();
+        const CommandRun r = run("demo --scene cornell-spot --size 48x32 --technique direct " + sets + " --frame-log " +
+                                 log + " --script budget:100000,move:8,wait:8,quit");
+        EXPECT_EQ(r.status, 0) << r.output;
+        std::ifstream in(log);
+        std::string line;
+        std::getline(in, line);
+        std::set<std::string> moving; // direct_samples of the moving frames
+        while (std::getline(in, line)) {
+            std::vector<std::string> f;
+            std::stringstream row(line);
+            for (std::string c; std::getline(row, c, ',') && f.size() < 6;) f.push_back(c);
+            if (f.size() == 6 && f[5] == "1") moving.insert(f[4]);
+        }
+        return std::pair{moving, r.output};
+    };
+    const auto [added, out] = pointsLogged("");
+    EXPECT_EQ(added, (std::set<std::string>{"2", "4", "8"})) << "the first moving frame takes two already\n" << out;
+    EXPECT_NE(out.find("budget: 8 points of the direct light per moving frame"), std::string::npos) << out;
+    const auto [kept, keptOut] = pointsLogged("--set moving.directSamples=2");
+    EXPECT_EQ(kept, std::set<std::string>{"2"}) << keptOut;
 }
 
 // A frame parameter set while comparing rebuilds both halves: with the same technique on both sides the

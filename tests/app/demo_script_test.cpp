@@ -15,6 +15,8 @@ namespace {
 
 using bounce::app::chooseDemoEdgeAA;
 using bounce::app::chooseDemoTemporal;
+using bounce::app::FrameBudgetState;
+using bounce::app::nextFrameBudget;
 using bounce::app::parseDemoScript;
 using bounce::app::UsageError;
 namespace gl = bounce::gl;
@@ -126,6 +128,39 @@ TEST(DemoScript, EdgeAntialiasingDefaultFollowsTheRendererUnlessSet)
     EXPECT_TRUE(choose({"temporal=0"}, false)) << "another parameter";
     EXPECT_FALSE(choose({"edgeAA=0"}, false)) << "the user's edgeAA=0 on a GPU";
     EXPECT_TRUE(choose({"edgeAA=1"}, true, true)) << "the user's edgeAA=1 on llvmpipe";
+}
+
+// The frame budget's steps (app/demo_script.h): over budget while moving, the points the budget added go
+// before the indirect light coarsens; well under it, the indirect light comes back to full resolution
+// before points are added, up to 8; a still frame is at full resolution with its points kept; neither
+// setting moves where it may not (a technique that does not scale, points named on the command line).
+TEST(DemoScript, FrameBudgetTradesPointsAndScaleInOrder)
+{
+    const auto step = [](FrameBudgetState s, double ms, bool moving = true, bool scales = true, bool points = true) {
+        const FrameBudgetState n = nextFrameBudget(s, moving, ms, 100.0, scales, points);
+        return std::pair{n.indirectScale, n.directSamples};
+    };
+    using P = std::pair<int, int>;
+    EXPECT_EQ(step({1, 1}, 150), P(2, 1)) << "over budget with one point: coarser";
+    EXPECT_EQ(step({1, 4}, 150), P(1, 2)) << "over budget: the added points go first";
+    EXPECT_EQ(step({8, 1}, 150), P(8, 1)) << "over budget at 1/8 and one point: nothing left to give";
+    EXPECT_EQ(step({4, 1}, 20), P(2, 1)) << "well under at 1/4: finer first";
+    EXPECT_EQ(step({1, 1}, 20), P(1, 2)) << "well under at full resolution: two points";
+    EXPECT_EQ(step({1, 4}, 20), P(1, 8));
+    EXPECT_EQ(step({1, 8}, 20), P(1, 8)) << "at most 8 points";
+    EXPECT_EQ(step({2, 4}, 60), P(2, 4)) << "between a quarter and the whole budget: as it was";
+    EXPECT_EQ(step({4, 8}, 300, false), P(1, 8)) << "still: full resolution, the points kept for the next move";
+    EXPECT_EQ(step({1, 1}, 150, true, false), P(1, 1)) << "a technique that does not scale, one point";
+    EXPECT_EQ(step({1, 2}, 150, true, false), P(1, 1)) << "...gives its added points";
+    EXPECT_EQ(step({1, 1}, 20, true, true, false), P(1, 1)) << "points named on the command line stay";
+    EXPECT_EQ(step({1, 4}, 150, true, true, false), P(2, 4)) << "...over budget too";
+    // From any start, a run of frames well under the budget ends at full resolution and 8 points, and a
+    // run over it at 1/8 and one point: no state is left stranded.
+    FrameBudgetState s{8, 1};
+    for (int i = 0; i < 8; ++i) s = nextFrameBudget(s, true, 10, 100, true, true);
+    EXPECT_EQ(P(s.indirectScale, s.directSamples), P(1, 8));
+    for (int i = 0; i < 8; ++i) s = nextFrameBudget(s, true, 500, 100, true, true);
+    EXPECT_EQ(P(s.indirectScale, s.directSamples), P(8, 1));
 }
 
 } // namespace
