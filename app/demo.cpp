@@ -353,7 +353,12 @@ void Demo::panel()
     // Uniform parameters reach the running technique without a rebuild (no shader is recompiled).
     if (paramWidgets(left_->technique().params, s_.techniqueValues)) left_->setTechniqueValues(s_.techniqueValues);
     if (ImGui::CollapsingHeader("frame")) {
-        if (paramWidgets(gl::frameParams(), s_.frameValues)) rebuildRenderers();
+        const int points = s_.frameValues.getInt("moving.directSamples");
+        if (paramWidgets(gl::frameParams(), s_.frameValues)) {
+            // The panel's moving.directSamples, once changed, is the user's: the budget leaves it.
+            if (s_.frameValues.getInt("moving.directSamples") != points) s_.budgetDirectSamples = false;
+            rebuildRenderers();
+        }
     }
     if (!lights_.empty() && ImGui::CollapsingHeader("light", ImGuiTreeNodeFlags_DefaultOpen)) {
         core::Light& l = lights_[0];
