@@ -45,7 +45,7 @@ struct FrameBudgetState {
     int indirectScale = 1;
     int directSamples = 1;
 };
-inline constexpr int kBudgetMaxDirectSamples = 8; // the Sponza walk: 5.8% at 8 points, 9.3% at 1 (README)
+inline constexpr int kBudgetMaxDirectSamples = 8; // the Sponza walk with reuse: 6.9% at 8, 9.3% at 1, 3.5% still
 
 // One step of the demo's frame budget after a frame of `frameMs` against `budgetMs`. Still (not
 // `moving`): full resolution, the points left as they are (still frames take still.directSamples). Moving
